@@ -1,0 +1,35 @@
+# Warnings, sanitizers and the helper every seqc target uses.
+
+add_library(seqc_warnings INTERFACE)
+target_compile_options(seqc_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                               -Wno-sign-conversion)
+if(SEQC_WERROR)
+  target_compile_options(seqc_warnings INTERFACE -Werror)
+endif()
+
+if(SEQC_SANITIZE)
+  # -fno-sanitize-recover makes any UBSan report fatal, so ctest fails on it.
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=all
+                      -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# seqc_library(name SOURCES ... DEPS ...): a static library rooted at the repository, so
+# headers are included as "runtime/protocol/..." or "compiler/...".
+function(seqc_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE seqc_warnings ${ARG_PRIVATE_DEPS})
+endfunction()
+
+# seqc_test(name SOURCES ... DEPS ...): a GoogleTest executable registered with ctest.
+function(seqc_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main seqc_warnings)
+  target_compile_definitions(${name} PRIVATE SEQC_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                             SEQC_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST
+                       PROPERTIES ENVIRONMENT "SEQC_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+endfunction()

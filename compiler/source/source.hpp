@@ -1,0 +1,50 @@
+// Source files, locations, and the file-system boundary of the compiler.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::compiler {
+
+// 1-based line and column (columns count bytes, as clang does). file is an index into
+// SourceManager; line 0 means "no location" (e.g. a command-line option).
+struct Location {
+  std::uint32_t file = 0;
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+  friend bool operator==(const Location&, const Location&) = default;
+};
+
+// The compiler's only access to the file system (DEVELOPERS.md rule 2). Paths are as the user
+// wrote them, resolved by the caller; the reader returns the whole file's bytes.
+class FileReader {
+ public:
+  virtual ~FileReader() = default;
+  virtual Result<std::string> read(const std::string& path) = 0;
+};
+
+// Owns the text of every file read in one compilation so diagnostics can quote source lines.
+class SourceManager {
+ public:
+  std::uint32_t add(std::string path, std::string text);
+  const std::string& path(std::uint32_t file) const;
+  const std::string& text(std::uint32_t file) const;
+  // The text of a 1-based line without its newline (empty if out of range).
+  std::string_view line(std::uint32_t file, std::uint32_t line) const;
+  std::size_t file_count() const { return files_.size(); }
+
+ private:
+  struct File {
+    std::string path;
+    std::string text;
+    std::vector<std::size_t> line_starts;
+  };
+  std::vector<File> files_;
+};
+
+}  // namespace seqc::compiler

@@ -1,0 +1,30 @@
+// seqc's entry point: wires the real clock, disk and terminal into the CLI and runs it.
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <unistd.h>
+
+#include "runtime/cli/app.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/io/disk.hpp"
+
+namespace {
+// The one piece of process-wide state: a signal handler can only reach a static.
+std::atomic<bool> g_interrupted{false};
+void on_sigint(int) { g_interrupted.store(true); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  seqc::io::SteadyClock clock;
+  seqc::io::DiskFileReader files;
+  seqc::cli::Context ctx{std::cout, std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
+                         &g_interrupted};
+  return seqc::cli::run(argc, argv, ctx);
+}
