@@ -20,6 +20,9 @@ struct Location {
   friend bool operator==(const Location&, const Location&) = default;
 };
 
+// A Location whose file is kNoFile belongs to no file at all: it renders as "seqc: error: ...".
+inline constexpr std::uint32_t kNoFile = 0xFFFFFFFFu;
+
 // The compiler's only access to the file system (DEVELOPERS.md rule 2). Paths are as the user
 // wrote them, resolved by the caller; the reader returns the whole file's bytes.
 class FileReader {
@@ -37,6 +40,8 @@ class SourceManager {
   // The text of a 1-based line without its newline (empty if out of range).
   std::string_view line(std::uint32_t file, std::uint32_t line) const;
   std::size_t file_count() const { return files_.size(); }
+  // Lines in the file (a final '\n' starts one more, empty, line); 0 for an unknown file.
+  std::size_t line_count(std::uint32_t file) const;
 
  private:
   struct File {

@@ -22,6 +22,14 @@ int run(int argc, const char* const* argv, Context& ctx) {
   add_decode_command(app, ctx, outcome);
   add_simulate_command(app, ctx, outcome);
   add_emulate_command(app, ctx, outcome);
+  add_ports_command(app, ctx, outcome);
+  add_play_command(app, ctx, outcome);
+  add_group_command(app, ctx, outcome);
+  add_battery_command(app, ctx, outcome);
+  add_servo_command(app, ctx, outcome);
+  add_offset_command(app, ctx, outcome);
+  add_bus_info_command(app, ctx, outcome);
+  add_upload_command(app, ctx, outcome);
 
   try {
     app.parse(argc, argv);

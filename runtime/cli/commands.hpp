@@ -1,10 +1,17 @@
 // One function per subcommand: it adds the subcommand to `app` and sets `result` when it runs.
 #pragma once
 
+#include <ostream>
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
+
+namespace seqc::compiler {
+struct CompileOutput;
+}  // namespace seqc::compiler
 
 namespace seqc::cli {
 
@@ -18,5 +25,19 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_decode_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_ports_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_play_command(CLI::App& app, Context& ctx, Outcome& result);
+// Servo controller commands (docs/commands.md).
+void add_group_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_battery_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_servo_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_offset_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_bus_info_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_upload_command(CLI::App& app, Context& ctx, Outcome& result);
+
+// For `seqc upload` (cmd_play.cpp): if `output` holds a Raspblock program, explains on `err`
+// that the board has no storage and points to `seqc play`, and returns true.
+bool explain_no_storage(const compiler::CompileOutput& output, const std::string& path,
+                        std::ostream& err);
 
 }  // namespace seqc::cli

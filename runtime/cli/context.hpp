@@ -8,6 +8,10 @@
 #include "compiler/source/source.hpp"
 #include "runtime/io/clock.hpp"
 
+namespace seqc::emu {
+class XArmEmulator;
+}
+
 namespace seqc::cli {
 
 struct Context {
@@ -18,6 +22,13 @@ struct Context {
   bool err_is_terminal = false;   // progress bar vs plain lines
   // Set by the SIGINT handler; long-running commands poll it and stop cleanly.
   const std::atomic<bool>* interrupted = nullptr;
+  // Standard input, for commands that accept "-" as a file name (e.g. `seqc decode -`).
+  std::istream* in = nullptr;
+  // `--port emu:xarm` talks to this emulated controller, when both are set, instead of a fresh
+  // one: tests prepare it (stored groups, faults) and read what it received afterwards, and
+  // several commands can share it. Its time is xarm_clock's.
+  emu::XArmEmulator* xarm_emulator = nullptr;
+  io::ManualClock* xarm_clock = nullptr;
 };
 
 }  // namespace seqc::cli

@@ -25,6 +25,6 @@ int main(int argc, char** argv) {
   seqc::io::SteadyClock clock;
   seqc::io::DiskFileReader files;
   seqc::cli::Context ctx{std::cout, std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
-                         &g_interrupted};
+                         &g_interrupted, &std::cin};
   return seqc::cli::run(argc, argv, ctx);
 }

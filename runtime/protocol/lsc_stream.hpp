@@ -12,8 +12,10 @@ namespace seqc::lsc {
 
 // Takes bytes in any chunking and yields whole frames. Garbage before a header is skipped;
 // a frame whose LEN is impossible (below 2, or above max_len) is rejected and the decoder
-// resynchronises on the next 55 55 after the rejected header. Never reads out of bounds and
-// holds at most one frame's worth of pending bytes plus what feed() was given.
+// resynchronises on the next 55 55 after the rejected header's first byte. In 55 55 55 the
+// header starts at the second 55, so a frame whose LEN is 0x55 cannot be received (a reading,
+// see lsc_stream.cpp). Never reads out of bounds and holds at most one frame's worth of
+// pending bytes plus what feed() was given.
 class FrameDecoder {
  public:
   explicit FrameDecoder(std::size_t max_len = 255);

@@ -1,0 +1,93 @@
+// The compiler's entry point: a choreography file (docs/language.md) in, a program out.
+//
+// compile_file() reads the file (and the files it includes) through a FileReader, reports every
+// mistake it finds into Diagnostics, and returns a program only when there is no error (with
+// options.strict, no warning either). The program is target-neutral data; compiler/backend/
+// turns it into controller frames.
+//
+// Robot kinds are an extension point: a profile (lang/profiles.hpp) names its RobotKind, and
+// each kind has its own program type in the Program variant. Today there is one kind, the
+// servo controller (xArm / LSC boards) with its stored action groups.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "compiler/source/diagnostics.hpp"
+#include "compiler/source/source.hpp"
+#include "compiler/lang/raspblock_program.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+
+namespace seqc::compiler {
+
+struct CompileOptions {
+  bool strict = false;  // warnings are errors (--strict)
+};
+
+enum class RobotKind {
+  ServoController,  // xArm / LSC-16 / LSC-32: keyframes stored as a GroupDownload action group
+  Raspblock,        // Yahboom Raspblock car board: a timed packet stream, played live
+};
+
+// One servo as the program sees it, after the file's `robot:` section is applied.
+struct ServoInfo {
+  std::string name;                 // the name diagnostics and listings use
+  std::uint8_t id = 0;              // bus id (xArm) or PWM channel (LSC)
+  int min = 0;                      // limits in device units
+  int max = 0;
+  int home = 0;                     // centre for mirroring; simulator's starting position
+  std::optional<double> max_speed;  // device units per second; nullopt = unchecked
+};
+
+struct RobotInfo {
+  std::string profile;  // "xarm", "lsc-16", "lsc-32"
+  RobotKind kind = RobotKind::ServoController;
+  std::vector<ServoInfo> servos;  // in id order
+
+  const ServoInfo* find_id(std::uint8_t id) const;
+  const ServoInfo* find_name(std::string_view name) const;
+};
+
+// One controller action: move the listed servos to their positions over time_ms. Servos not
+// listed keep their position. A wait is an action that re-sends the held positions.
+struct Keyframe {
+  std::uint32_t start_ms = 0;  // when the action starts, from the start of the sequence
+  std::uint16_t time_ms = 0;   // kMinActionMs..kMaxActionMs
+  std::vector<lsc::ServoTarget> targets;  // ascending id, each id once
+  Location source;                        // the step it came from
+};
+
+struct ServoProgram {
+  RobotInfo robot;
+  std::vector<Keyframe> keyframes;
+  std::uint64_t duration_ms() const;
+};
+
+// One alternative per RobotKind (a streamed car program will join this variant).
+using Program = std::variant<ServoProgram, RaspblockProgram>;
+
+struct CompileOutput {
+  SourceManager sources;
+  Diagnostics diagnostics;
+  std::optional<Program> program;  // set iff !diagnostics.has_errors(options.strict)
+  // Set when the main file itself could not be read (a file error, not a mistake in it).
+  std::optional<std::string> read_error;
+
+  const ServoProgram* servo_program() const {
+    return program ? std::get_if<ServoProgram>(&*program) : nullptr;
+  }
+  const RaspblockProgram* raspblock_program() const {
+    return program ? std::get_if<RaspblockProgram>(&*program) : nullptr;
+  }
+};
+
+// Compiles the file at `path` (as the user wrote it; includes are resolved relative to the
+// including file's directory).
+CompileOutput compile_file(const std::string& path, FileReader& files,
+                           const CompileOptions& options = {});
+
+}  // namespace seqc::compiler

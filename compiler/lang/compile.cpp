@@ -1,0 +1,75 @@
+// compile_file(): load, read the robot section, and lower for the robot's kind.
+#include "compiler/compile.hpp"
+
+#include "compiler/lang/file_loader.hpp"
+#include "compiler/lang/raspblock_lowering.hpp"
+#include "compiler/lang/reporter.hpp"
+#include "compiler/lang/robot_section.hpp"
+#include "compiler/lang/servo_lowering.hpp"
+
+namespace seqc::compiler {
+
+const ServoInfo* RobotInfo::find_id(std::uint8_t id) const {
+  for (const ServoInfo& s : servos) {
+    if (s.id == id) return &s;
+  }
+  return nullptr;
+}
+
+const ServoInfo* RobotInfo::find_name(std::string_view name) const {
+  for (const ServoInfo& s : servos) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+std::uint64_t ServoProgram::duration_ms() const {
+  std::uint64_t total = 0;
+  for (const Keyframe& k : keyframes) total += k.time_ms;
+  return total;
+}
+
+CompileOutput compile_file(const std::string& path, FileReader& files,
+                           const CompileOptions& options) {
+  CompileOutput out;
+  FileLoader loader(files, out.sources, out.diagnostics);
+  Reporter reporter(out.diagnostics);
+  auto main = loader.load(path);
+  if (!main) {
+    out.read_error = main.error().message;
+    return out;
+  }
+  const LoadedFile& file = **main;
+  if (!file.root) return out;
+
+  std::optional<Robot> robot;
+  if (!file.root->is_map()) {
+    reporter.error(file.root->location,
+                   "a choreography file must be a map with 'robot' and 'sequence' keys");
+    return out;
+  }
+  if (const YamlNode* r = file.root->find("robot")) {
+    robot = parse_robot(*r, reporter);
+  } else {
+    reporter.error(file.root->location,
+                   "missing 'robot': name the robot this file is for (xarm, lsc-16 or lsc-32)");
+  }
+  if (!robot) return out;
+
+  // Robot kinds plug in here: each kind lowers to its own alternative of Program.
+  switch (robot->info.kind) {
+    case RobotKind::Raspblock: {
+      RaspblockProgram program = lower_raspblock_program(*robot, file, loader, reporter);
+      if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
+      break;
+    }
+    case RobotKind::ServoController: {
+      ServoProgram program = lower_servo_program(*robot, file, loader, reporter);
+      if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace seqc::compiler

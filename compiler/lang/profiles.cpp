@@ -1,0 +1,65 @@
+#include "compiler/lang/profiles.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+// Facts from protocol-notes.md ("Units and ranges seen on these devices").
+const std::vector<RobotProfile>& profiles() {
+  static const std::vector<RobotProfile> table = {
+      // xArm bus servos: 0-1000 over 0-240 degrees, 500 = centre, ids 1-6.
+      {"xarm", RobotKind::ServoController, 1, 6, 0, 1000, 500, 0.0, 1000.0 / 240.0,
+       {{"claw", 1},
+        {"wrist_roll", 2},
+        {"wrist_pitch", 3},
+        {"elbow", 4},
+        {"shoulder", 5},
+        {"base", 6}},
+       "servo"},
+      // PWM boards: 500-2500 us, 1500 = neutral; 0-180 degrees is the usual hobby-servo travel.
+      {"lsc-16", RobotKind::ServoController, 0, 15, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+       "ch"},
+      {"lsc-32", RobotKind::ServoController, 0, 31, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+       "ch"},
+      // Yahboom Raspblock car board: servos 1-4 at 500-2500 us; its gimbal and rocker are
+      // outputs of the board itself (lang/raspblock_lowering.cpp).
+      {"raspblock", RobotKind::Raspblock, 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+       "servo"},
+  };
+  return table;
+}
+
+}  // namespace
+
+const RobotProfile* find_profile(std::string_view name) {
+  for (const RobotProfile& p : profiles()) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> profile_names() {
+  std::vector<std::string> names;
+  for (const RobotProfile& p : profiles()) names.emplace_back(p.name);
+  return names;
+}
+
+RobotInfo robot_from_profile(const RobotProfile& profile) {
+  RobotInfo robot;
+  robot.profile = std::string(profile.name);
+  robot.kind = profile.kind;
+  for (int id = profile.first_id; id <= profile.last_id; ++id) {
+    ServoInfo s;
+    s.id = static_cast<std::uint8_t>(id);
+    s.name = std::string(profile.default_prefix) + std::to_string(id);
+    for (const auto& [name, named_id] : profile.names) {
+      if (named_id == id) s.name = std::string(name);
+    }
+    s.min = profile.min;
+    s.max = profile.max;
+    s.home = profile.home;
+    robot.servos.push_back(std::move(s));
+  }
+  return robot;
+}
+
+}  // namespace seqc::compiler

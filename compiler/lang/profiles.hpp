@@ -1,0 +1,41 @@
+// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32) means before the file's own
+// servo definitions are applied.
+//
+// This table is where a new robot kind plugs in: add a RobotKind (compile.hpp), a profile row
+// here, and the lowering for that kind (lang/compile.cpp dispatches on the profile's kind).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "compiler/compile.hpp"
+
+namespace seqc::compiler {
+
+struct RobotProfile {
+  std::string_view name;
+  RobotKind kind = RobotKind::ServoController;
+  std::uint8_t first_id = 0;  // ids (bus ids or PWM channels) the controller accepts
+  std::uint8_t last_id = 0;
+  int min = 0;  // position range in device units
+  int max = 0;
+  int home = 0;
+  // Degrees: units = degree_zero + degrees * units_per_degree (0deg is the low end of travel).
+  double degree_zero = 0;
+  double units_per_degree = 1;
+  // Names of the profile's servos; ids without a name here are called <default_prefix><id>.
+  std::vector<std::pair<std::string_view, std::uint8_t>> names;
+  std::string_view default_prefix;
+};
+
+const RobotProfile* find_profile(std::string_view name);
+std::vector<std::string> profile_names();
+
+// The RobotInfo a profile describes before any per-file servo definitions.
+RobotInfo robot_from_profile(const RobotProfile& profile);
+
+}  // namespace seqc::compiler

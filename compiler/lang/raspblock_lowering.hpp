@@ -1,0 +1,27 @@
+// Lowers a choreography for the Raspblock car board (`robot: raspblock`, docs/raspblock.md)
+// into a timed packet stream: drives, gimbal and servo moves interpolated at the file's
+// resolution, waits, repeats, includes, tempo, and the PID settings sent first. Checks every
+// range, every key (with "did you mean"), and that the stream fits the 115200-baud link.
+#pragma once
+
+#include <cstdint>
+
+#include "compiler/lang/file_loader.hpp"
+#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/lang/reporter.hpp"
+#include "compiler/lang/robot_section.hpp"
+
+namespace seqc::compiler {
+
+// Decision: moves are split into one packet per 20 ms (50 per second) unless the file sets
+// `resolution` or a move sets `steps`: the rate hobby servos are refreshed at.
+inline constexpr std::uint32_t kRaspblockDefaultResolutionMs = 20;
+// Limits that keep a runaway repeat from exhausting memory.
+inline constexpr std::uint64_t kRaspblockMaxStreamMs = 24ull * 3600 * 1000;
+inline constexpr std::size_t kRaspblockMaxPackets = 1'000'000;
+
+// The program is returned even when errors were reported (the caller decides).
+RaspblockProgram lower_raspblock_program(const Robot& robot, const LoadedFile& main,
+                                         FileLoader& loader, Reporter& reporter);
+
+}  // namespace seqc::compiler

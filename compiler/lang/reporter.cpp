@@ -1,0 +1,59 @@
+#include "compiler/lang/reporter.hpp"
+
+namespace seqc::compiler {
+
+void Reporter::report(Severity severity, Location at, std::string message,
+                      std::optional<Note> note) {
+  auto key = std::make_tuple(static_cast<int>(severity), at.file, at.line, at.column, message);
+  if (!seen_.insert(std::move(key)).second) return;
+  if (severity == Severity::Error) {
+    ++errors_;
+    diags_.error(at, std::move(message));
+  } else {
+    diags_.warning(at, std::move(message));
+  }
+  if (note) diags_.note(note->at, std::move(note->message));
+  for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {
+    diags_.note(*it, "included from here");
+  }
+}
+
+void Reporter::unknown(Location at, std::string_view what, std::string_view word,
+                       const std::vector<std::string>& candidates, std::string_view where) {
+  std::string message = "unknown " + std::string(what) + " '" + std::string(word) + "'";
+  if (!where.empty()) message += " " + std::string(where);
+  const std::string suggestion = did_you_mean(word, candidates);
+  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+  error(at, std::move(message));
+}
+
+bool Reporter::check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
+                          std::string_view where) {
+  bool ok = true;
+  std::vector<std::string> candidates(allowed.begin(), allowed.end());
+  for (const auto& [key, value] : map.entries) {
+    bool known = false;
+    for (std::string_view a : allowed) known = known || key.scalar == a;
+    if (!known) {
+      unknown(key.location, "key", key.scalar, candidates, where);
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+std::string_view kind_name(const YamlNode& node) {
+  switch (node.kind) {
+    case YamlNode::Kind::Null:
+      return "empty";
+    case YamlNode::Kind::Scalar:
+      return "a single value";
+    case YamlNode::Kind::Sequence:
+      return "a list";
+    case YamlNode::Kind::Map:
+      return "a map";
+  }
+  return "a value";
+}
+
+}  // namespace seqc::compiler

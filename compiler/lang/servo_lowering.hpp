@@ -1,0 +1,21 @@
+// Lowers a choreography for a servo-controller robot into keyframes: resolves poses, relative
+// moves, mirroring, tempo, easing, repeats and includes; checks limits, speeds, action times
+// and the group's action budget (docs/language.md).
+#pragma once
+
+#include "compiler/compile.hpp"
+#include "compiler/lang/file_loader.hpp"
+#include "compiler/lang/reporter.hpp"
+#include "compiler/lang/robot_section.hpp"
+
+namespace seqc::compiler {
+
+inline constexpr std::size_t kMaxIncludeDepth = 16;
+inline constexpr std::uint32_t kDefaultResolutionMs = 100;
+
+// The program is returned even when errors were reported (the caller decides); keyframes stop
+// at the group's 1,020-action budget.
+ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
+                                 Reporter& reporter);
+
+}  // namespace seqc::compiler

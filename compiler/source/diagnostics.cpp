@@ -1,0 +1,106 @@
+#include "compiler/source/diagnostics.hpp"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+namespace seqc::compiler {
+
+void Diagnostics::error(Location at, std::string message) {
+  list_.push_back({Severity::Error, at, std::move(message)});
+  ++errors_;
+}
+
+void Diagnostics::warning(Location at, std::string message) {
+  list_.push_back({Severity::Warning, at, std::move(message)});
+  ++warnings_;
+}
+
+void Diagnostics::note(Location at, std::string message) {
+  list_.push_back({Severity::Note, at, std::move(message)});
+}
+
+bool Diagnostics::has_errors(bool strict) const { return errors_ > 0 || (strict && warnings_ > 0); }
+
+namespace {
+
+// The caret line copies tabs from the source line and gives every other character one column,
+// so the caret sits under the right character in a terminal. UTF-8 continuation bytes and the
+// zero-width byte-order mark take no column.
+std::string caret_padding(std::string_view line, std::size_t column) {
+  std::string pad;
+  const std::size_t n = std::min(column - 1, line.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(line[i]);
+    if (c == '\t') {
+      pad += '\t';
+    } else if (c == 0xEF && i + 2 < line.size() &&
+               static_cast<unsigned char>(line[i + 1]) == 0xBB &&
+               static_cast<unsigned char>(line[i + 2]) == 0xBF) {
+      i += 2;  // U+FEFF
+    } else if ((c & 0xC0) != 0x80) {
+      pad += ' ';
+    }
+  }
+  return pad;
+}
+
+}  // namespace
+
+// Layout (stable; golden-tested in tests/compiler/diagnostics_test.cpp):
+//   path:line:col: error: message
+//      12 |   source line
+//         |   ^
+// Without a column the caret line is left out; with line 0 only "path: error: message" is
+// printed; a location in no known file (kNoFile or a stale index) prints "seqc: error: message".
+std::string render(const Diagnostic& d, const SourceManager& sources, bool strict) {
+  const Location& at = d.location;
+  const bool known_file = at.file < sources.file_count();
+  std::string out;
+  if (!known_file) {
+    out += "seqc";
+  } else {
+    out += sources.path(at.file);
+    if (at.line > 0) {
+      out += ':' + std::to_string(at.line);
+      if (at.column > 0) out += ':' + std::to_string(at.column);
+    }
+  }
+  const bool promoted = strict && d.severity == Severity::Warning;
+  switch (d.severity) {
+    case Severity::Error:
+      out += ": error: ";
+      break;
+    case Severity::Warning:
+      out += promoted ? ": error: " : ": warning: ";
+      break;
+    case Severity::Note:
+      out += ": note: ";
+      break;
+  }
+  out += d.message;
+  if (promoted) out += " [--strict]";
+  out += '\n';
+
+  if (!known_file || at.line == 0) return out;
+  if (at.line > sources.line_count(at.file)) return out;
+
+  const std::string number = std::to_string(at.line);
+  const std::size_t width = std::max<std::size_t>(5, number.size() + 1);
+  const std::string_view line = sources.line(at.file, at.line);
+  out += std::string(width - number.size(), ' ') + number + " | ";
+  out += line;
+  out += '\n';
+  if (at.column > 0) {
+    out += std::string(width, ' ') + " | " + caret_padding(line, at.column) + "^\n";
+  }
+  return out;
+}
+
+std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool strict) {
+  std::string out;
+  for (const Diagnostic& d : ds.all()) out += render(d, sources, strict);
+  return out;
+}
+
+}  // namespace seqc::compiler

@@ -1,0 +1,178 @@
+// `seqc emulate xarm|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
+// path is the one line on stdout; progress and the Raspblock's state changes go to stderr.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "runtime/cli/commands.hpp"
+#include "runtime/emulator/pty_server.hpp"
+#include "runtime/emulator/raspblock_emulator.hpp"
+#include "runtime/emulator/xarm_emulator.hpp"
+#include "runtime/io/disk.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/protocol/raspblock.hpp"
+
+namespace seqc::cli {
+namespace {
+
+// The servo controller's UART rate (protocol-notes.md A, Framing).
+constexpr std::uint32_t kXArmBaud = 9600;
+
+struct EmulateOptions {
+  std::string device;
+  std::uint32_t baud = 0;
+  std::string faults;
+  std::uint64_t seed = 1;
+  std::string link;
+  std::string record;
+  CLI::Option* baud_opt = nullptr;
+  CLI::Option* faults_opt = nullptr;
+  CLI::Option* seed_opt = nullptr;
+  CLI::Option* link_opt = nullptr;
+  CLI::Option* record_opt = nullptr;
+};
+
+std::string seconds(io::TimePoint at) {
+  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
+  std::string frac = std::to_string(us % 1000000);
+  return std::to_string(us / 1000000) + "." + std::string(6 - frac.size(), '0') + frac;
+}
+
+std::string csv_field(std::string text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// One CSV line per piece the controller received.
+std::string xarm_record(const emu::XArmEmulator& emu) {
+  std::string out = "time_s,status,bytes,message\n";
+  for (const auto& r : emu.received()) {
+    std::string status = "ok";
+    std::string message;
+    if (r.dropped_fault) {
+      status = "fault";
+    } else if (r.dropped_busy) {
+      status = "busy";
+    } else if (!r.frame) {
+      status = "unframed";
+    }
+    if (r.frame) {
+      auto request = lsc::decode_request(*r.frame);
+      message = request ? lsc::describe(*request) : request.error().message;
+    }
+    out += seconds(r.at) + "," + status + "," + to_hex(r.raw) + "," + csv_field(message) + "\n";
+  }
+  return out;
+}
+
+ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
+  const bool xarm = o.device == "xarm";
+  if (!xarm && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
+    ctx.err << "seqc: error: --faults and --seed apply to the xarm emulator only (the Raspblock "
+               "board never replies)\n";
+    return ExitCode::Usage;
+  }
+  emu::XArmConfig config;
+  config.baud = o.baud_opt->count() > 0 ? o.baud : kXArmBaud;
+  if (xarm) {
+    auto faults = emu::parse_faults(o.faults);
+    if (!faults) {
+      ctx.err << "seqc: error: --faults: " << faults.error().message << "\n";
+      return ExitCode::Usage;
+    }
+    config.faults = *faults;
+    if (o.seed_opt->count() > 0) config.faults.seed = o.seed;
+  }
+
+  emu::PtyOptions pty_options;
+  pty_options.baud = xarm ? config.baud : (o.baud_opt->count() > 0 ? o.baud : raspblock::kBaud);
+  if (o.link_opt->count() > 0) pty_options.link = o.link;
+  auto server = emu::PtyServer::open(pty_options);
+  if (!server) {
+    ctx.err << "seqc: error: cannot create a pseudo-terminal: " << server.error().message << "\n";
+    return ExitCode::PortUnavailable;
+  }
+  ctx.out << server->slave_path() << "\n" << std::flush;
+
+  std::atomic<bool> never{false};
+  const std::atomic<bool>& stop = ctx.interrupted ? *ctx.interrupted : never;
+
+  emu::XArmEmulator xarm_emu(config);
+  emu::RaspblockEmulator rasp_emu;
+  emu::XArmPtyDevice xarm_dev(xarm_emu);
+  emu::RaspblockPtyDevice rasp_dev(rasp_emu, &ctx.err);
+  if (xarm) {
+    ctx.err << "seqc: emulating an xArm controller on " << server->slave_path() << " ("
+            << (config.baud ? std::to_string(config.baud) + " baud" : std::string("unpaced"))
+            << ", faults: " << emu::describe_faults(config.faults) << "); Ctrl-C to stop\n";
+  } else {
+    ctx.err << "seqc: emulating a Raspblock board on " << server->slave_path()
+            << "; state changes follow; Ctrl-C to stop\n";
+  }
+  ctx.err.flush();
+
+  auto stopped = server->serve(xarm ? static_cast<emu::PtyDevice&>(xarm_dev) : rasp_dev,
+                               ctx.clock, stop);
+  ExitCode code = ExitCode::Ok;
+  if (!stopped) {
+    ctx.err << "seqc: error: " << stopped.error().message << "\n";
+    code = ExitCode::DeviceFailure;
+  } else if (*stopped == emu::PtyServer::Stopped::HangUp) {
+    ctx.err << "seqc: emulated hang-up at frame " << xarm_emu.frames_received()
+            << " (--faults hangup-at)\n";
+  }
+  if (xarm) {
+    ctx.err << "seqc: received " << xarm_emu.frames_received() << " frames, "
+            << xarm_emu.received_bytes().size() << " bytes\n";
+  } else {
+    ctx.err << "seqc: received " << rasp_emu.packets().size() << " packets, "
+            << rasp_emu.rejections().size() << " rejected (" << rasp_emu.bad_checksums()
+            << " bad checksums)\n";
+  }
+
+  if (o.record_opt->count() > 0) {
+    const std::string text = xarm ? xarm_record(xarm_emu) : emu::timeline_csv(rasp_emu.timeline());
+    if (auto ok = io::write_file_atomically(o.record, text); !ok) {
+      ctx.err << "seqc: error: --record " << o.record << ": " << ok.error().message << "\n";
+      return ExitCode::FileError;
+    }
+  }
+  return code;
+}
+
+}  // namespace
+
+void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto opts = std::make_shared<EmulateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "emulate",
+      "Serve an emulated device on a pseudo-terminal until Ctrl-C (exit 0). Prints the\n"
+      "terminal's path on stdout; point `seqc upload --port` (or any program) at it.");
+  cmd->add_option("device", opts->device, "xarm (servo controller) or raspblock (car board)")
+      ->required()
+      ->check(CLI::IsMember({"xarm", "raspblock"}));
+  opts->baud_opt = cmd->add_option(
+      "--baud", opts->baud, "Reply pacing in baud, 0 = unpaced (xarm default 9600)");
+  opts->faults_opt = cmd->add_option(
+      "--faults", opts->faults,
+      "xarm faults, e.g. drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,"
+      "silent-after=100,hangup-at=500,seed=7");
+  opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
+  opts->link_opt =
+      cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");
+  opts->record_opt = cmd->add_option(
+      "--record", opts->record,
+      "On exit, write what was received as CSV (xarm: frames; raspblock: state timeline)");
+  cmd->callback([opts, &ctx, &result] { result.code = run_emulate(*opts, ctx); });
+}
+
+}  // namespace seqc::cli

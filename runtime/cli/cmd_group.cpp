@@ -1,0 +1,176 @@
+// `seqc group run|stop|erase|speed`: the stored action groups on the servo controller
+// (GroupRun, GroupStop, GroupErase, GroupSpeed).
+#include <memory>
+#include <ostream>
+#include <string>
+#include <variant>
+
+#include <CLI/CLI.hpp>
+
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/device_args.hpp"
+
+namespace seqc::cli {
+namespace {
+
+// GROUP arguments: a number 0..254, or the word `all` (the wire's 255) where allowed.
+constexpr const char* kAllWord = "all";
+
+struct GroupTarget {
+  std::uint8_t group = 0;
+  bool all = false;
+  std::string text() const { return all ? "every group" : "group " + std::to_string(group); }
+};
+
+Result<GroupTarget> parse_group_target(const std::string& text) {
+  if (text == kAllWord) return GroupTarget{lsc::kAllGroups, true};
+  auto g = parse_group(text);
+  if (!g) return g.error();
+  return GroupTarget{*g, false};
+}
+
+ExitCode usage(Context& ctx, const std::string& message) {
+  ctx.err << "seqc: error: " << message << "\n";
+  return ExitCode::Usage;
+}
+
+bool saw_start(const ControllerSession& s, std::uint8_t group) {
+  for (const lsc::Reply& r : s.notifications()) {
+    if (auto* started = std::get_if<lsc::GroupStarted>(&r); started && started->group == group) {
+      return true;
+    }
+  }
+  return false;
+}
+
+struct RunOptions {
+  DeviceOptions device;
+  std::string group;
+  long long times = 1;
+  bool forever = false;
+  CLI::Option* times_opt = nullptr;
+};
+
+ExitCode run_group(Context& ctx, const RunOptions& o) {
+  auto group = parse_group(o.group);
+  if (!group) return usage(ctx, group.error().message);
+  if (o.forever && o.times_opt->count() > 0) return usage(ctx, "give --times or --forever, not both");
+  std::uint16_t times = 0;
+  if (!o.forever) {
+    if (o.times < 1 || o.times > 65535) {
+      return usage(ctx, "--times must be 1..65535, got " + std::to_string(o.times) +
+                            " (--forever loops until `seqc group stop`)");
+    }
+    times = static_cast<std::uint16_t>(o.times);
+  }
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::GroupRun{*group, times})) return ExitCode::DeviceFailure;
+    const std::string how = o.forever ? "looping until `seqc group stop`"
+                                      : std::to_string(times) + (times == 1 ? " time" : " times");
+    if (saw_start(s, *group)) {
+      ctx.out << "group " << int{*group} << " started, " << how << "\n";
+    } else {
+      ctx.out << "group " << int{*group} << ": run sent, " << how << "\n";
+      ctx.err << "seqc: warning: the controller did not report group " << int{*group}
+              << " starting; it may be empty (store one with `seqc upload`)\n";
+    }
+    return ExitCode::Ok;
+  });
+}
+
+struct StopOptions {
+  DeviceOptions device;
+};
+
+ExitCode stop_group(Context& ctx, const StopOptions& o) {
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::GroupStop{})) return ExitCode::DeviceFailure;
+    std::string which;
+    for (const lsc::Reply& r : s.notifications()) {
+      if (auto* stopped = std::get_if<lsc::GroupStopped>(&r); stopped && stopped->detail) {
+        which = " (group " + std::to_string(stopped->detail->group) + ")";
+      }
+    }
+    ctx.out << "stopped" << which << "\n";
+    return ExitCode::Ok;
+  });
+}
+
+struct EraseOptions {
+  DeviceOptions device;
+  std::string group;
+};
+
+ExitCode erase_group(Context& ctx, const EraseOptions& o) {
+  auto target = parse_group_target(o.group);
+  if (!target) return usage(ctx, target.error().message);
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.ask<lsc::GroupErased>(lsc::GroupErase{target->group}, "the erase confirmation")) {
+      return ExitCode::DeviceFailure;
+    }
+    ctx.out << (target->all ? "every group erased" : target->text() + " erased") << "\n";
+    return ExitCode::Ok;
+  });
+}
+
+struct SpeedOptions {
+  DeviceOptions device;
+  std::string group;
+  long long percent = 100;
+};
+
+ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
+  auto target = parse_group_target(o.group);
+  if (!target) return usage(ctx, target.error().message);
+  auto percent = lsc::checked_u16(o.percent, "percent");
+  if (!percent) return usage(ctx, percent.error().message);
+  if (*percent == 0) return usage(ctx, "percent must be 1..65535 (100 = as stored), got 0");
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::GroupSpeed{target->group, *percent})) return ExitCode::DeviceFailure;
+    ctx.out << target->text() << " speed " << *percent
+            << "% (volatile: back to 100% at power-off)\n";
+    return ExitCode::Ok;
+  });
+}
+
+}  // namespace
+
+void add_group_command(CLI::App& app, Context& ctx, Outcome& result) {
+  CLI::App* group = app.add_subcommand(
+      "group", "Run, stop, erase or re-time the action groups stored on the servo controller");
+  group->require_subcommand(1);
+
+  auto run = std::make_shared<RunOptions>();
+  CLI::App* run_cmd = group->add_subcommand("run", "Start a stored group (GroupRun)");
+  run_cmd->add_option("GROUP", run->group, "Group number 0-254")->required();
+  run->times_opt = run_cmd->add_option("--times", run->times, "How many times to play it (1-65535)")
+                       ->capture_default_str();
+  run_cmd->add_flag("--forever", run->forever, "Loop until `seqc group stop`");
+  add_device_options(*run_cmd, run->device);
+  run_cmd->callback([run, &ctx, &result] { result.code = run_group(ctx, *run); });
+
+  auto stop = std::make_shared<StopOptions>();
+  CLI::App* stop_cmd = group->add_subcommand("stop", "Stop the group that is playing (GroupStop)");
+  add_device_options(*stop_cmd, stop->device);
+  stop_cmd->callback([stop, &ctx, &result] { result.code = stop_group(ctx, *stop); });
+
+  auto erase = std::make_shared<EraseOptions>();
+  CLI::App* erase_cmd =
+      group->add_subcommand("erase", "Erase a stored group, or all of them (GroupErase)");
+  erase_cmd->add_option("GROUP", erase->group, "Group number 0-254, or `all`")->required();
+  add_device_options(*erase_cmd, erase->device);
+  erase_cmd->callback([erase, &ctx, &result] { result.code = erase_group(ctx, *erase); });
+
+  auto speed = std::make_shared<SpeedOptions>();
+  CLI::App* speed_cmd = group->add_subcommand(
+      "speed",
+      "Play a group faster or slower (GroupSpeed): 100 = as stored, 200 = twice as fast.\n"
+      "Volatile: back to 100 at power-off");
+  speed_cmd->add_option("GROUP", speed->group, "Group number 0-254, or `all`")->required();
+  speed_cmd->add_option("PERCENT", speed->percent, "Speed in percent (1-65535)")->required();
+  add_device_options(*speed_cmd, speed->device);
+  speed_cmd->callback([speed, &ctx, &result] { result.code = speed_group(ctx, *speed); });
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,198 @@
+// seqc play FILE [--port P] [--strict]: streams a compiled sequence to a device that keeps no
+// program, sending each frame at its time on the host's clock (runtime/player).
+//
+// Today that is the Raspblock car board. The servo controller's live play has its own hook
+// below (play_servo_program), to be filled with backend::live_moves.
+#include <atomic>
+#include <cstdio>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "compiler/backend/raspblock_stream.hpp"
+#include "compiler/lang/units.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
+#include "runtime/emulator/raspblock_emulator.hpp"
+#include "runtime/player/player.hpp"
+#include "runtime/protocol/raspblock.hpp"
+#include "runtime/transport/open_port.hpp"
+#include "runtime/transport/port_spec.hpp"
+
+namespace seqc::cli {
+namespace {
+
+struct PlayOptions {
+  std::string file;
+  std::string port;
+  bool strict = false;
+};
+
+// `--port emu:raspblock`: the board emulator in this process, stamped with the play's clock,
+// so a sequence can be tried without hardware or a second terminal.
+class BoardTransport final : public io::Transport {
+ public:
+  BoardTransport(emu::RaspblockEmulator& board, io::Clock& clock)
+      : board_(board), clock_(clock), origin_(clock.now()) {}
+  Status write(ByteView bytes) override {
+    board_.receive(bytes, clock_.now() - origin_);
+    return Ok{};
+  }
+  io::ReadResult read(std::span<std::uint8_t>, io::TimePoint deadline) override {
+    clock_.sleep_until(deadline);  // the board never replies
+    return {io::ReadStatus::Timeout, 0, {}};
+  }
+  void discard_input() override {}
+  std::string describe() const override { return "emu:raspblock"; }
+
+ private:
+  emu::RaspblockEmulator& board_;
+  io::Clock& clock_;
+  io::TimePoint origin_;
+};
+
+std::string ms_text(io::Duration d) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f ms", std::chrono::duration<double, std::milli>(d).count());
+  return buf;
+}
+
+// The servo controller (xArm / LSC) streamed live, one MultiServoMove per keyframe
+// (backend::live_moves). Until that exists, say so plainly.
+ExitCode play_servo_program(const compiler::ServoProgram& program, const PlayOptions& o,
+                            Context& ctx) {
+  (void)program;
+  ctx.err << "seqc: error: `seqc play` does not yet stream to servo-controller robots; use `seqc "
+             "upload "
+          << o.file << "` to store and run the sequence on the controller\n";
+  return ExitCode::Usage;
+}
+
+ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOptions& o,
+                        Context& ctx) {
+  auto frames = backend::plan_stream(program);
+  if (!frames) {
+    ctx.err << "seqc: error: " << frames.error().message << "\n";
+    return ExitCode::Internal;
+  }
+  if (o.port.empty()) {
+    ctx.err << "seqc: error: name the board's serial port with --port, e.g. --port /dev/ttyAMA0 "
+               "or --port ttyUSB0 (the board does not announce itself)\n"
+               "  hint: --port emu:raspblock plays to the built-in board emulator\n";
+    return ExitCode::Usage;
+  }
+  auto spec = transport::parse_port(o.port);
+  if (!spec) {
+    ctx.err << "seqc: error: --port: " << spec.error().message << "\n";
+    return ExitCode::Usage;
+  }
+
+  emu::RaspblockEmulator board;
+  std::unique_ptr<io::Transport> link;
+  if (spec->kind == transport::PortKind::Emulator) {
+    if (spec->emulator != "raspblock") {
+      ctx.err << "seqc: error: --port " << o.port << " is the servo controller's emulator; "
+              << o.file << " is for the raspblock (use --port emu:raspblock)\n";
+      return ExitCode::Usage;
+    }
+    link = std::make_unique<BoardTransport>(board, ctx.clock);
+  } else if (spec->kind == transport::PortKind::Hid) {
+    ctx.err << "seqc: error: --port " << o.port
+            << " is a USB HID device (the xArm's link); the Raspblock board is reached over a "
+               "serial port at 115200 baud\n";
+    return ExitCode::Usage;
+  } else {
+    auto opened = transport::open_port(*spec, ctx.clock, raspblock::kBaud);
+    if (!opened) {
+      ctx.err << "seqc: error: " << opened.error().message << "\n";
+      return ExitCode::PortUnavailable;
+    }
+    link = std::move(*opened);
+  }
+
+  std::vector<player::ScheduledFrame> schedule;
+  schedule.reserve(frames->size());
+  for (const backend::StreamFrame& f : *frames) {
+    schedule.push_back({std::chrono::milliseconds(f.at_ms), f.bytes});
+  }
+  ctx.err << "seqc: playing " << o.file << " on " << link->describe() << ": " << schedule.size()
+          << " frames over " << compiler::format_seconds(program.duration_ms)
+          << "; Ctrl-C stops the car\n";
+  ctx.err.flush();
+
+  player::PlayOptions options;
+  options.interrupted = ctx.interrupted;
+  options.safe_stop = backend::stop_frame();
+  const player::PlayReport report = player::play(schedule, *link, ctx.clock, options);
+  const player::LatenessSummary late = player::summarize(report.lateness);
+
+  ExitCode code = ExitCode::Ok;
+  const std::string stop_text =
+      report.stop_sent ? "sent the stop (all speeds 0)"
+                       : "could not send the stop: " + report.stop_error +
+                             "; the car may still be moving";
+  switch (report.end) {
+    case player::PlayEnd::Completed:
+      ctx.err << "seqc: played " << report.sent << " frames in "
+              << compiler::format_seconds(program.duration_ms) << "; lateness p50 "
+              << ms_text(late.p50) << ", p99 " << ms_text(late.p99) << ", max "
+              << ms_text(late.max) << "\n";
+      break;
+    case player::PlayEnd::Interrupted:
+      ctx.err << "seqc: interrupted after " << report.sent << " of " << schedule.size()
+              << " frames; " << stop_text << "\n";
+      code = ExitCode::Interrupted;
+      break;
+    case player::PlayEnd::WriteFailed:
+      ctx.err << "seqc: error: " << report.error << " (after " << report.sent << " of "
+              << schedule.size() << " frames); " << stop_text << "\n";
+      code = ExitCode::DeviceFailure;
+      break;
+  }
+  if (spec->kind == transport::PortKind::Emulator) {
+    ctx.err << "seqc: emu:raspblock received " << board.packets().size() << " packets, "
+            << board.rejections().size() << " rejected\n";
+  }
+  return code;
+}
+
+}  // namespace
+
+bool explain_no_storage(const compiler::CompileOutput& output, const std::string& path,
+                        std::ostream& err) {
+  if (!output.program || !std::holds_alternative<compiler::RaspblockProgram>(*output.program)) {
+    return false;
+  }
+  err << "seqc: error: " << path
+      << " is for the Raspblock board, which has no storage: it cannot keep a sequence to run "
+         "later, only follow one streamed to it live\n"
+         "  hint: play it with `seqc play "
+      << path << " --port PORT` (e.g. --port /dev/ttyAMA0)\n";
+  return true;
+}
+
+void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto opts = std::make_shared<PlayOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "play",
+      "Stream a sequence to a device live, each frame at its time (the Raspblock car board);\n"
+      "Ctrl-C stops the car (exit 130)");
+  cmd->add_option("FILE", opts->file, "Choreography file (.yaml)")->required();
+  cmd->add_option("--port", opts->port,
+                  "Serial port at 115200 baud (/dev/ttyAMA0, ttyUSB0, a pty from `seqc emulate "
+                  "raspblock`) or emu:raspblock");
+  cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->callback([&ctx, &result, opts] {
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict);
+    result.code = c.code;
+    if (!c.output.program) return;
+    // Each robot kind streams its own way.
+    if (const auto* car = std::get_if<compiler::RaspblockProgram>(&*c.output.program)) {
+      result.code = play_raspblock(*car, *opts, ctx);
+    } else if (const auto* servo = std::get_if<compiler::ServoProgram>(&*c.output.program)) {
+      result.code = play_servo_program(*servo, *opts, ctx);
+    }
+  });
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,215 @@
+// `seqc servo read|off|move|mode`: single servos on the servo controller (ServoPositionRead,
+// MultiServoOff, MultiServoMove, ServoSpeed). With --robot PROFILE, servos may be named
+// (claw=200) and positions are checked against the profile's range.
+#include <algorithm>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "compiler/lang/units.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/device_args.hpp"
+#include "runtime/cli/device_table.hpp"
+
+namespace seqc::cli {
+namespace {
+
+ExitCode usage(Context& ctx, const std::string& message) {
+  ctx.err << "seqc: error: " << message << "\n";
+  return ExitCode::Usage;
+}
+
+std::string join_labels(const std::vector<std::uint8_t>& ids,
+                        const std::optional<compiler::RobotInfo>& robot) {
+  std::string out;
+  for (std::uint8_t id : ids) out += (out.empty() ? "" : ", ") + servo_label(id, robot);
+  return out;
+}
+
+void add_robot_option(CLI::App& cmd, std::string& robot) {
+  cmd.add_option("--robot", robot, "Robot profile (xarm, lsc-16, lsc-32): allows servo names");
+}
+
+// ---- read ----------------------------------------------------------------------------------
+
+struct ReadOptions {
+  DeviceOptions device;
+  std::vector<std::string> servos;
+  std::string robot;
+};
+
+ExitCode read_positions(Context& ctx, const ReadOptions& o) {
+  auto robot = robot_for_profile(o.robot);
+  if (!robot) return usage(ctx, robot.error().message);
+  std::vector<std::string> names = o.servos;
+  if (names.empty()) {
+    if (!*robot) return usage(ctx, "name the servos to read, or give --robot to read all of a profile's");
+    for (const auto& s : (*robot)->servos) names.push_back(std::to_string(s.id));
+  }
+  auto ids = parse_servo_list(names, *robot);
+  if (!ids) return usage(ctx, ids.error().message);
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{*ids}, "the positions");
+    if (!reply) return ExitCode::DeviceFailure;
+    Table table(*robot ? std::vector<std::string>{"servo", "name", "position"}
+                       : std::vector<std::string>{"servo", "position"});
+    std::vector<std::uint8_t> missing;
+    for (std::uint8_t id : *ids) {
+      auto it = std::find_if(reply->servos.begin(), reply->servos.end(),
+                             [id](const lsc::ServoTarget& t) { return t.id == id; });
+      std::vector<std::string> row{std::to_string(id)};
+      if (*robot) row.push_back((*robot)->find_id(id)->name);
+      if (it == reply->servos.end()) {
+        missing.push_back(id);
+        row.push_back("no answer");
+      } else {
+        row.push_back(std::to_string(it->position));
+      }
+      table.add(std::move(row));
+    }
+    ctx.out << table.render();
+    if (!missing.empty()) {
+      ctx.err << "seqc: error: the controller reported no position for "
+              << join_labels(missing, *robot) << " (not on the bus, or not answering)\n";
+      return ExitCode::DeviceFailure;
+    }
+    return ExitCode::Ok;
+  });
+}
+
+// ---- off -----------------------------------------------------------------------------------
+
+struct OffOptions {
+  DeviceOptions device;
+  std::vector<std::string> servos;
+  std::string robot;
+};
+
+ExitCode servos_off(Context& ctx, const OffOptions& o) {
+  auto robot = robot_for_profile(o.robot);
+  if (!robot) return usage(ctx, robot.error().message);
+  auto ids = parse_servo_list(o.servos, *robot);
+  if (!ids) return usage(ctx, ids.error().message);
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::MultiServoOff{*ids})) return ExitCode::DeviceFailure;
+    ctx.out << join_labels(*ids, *robot) << ": off (no torque)\n";
+    return ExitCode::Ok;
+  });
+}
+
+// ---- move ----------------------------------------------------------------------------------
+
+struct MoveOptions {
+  DeviceOptions device;
+  std::vector<std::string> targets;
+  std::string time = "1s";
+  std::string robot;
+};
+
+ExitCode move_servos(Context& ctx, const MoveOptions& o) {
+  auto robot = robot_for_profile(o.robot);
+  if (!robot) return usage(ctx, robot.error().message);
+  auto ms = parse_milliseconds(o.time, "--time");
+  if (!ms) return usage(ctx, ms.error().message);
+  if (o.targets.size() > 255) return usage(ctx, "at most 255 servos fit in one move");
+  lsc::MultiServoMove move;
+  move.time_ms = *ms;
+  std::string summary;
+  for (const std::string& text : o.targets) {
+    auto t = parse_target(text, *robot);
+    if (!t) return usage(ctx, t.error().message);
+    for (const auto& e : move.servos) {
+      if (e.id == t->id) return usage(ctx, "servo " + std::to_string(t->id) + " is named twice");
+    }
+    move.servos.push_back({t->id, t->position});
+    summary += (summary.empty() ? "" : ", ") + servo_label(t->id, *robot) + " to " +
+               std::to_string(t->position);
+  }
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(move)) return ExitCode::DeviceFailure;
+    ctx.out << "moving " << summary << " over " << compiler::format_seconds(*ms) << "\n";
+    return ExitCode::Ok;
+  });
+}
+
+// ---- mode ----------------------------------------------------------------------------------
+
+struct ModeOptions {
+  DeviceOptions device;
+  std::string servo;
+  std::string mode;
+  std::string time;
+  std::string robot;
+};
+
+ExitCode set_mode(Context& ctx, const ModeOptions& o) {
+  auto robot = robot_for_profile(o.robot);
+  if (!robot) return usage(ctx, robot.error().message);
+  auto id = parse_servo(o.servo, *robot);
+  if (!id) return usage(ctx, id.error().message);
+  auto ms = parse_milliseconds(o.time, "--time");
+  if (!ms) return usage(ctx, ms.error().message);
+  const lsc::ServoMode mode = o.mode == "motor" ? lsc::ServoMode::Motor : lsc::ServoMode::Servo;
+  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::ServoSpeed{*id, mode, *ms})) return ExitCode::DeviceFailure;
+    ctx.out << servo_label(*id, *robot) << ": " << o.mode << " mode, " << *ms << " ms\n";
+    return ExitCode::Ok;
+  });
+}
+
+}  // namespace
+
+void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
+  CLI::App* servo = app.add_subcommand(
+      "servo", "Read, move or release single servos on the servo controller");
+  servo->require_subcommand(1);
+
+  auto read = std::make_shared<ReadOptions>();
+  CLI::App* read_cmd = servo->add_subcommand(
+      "read", "Print the positions of servos as a table (ServoPositionRead)");
+  read_cmd->add_option("SERVO", read->servos,
+                       "Servo ids (or names with --robot); default with --robot: all of them");
+  add_robot_option(*read_cmd, read->robot);
+  add_device_options(*read_cmd, read->device);
+  read_cmd->callback([read, &ctx, &result] { result.code = read_positions(ctx, *read); });
+
+  auto off = std::make_shared<OffOptions>();
+  CLI::App* off_cmd = servo->add_subcommand(
+      "off", "Turn servos off: they stop where they are and go limp (MultiServoOff)");
+  off_cmd->add_option("SERVO", off->servos, "Servo ids (or names with --robot)")->required();
+  add_robot_option(*off_cmd, off->robot);
+  add_device_options(*off_cmd, off->device);
+  off_cmd->callback([off, &ctx, &result] { result.code = servos_off(ctx, *off); });
+
+  auto move = std::make_shared<MoveOptions>();
+  CLI::App* move_cmd = servo->add_subcommand(
+      "move", "Move servos to positions together, e.g. `1=500 2=700 --time 1s` (MultiServoMove)");
+  move_cmd->add_option("TARGET", move->targets, "SERVO=POSITION, e.g. 1=500 (claw=200 with --robot)")
+      ->required();
+  move_cmd->add_option("--time", move->time, "How long the move takes (ms or s, at most 65535ms)")
+      ->capture_default_str();
+  add_robot_option(*move_cmd, move->robot);
+  add_device_options(*move_cmd, move->device);
+  move_cmd->callback([move, &ctx, &result] { result.code = move_servos(ctx, *move); });
+
+  auto mode = std::make_shared<ModeOptions>();
+  CLI::App* mode_cmd = servo->add_subcommand(
+      "mode",
+      "Switch a servo between servo (position) and motor (continuous turn) mode, with the\n"
+      "document's milliseconds field (ServoSpeed)");
+  mode_cmd->add_option("SERVO", mode->servo, "Servo id (or name with --robot)")->required();
+  mode_cmd->add_option("MODE", mode->mode, "servo or motor")
+      ->required()
+      ->check(CLI::IsMember({"servo", "motor"}));
+  mode_cmd->add_option("--time", mode->time, "The milliseconds field (ms or s, at most 65535ms)")
+      ->required();
+  add_robot_option(*mode_cmd, mode->robot);
+  add_device_options(*mode_cmd, mode->device);
+  mode_cmd->callback([mode, &ctx, &result] { result.code = set_mode(ctx, *mode); });
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,47 @@
+// seqc simulate FILE [-o out.csv] [--step MS]: servo positions over time as CSV.
+#include <string>
+
+#include "compiler/backend/simulate.hpp"
+#include "compiler/lang/units.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
+#include "runtime/io/disk.hpp"
+
+namespace seqc::cli {
+
+void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
+  struct Options {
+    std::string file;
+    std::string output;
+    int step_ms = 20;
+    bool strict = false;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate", "Print each servo's position over time as the controller would move it (CSV)");
+  cmd->add_option("FILE", opts->file, "Choreography file (.yaml)")->required();
+  cmd->add_option("-o,--output", opts->output, "Write the CSV here instead of stdout");
+  cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
+      ->check(CLI::Range(1, 60000))
+      ->default_val(20);
+  cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->callback([&ctx, &result, opts] {
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict);
+    result.code = c.code;
+    const compiler::ServoProgram* program = c.output.servo_program();
+    if (program == nullptr) return;
+    const backend::Simulation sim =
+        backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms));
+    const std::string csv = backend::to_csv(sim);
+    ctx.err << "seqc: " << opts->file << ": " << program->keyframes.size() << " actions, "
+            << compiler::format_seconds(sim.duration_ms) << "\n";
+    if (opts->output.empty()) {
+      ctx.out << csv;
+    } else if (auto written = io::write_file_atomically(opts->output, csv); !written) {
+      ctx.err << "seqc: error: " << written.error().message << "\n";
+      result.code = ExitCode::FileError;
+    }
+  });
+}
+
+}  // namespace seqc::cli

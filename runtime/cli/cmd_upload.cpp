@@ -1,0 +1,189 @@
+// seqc upload FILE [--port P] [--group N] [--run [--times K]] [--dry-run] [--trace FILE]
+//                  [--verbose] [--strict] [--retries N]
+// Compiles FILE, downloads it into an action group of the servo controller (runtime/upload)
+// and, with --run, starts it. An invalid file sends nothing and opens no port.
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "compiler/backend/servo_backend.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/port_open.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/upload/controller_link.hpp"
+#include "runtime/upload/progress_text.hpp"
+#include "runtime/upload/trace_transport.hpp"
+#include "runtime/upload/uploader.hpp"
+
+namespace seqc::cli {
+namespace {
+
+struct UploadArgs {
+  std::string file;
+  std::string port;
+  int group = 0;
+  bool run = false;
+  int times = 1;
+  bool dry_run = false;
+  std::string trace;
+  bool verbose = false;
+  bool strict = false;
+  int retries = 4;
+};
+
+ExitCode exit_code_for(upload::UploadStatus s) {
+  switch (s) {
+    case upload::UploadStatus::Completed:
+      return ExitCode::Ok;
+    case upload::UploadStatus::Interrupted:
+      return ExitCode::Interrupted;
+    case upload::UploadStatus::BadPlan:
+      return ExitCode::Internal;
+    default:
+      return ExitCode::DeviceFailure;
+  }
+}
+
+std::string line_for(const lsc::Request& r, const std::string& role) {
+  auto bytes = lsc::encode_serial(r);
+  return fmt::format("{:<40}  # {}{}\n", bytes ? to_hex(*bytes) : "?", role, lsc::describe(r));
+}
+
+// --dry-run: every frame `upload` would send, in order, on stdout.
+void print_dry_run(Context& ctx, const UploadArgs& a, const std::vector<lsc::Request>& plan) {
+  ctx.out << line_for(lsc::GetBatteryVoltage{}, "probe: ");
+  ctx.out << line_for(lsc::GroupStop{}, "");
+  ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  for (const auto& r : plan) ctx.out << line_for(r, "");
+  ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  if (a.run) {
+    ctx.out << line_for(lsc::GroupRun{static_cast<std::uint8_t>(a.group),
+                                      static_cast<std::uint16_t>(a.times)},
+                        "");
+    ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  }
+}
+
+std::string plural(std::size_t n, const char* word) {
+  return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
+}
+
+ExitCode run_upload(Context& ctx, const UploadArgs& a) {
+  Compiled c = compile_and_report(ctx, a.file, a.strict);
+  if (c.code != ExitCode::Ok) return c.code;
+  if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
+  const compiler::ServoProgram* program = c.output.servo_program();
+  if (program == nullptr) {
+    ctx.err << "seqc: error: " << a.file << ": not a servo controller program\n";
+    return ExitCode::InvalidInput;
+  }
+  const auto group = static_cast<std::uint8_t>(a.group);
+  auto planned = backend::plan_download(*program, group);
+  if (!planned) {
+    ctx.err << "seqc: error: " << a.file << ": " << planned.error().message << "\n";
+    return ExitCode::InvalidInput;
+  }
+  std::vector<lsc::Request> plan;
+  for (const auto& f : *planned) plan.push_back(f.request);
+  const std::size_t actions = program->keyframes.size();
+
+  if (a.dry_run) {
+    print_dry_run(ctx, a, plan);
+    ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
+            << "; nothing was sent\n";
+    return ExitCode::Ok;
+  }
+
+  std::ofstream trace_file;
+  if (!a.trace.empty()) {
+    trace_file.open(a.trace, std::ios::out | std::ios::trunc);
+    if (!trace_file) {
+      ctx.err << "seqc: error: --trace " << a.trace << ": cannot write the file\n";
+      return ExitCode::FileError;
+    }
+  }
+
+  PortOpenResult opened = open_controller_port(a.port, ctx);
+  if (!opened.port) {
+    ctx.err << "seqc: error: " << opened.failure.message << "\n";
+    return opened.failure.code;
+  }
+  OpenedPort& port = *opened.port;
+  io::Clock& clock = *port.clock;
+  std::unique_ptr<upload::TraceTransport> trace;
+  io::Transport* transport = port.transport.get();
+  if (trace_file.is_open()) {
+    trace = std::make_unique<upload::TraceTransport>(*transport, clock, trace_file);
+    transport = trace.get();
+  }
+
+  upload::ControllerLink link(*transport, clock, ctx.interrupted);
+  upload::UploadOptions options;
+  options.group = group;
+  options.retries = a.retries;
+  options.run = a.run;
+  options.run_times = static_cast<std::uint16_t>(a.times);
+  upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, a.verbose);
+  if (a.verbose) {
+    ctx.err << "upload: " << plural(actions, "action") << " into group " << a.group << " on "
+            << transport->describe() << "\n";
+  }
+  upload::Uploader uploader(link, options, &progress);
+  const upload::UploadResult r = uploader.upload(plan);
+  progress.finish();
+
+  const double secs = std::chrono::duration<double>(r.elapsed).count();
+  const std::string where = transport->describe() + (port.emulated() ? ", emulated time" : "");
+  if (!r.ok()) {
+    ctx.err << "seqc: error: " << r.message << "\n";
+    ctx.err << "seqc: " << upload::describe_group_state(r.group_state, group) << "\n";
+    return exit_code_for(r.status);
+  }
+  std::string detail = fmt::format("{}, {:.1f} s", where, secs);
+  if (r.retries > 0) detail += ", " + plural(static_cast<std::size_t>(r.retries), "re-send");
+  if (r.restarts > 0) detail += ", " + plural(static_cast<std::size_t>(r.restarts), "restart");
+  ctx.out << "the controller acknowledged " << plural(r.actions_acknowledged, "action")
+          << " into group " << a.group << " (" << detail << ")\n";
+  if (a.run) {
+    const std::string times = a.times == 0 ? "looping until stopped"
+                                           : plural(static_cast<std::size_t>(a.times), "time");
+    if (r.run_reported) {
+      ctx.out << "group " << a.group << " started (" << times << ")\n";
+    } else {
+      ctx.out << "asked the controller to run group " << a.group << " (" << times
+              << "); it did not report starting it\n";
+    }
+  }
+  return ExitCode::Ok;
+}
+
+}  // namespace
+
+void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto a = std::make_shared<UploadArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "upload", "Compile a file and store it in an action group of the servo controller");
+  cmd->add_option("FILE", a->file, "Choreography file (.yaml)")->required();
+  cmd->add_option("--port", a->port,
+                  "Device: /dev/ttyUSB0[@BAUD], hid, emu:xarm[?FAULTS] (default: the one "
+                  "controller found)");
+  cmd->add_option("--group", a->group, "Action group to store it in (0-254, default 0)")
+      ->check(CLI::Range(0, 254));
+  CLI::Option* run = cmd->add_flag("--run", a->run, "Start the group once it is stored");
+  cmd->add_option("--times", a->times, "With --run: how many times (0 = until stopped, default 1)")
+      ->check(CLI::Range(0, 65535))
+      ->needs(run);
+  cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
+  cmd->add_option("--trace", a->trace,
+                  "Write every byte sent and received, with times, to this file (docs/trace.md)");
+  cmd->add_flag("--verbose", a->verbose, "Report every re-send, restart and skipped frame");
+  cmd->add_flag("--strict", a->strict, "Treat warnings as errors");
+  cmd->add_option("--retries", a->retries, "Re-sends of one frame before giving up (0-20, default 4)")
+      ->check(CLI::Range(0, 20));
+  cmd->callback([&ctx, &result, a] { result.code = run_upload(ctx, *a); });
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,155 @@
+#include "runtime/cli/controller_session.hpp"
+
+#include <ostream>
+#include <utility>
+
+#include "compiler/lang/units.hpp"
+#include "runtime/cli/device_args.hpp"
+#include "runtime/cli/port_open.hpp"
+
+namespace seqc::cli {
+namespace {
+
+// How many times the confirmation is sent before a command counts as unanswered: a controller
+// still busy with the command itself may drop the first one (protocol-notes.md A).
+constexpr int kConfirmAttempts = 2;
+
+const char* kCheckHint = "check that the controller is powered and connected, and --port";
+
+}  // namespace
+
+void add_device_options(CLI::App& cmd, DeviceOptions& options) {
+  cmd.add_option("--port", options.port,
+                 "Controller port, as for `seqc upload` (default: the one connected controller; "
+                 "emu:xarm = built-in emulator)");
+  cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
+      ->capture_default_str();
+}
+
+std::string describe_duration(io::Duration d) {
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+  if (ms >= 1000) return compiler::format_seconds(static_cast<std::uint64_t>(ms));
+  return std::to_string(ms) + " ms";
+}
+
+ControllerSession::ControllerSession(upload::ControllerLink& link, io::Duration timeout,
+                                     std::string port_name)
+    : link_(link), timeout_(timeout), port_name_(std::move(port_name)) {}
+
+void ControllerSession::fail(ExitCode code, std::string message) {
+  if (!error_) error_ = DeviceError{code, std::move(message)};
+}
+
+void ControllerSession::drain() {
+  // Replies nobody waits for any more (a late answer, a finished group) must not be taken
+  // for the answer to the next request. Notifications are kept for the command to report.
+  link_.drain([](const lsc::Reply&) {});
+}
+
+bool ControllerSession::send(const lsc::Request& request) {
+  if (error_) return false;
+  if (link_.interrupted()) {
+    fail(ExitCode::Interrupted, "interrupted");
+    return false;
+  }
+  auto sent = link_.send(request);
+  if (!sent) {
+    fail(ExitCode::DeviceFailure,
+         "cannot send " + lsc::describe(request) + " to " + port_name_ + ": " +
+             sent.error().message);
+    return false;
+  }
+  return true;
+}
+
+bool ControllerSession::send_only(const lsc::Request& request) { return send(request); }
+
+upload::WaitResult ControllerSession::round_trip(
+    const lsc::Request& request, const std::function<bool(const lsc::Reply&)>& want) {
+  upload::WaitResult r;
+  r.status = upload::WaitStatus::Error;
+  drain();
+  if (!send(request)) return r;
+  const io::TimePoint deadline = link_.clock().now() + timeout_;
+  return link_.wait_for(
+      [&](const lsc::Reply& reply) {
+        if (want(reply)) return upload::Verdict::Take;
+        if (upload::is_notification(reply)) notifications_.push_back(reply);
+        return upload::Verdict::Skip;
+      },
+      deadline);
+}
+
+void ControllerSession::fail_wait(const upload::WaitResult& r, const std::string& what) {
+  switch (r.status) {
+    case upload::WaitStatus::Matched:
+      return;
+    case upload::WaitStatus::Timeout:
+      fail(ExitCode::DeviceFailure, "no reply from the controller on " + port_name_ +
+                                        " within " + describe_duration(timeout_) + " (" + what +
+                                        "); " + kCheckHint);
+      return;
+    case upload::WaitStatus::HangUp:
+      fail(ExitCode::DeviceFailure,
+           "the controller on " + port_name_ + " went away (" + r.message + ")");
+      return;
+    case upload::WaitStatus::Interrupted:
+      fail(ExitCode::Interrupted, "interrupted while waiting for the controller's reply");
+      return;
+    case upload::WaitStatus::Error:
+      // A send failure has already been recorded; this is a read failure.
+      fail(ExitCode::DeviceFailure, "reading from " + port_name_ + " failed: " + r.message);
+      return;
+  }
+}
+
+std::optional<lsc::Reply> ControllerSession::exchange(
+    const lsc::Request& request, const std::function<bool(const lsc::Reply&)>& want,
+    const std::string& what) {
+  if (error_) return std::nullopt;
+  upload::WaitResult r = round_trip(request, want);
+  if (r.ok()) return std::move(r.reply);
+  fail_wait(r, "waited for " + what + " after " + lsc::describe(request));
+  return std::nullopt;
+}
+
+bool ControllerSession::tell(const lsc::Request& request) {
+  if (error_ || !send(request)) return false;
+  const auto is_battery = [](const lsc::Reply& r) {
+    return std::holds_alternative<lsc::BatteryVoltage>(r);
+  };
+  upload::WaitResult r;
+  for (int attempt = 0; attempt < kConfirmAttempts && !error_; ++attempt) {
+    r = round_trip(lsc::GetBatteryVoltage{}, is_battery);
+    if (r.ok()) return true;
+    if (r.status != upload::WaitStatus::Timeout) break;
+  }
+  fail_wait(r, lsc::describe(request) + " has no reply of its own, and the battery check sent "
+                   "after it to confirm it arrived got no answer (sent " +
+                   std::to_string(kConfirmAttempts) + " times)");
+  return false;
+}
+
+ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body) {
+  auto timeout = parse_timeout(options.timeout);
+  if (!timeout) {
+    ctx.err << "seqc: error: " << timeout.error().message << "\n";
+    return ExitCode::Usage;
+  }
+  PortOpenResult opened = open_controller_port(options.port, ctx);
+  if (!opened.port) {
+    ctx.err << "seqc: error: " << opened.failure.message << "\n";
+    return opened.failure.code;
+  }
+  OpenedPort& port = *opened.port;
+  upload::ControllerLink link(*port.transport, *port.clock, ctx.interrupted);
+  ControllerSession session(link, *timeout, port.transport->describe());
+  const ExitCode code = body(session);
+  if (session.error()) {
+    ctx.err << "seqc: error: " << session.error()->message << "\n";
+    return session.error()->code;
+  }
+  return code;
+}
+
+}  // namespace seqc::cli

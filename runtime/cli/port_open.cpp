@@ -1,0 +1,83 @@
+#include "runtime/cli/port_open.hpp"
+
+#include <utility>
+
+#include "runtime/emulator/emulator_transport.hpp"
+#include "runtime/transport/baud_rates.hpp"
+#include "runtime/transport/hidapi_backend.hpp"
+#include "runtime/transport/open_port.hpp"
+#include "runtime/transport/port_discovery.hpp"
+#include "runtime/transport/port_spec.hpp"
+
+namespace seqc::cli {
+namespace {
+
+PortOpenResult failure(ExitCode code, std::string message) {
+  PortOpenResult r;
+  r.failure = PortFailure{code, std::move(message)};
+  return r;
+}
+
+PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
+  if (spec.emulator != "xarm") {
+    return failure(ExitCode::Usage, "--port emu:" + spec.emulator +
+                                        ": this command talks to the servo controller; use "
+                                        "emu:xarm");
+  }
+  if (ctx.xarm_emulator != nullptr && ctx.xarm_clock != nullptr) {
+    // The caller's emulator (Context::xarm_emulator); its own config holds any faults.
+    OpenedPort port;
+    port.transport =
+        std::make_unique<emu::EmulatorTransport>(*ctx.xarm_emulator, *ctx.xarm_clock);
+    port.clock = ctx.xarm_clock;
+    PortOpenResult r;
+    r.port = std::move(port);
+    return r;
+  }
+  emu::XArmConfig config;
+  auto faults = emu::parse_faults(spec.emulator_options);
+  if (!faults) {
+    return failure(ExitCode::Usage, "--port " + transport::format_port(spec) + ": " +
+                                        faults.error().message);
+  }
+  config.faults = *faults;
+  OpenedPort port;
+  port.emulated_clock = std::make_unique<io::ManualClock>();
+  port.emulator = std::make_unique<emu::XArmEmulator>(config);
+  port.transport =
+      std::make_unique<emu::EmulatorTransport>(*port.emulator, *port.emulated_clock);
+  port.clock = port.emulated_clock.get();
+  PortOpenResult r;
+  r.port = std::move(port);
+  return r;
+}
+
+}  // namespace
+
+PortOpenResult open_controller_port(const std::string& port_text, Context& ctx) {
+  transport::PortSpec spec;
+  if (port_text.empty()) {
+    transport::HidapiBackend hid;
+    transport::SystemDeviceLister lister(hid);
+    const transport::Discovery found = transport::discover_ports(lister);
+    auto chosen = transport::select_default_port(found.candidates);
+    if (!chosen) return failure(ExitCode::PortUnavailable, chosen.error().message);
+    spec = chosen->spec();
+  } else {
+    auto parsed = transport::parse_port(port_text);
+    if (!parsed) return failure(ExitCode::Usage, "--port: " + parsed.error().message);
+    spec = *parsed;
+  }
+  if (spec.kind == transport::PortKind::Emulator) return open_emulator(spec, ctx);
+
+  auto opened = transport::open_port(spec, ctx.clock, transport::kDefaultBaud);
+  if (!opened) return failure(ExitCode::PortUnavailable, opened.error().message);
+  OpenedPort port;
+  port.transport = std::move(opened).value();
+  port.clock = &ctx.clock;
+  PortOpenResult r;
+  r.port = std::move(port);
+  return r;
+}
+
+}  // namespace seqc::cli

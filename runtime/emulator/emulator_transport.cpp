@@ -1,0 +1,61 @@
+#include "runtime/emulator/emulator_transport.hpp"
+
+#include <algorithm>
+
+namespace seqc::emu {
+
+EmulatorTransport::EmulatorTransport(XArmEmulator& emulator, io::ManualClock& clock)
+    : emu_(emulator), clock_(clock) {}
+
+double EmulatorTransport::seconds_per_byte() const {
+  const auto baud = emu_.config().baud;
+  return baud == 0 ? 0.0 : 10.0 / baud;
+}
+
+Status EmulatorTransport::write(ByteView bytes) {
+  if (emu_.hung_up()) return make_error("emu:xarm: the link has hung up");
+  const auto baud = emu_.config().baud;
+  if (baud > 0) {
+    const auto wire = io::Duration{10'000'000'000LL / baud} * static_cast<std::int64_t>(bytes.size());
+    clock_.sleep_until(clock_.now() + wire);
+  }
+  emu_.receive(bytes, clock_.now());
+  return Ok{};
+}
+
+io::ReadResult EmulatorTransport::deliver(std::span<std::uint8_t> buffer) {
+  const std::size_t n = std::min(buffer.size(), inbox_.size());
+  std::copy_n(inbox_.begin(), n, buffer.begin());
+  inbox_.erase(inbox_.begin(), inbox_.begin() + static_cast<std::ptrdiff_t>(n));
+  return io::ReadResult{io::ReadStatus::Data, n, {}};
+}
+
+io::ReadResult EmulatorTransport::read(std::span<std::uint8_t> buffer, io::TimePoint deadline) {
+  if (buffer.empty()) return io::ReadResult{io::ReadStatus::Error, 0, "empty read buffer"};
+  while (true) {
+    if (!inbox_.empty()) return deliver(buffer);
+    if (emu_.hung_up()) return io::ReadResult{io::ReadStatus::HangUp, 0, "emu:xarm hung up"};
+    Bytes due = emu_.take_output(clock_.now());
+    if (!due.empty()) {
+      inbox_ = std::move(due);
+      continue;
+    }
+    const auto next = emu_.next_output_at();
+    if (!next) break;
+    // next_output_at() may be a lower bound (a notification not yet on the line): advance
+    // and look again; each round moves the clock forward.
+    const io::TimePoint target = std::max(*next, clock_.now() + io::Duration{1});
+    if (target > deadline) break;
+    clock_.sleep_until(target);
+  }
+  clock_.sleep_until(deadline);
+  emu_.advance_to(clock_.now());
+  return io::ReadResult{io::ReadStatus::Timeout, 0, {}};
+}
+
+void EmulatorTransport::discard_input() {
+  inbox_.clear();
+  (void)emu_.take_output(clock_.now());
+}
+
+}  // namespace seqc::emu

@@ -1,0 +1,66 @@
+// Decides, deterministically from XArmFaults::seed, which frames the emulated controller loses,
+// corrupts, answers late or twice. Incoming and outgoing frames draw from two separate streams
+// and every frame draws the same number of values whatever the outcome, so one fault never
+// shifts the decisions made for unrelated frames.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "runtime/emulator/xarm_config.hpp"
+#include "runtime/protocol/bytes.hpp"
+
+namespace seqc::emu {
+
+// SplitMix64: tiny, well-mixed, identical on every platform (unlike std distributions).
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next();
+  // Uniform in [0, 1).
+  double unit();
+
+ private:
+  std::uint64_t state_;
+};
+
+struct IncomingFault {
+  std::size_t number = 0;  // 1-based count of framed requests received
+  bool hangup = false;     // this frame closes the link
+  bool silent = false;     // the controller has stopped answering
+  bool drop = false;
+  bool corrupt = false;
+  std::size_t corrupt_offset = 0;  // 0..2: which of 55 55 LEN is flipped
+};
+
+struct OutgoingFault {
+  bool late = false;
+  bool duplicate = false;
+  bool corrupt = false;
+  double corrupt_where = 0;  // [0, 1): position in the frame, scaled by its length
+};
+
+class FaultInjector {
+ public:
+  explicit FaultInjector(const XArmFaults& faults);
+
+  // Called once per request frame that arrived framed (55 55 LEN ...), in arrival order.
+  IncomingFault on_request();
+  // Called once per frame the controller sends (replies and notifications), in order.
+  OutgoingFault on_reply();
+
+  // Flips one byte of `frame` (xor 0xff) at the position `where` selects.
+  static void flip(Bytes& frame, double where);
+
+  bool silent() const { return silent_; }
+  std::size_t frames_seen() const { return frames_; }
+
+ private:
+  XArmFaults faults_;
+  SplitMix64 in_;
+  SplitMix64 out_;
+  std::size_t frames_ = 0;
+  bool silent_ = false;
+};
+
+}  // namespace seqc::emu

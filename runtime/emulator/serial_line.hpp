@@ -1,0 +1,75 @@
+// The two halves of the emulated controller's UART: the receive parser that cuts incoming
+// bytes into frames, and the transmit line that sends replies one byte after another.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "runtime/io/clock.hpp"
+#include "runtime/protocol/bytes.hpp"
+
+namespace seqc::emu {
+
+// Cuts the request stream into pieces the way the controller's receive routine does:
+// 55 55 LEN then LEN - 1 more bytes (CMD and data). A LEN below 2 ends the piece at once as
+// malformed. Bytes outside any frame come out as a malformed piece of their own, so that
+// every received byte is accounted for in exactly one piece.
+//
+// Modelling choice (not from the document): if the next byte arrives more than `gap` after
+// the previous one, a partial frame is discarded (as a malformed piece). Without it, a frame
+// whose LEN was corrupted upwards would swallow the frames that follow.
+class RequestFramer {
+ public:
+  struct Piece {
+    Bytes raw;
+    bool framed = false;  // a whole 55 55 LEN CMD ... frame with LEN >= 2
+  };
+
+  explicit RequestFramer(io::Duration gap) : gap_(gap) {}
+
+  // All `bytes` arrive at `at`. Appends the pieces they complete to `out`.
+  void feed(ByteView bytes, io::TimePoint at, std::vector<Piece>& out);
+  void reset();
+
+ private:
+  void flush_garbage(std::vector<Piece>& out);
+
+  io::Duration gap_;
+  std::optional<io::TimePoint> last_at_;
+  Bytes garbage_;
+  Bytes frame_;  // 55, 55 55, 55 55 LEN, or more of a frame
+};
+
+// Transmit side: messages become ready at some time and go out in order of readiness, one
+// byte every 10 bits at `baud` (all at once when baud is 0), never overlapping on the wire.
+class OutputLine {
+ public:
+  explicit OutputLine(std::uint32_t baud);
+
+  void send(Bytes bytes, io::TimePoint ready);
+  std::optional<io::TimePoint> next_byte_at() const;
+  // The bytes due at or before `upto`, removed from the line. Callers never send() a message
+  // ready before a time they have already taken output up to.
+  Bytes take(io::TimePoint upto);
+  void clear();
+  io::Duration byte_time() const { return byte_time_; }
+
+ private:
+  struct Message {
+    io::TimePoint ready;
+    std::uint64_t seq;
+    Bytes bytes;
+  };
+  io::TimePoint start_of_front() const;
+
+  io::Duration byte_time_;
+  std::vector<Message> queue_;  // by (ready, seq); the front may be partly sent
+  std::size_t front_sent_ = 0;
+  io::TimePoint front_start_{0};
+  io::TimePoint line_free_{0};
+  std::uint64_t seq_ = 0;
+};
+
+}  // namespace seqc::emu

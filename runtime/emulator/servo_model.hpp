@@ -1,0 +1,76 @@
+// The bus servos attached to the emulated controller: linear motion over the commanded time,
+// offsets (volatile "adjust" vs kept "write"), motor/servo mode and the limits written by
+// BusServoInfoWrite. Positions are computed from the trajectory at the time asked, so they
+// can be read while a servo is moving.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "runtime/io/clock.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+
+namespace seqc::emu {
+
+struct ServoModelConfig {
+  std::size_t count = 6;  // ids 1..count
+  std::uint16_t min = 0;
+  std::uint16_t max = 1000;
+  std::uint16_t home = 500;
+};
+
+class ServoBank {
+ public:
+  explicit ServoBank(const ServoModelConfig& config);
+
+  bool has(std::uint8_t id) const;
+  std::vector<std::uint8_t> ids() const;
+
+  // Moves linearly from wherever the servo is at `start` to `target` (clamped to the servo's
+  // position limits), arriving at start + duration. Powers the servo on.
+  void move(std::uint8_t id, std::uint16_t target, io::Duration duration, io::TimePoint start);
+  // Unpowers the servo: it stops where it is at `at`.
+  void power_off(std::uint8_t id, io::TimePoint at);
+  bool powered(std::uint8_t id) const;
+  std::uint16_t position(std::uint8_t id, io::TimePoint at) const;
+
+  void adjust_offset(std::uint8_t id, std::int8_t offset);  // volatile
+  void write_offset(std::uint8_t id);                       // keeps the current offset
+  std::int8_t offset(std::uint8_t id) const;
+  std::int8_t stored_offset(std::uint8_t id) const;
+
+  void set_mode(std::uint8_t id, lsc::ServoMode mode, std::uint16_t milliseconds);
+  lsc::ServoMode mode(std::uint8_t id) const;
+  std::uint16_t mode_milliseconds(std::uint8_t id) const;
+
+  // BusServoInfoWrite reaches every servo on the bus: all take the limits (kept over power-off).
+  void write_limits(const lsc::BusServoLimits& limits);
+  lsc::BusServoLimits limits(std::uint8_t id) const;
+
+  // Power cycle at `at`: servos hold where they are, volatile offsets revert to the written
+  // ones, mode returns to servo mode.
+  void power_cycle(io::TimePoint at);
+
+ private:
+  struct Servo {
+    std::uint16_t from = 0;
+    std::uint16_t to = 0;
+    io::TimePoint t0{0};
+    io::TimePoint t1{0};
+    bool powered = true;
+    std::int8_t offset = 0;
+    std::int8_t stored_offset = 0;
+    lsc::ServoMode mode = lsc::ServoMode::Servo;
+    std::uint16_t mode_ms = 0;
+    lsc::BusServoLimits limits;
+  };
+  const Servo* find(std::uint8_t id) const;
+  Servo* find(std::uint8_t id);
+  static std::uint16_t at_time(const Servo& s, io::TimePoint at);
+
+  std::vector<Servo> servos_;  // index = id - 1
+};
+
+}  // namespace seqc::emu

@@ -1,0 +1,168 @@
+#include "runtime/emulator/xarm_config.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "compiler/source/diagnostics.hpp"
+
+namespace seqc::emu {
+namespace {
+
+constexpr std::array<std::string_view, 8> kKeys = {"seed",  "drop",         "corrupt",
+                                                   "late",  "late-by",      "dup",
+                                                   "silent-after", "hangup-at"};
+
+std::string unknown_key_message(std::string_view key) {
+  std::string msg = "unknown fault '" + std::string(key) + "'";
+  const std::string best =
+      compiler::did_you_mean(key, std::vector<std::string>(kKeys.begin(), kKeys.end()));
+  if (!best.empty()) msg += "; did you mean '" + best + "'?";
+  msg += " (known: seed, drop, corrupt, late, late-by, dup, silent-after, hangup-at)";
+  return msg;
+}
+
+Result<std::uint64_t> parse_unsigned(std::string_view key, std::string_view text) {
+  std::uint64_t v = 0;
+  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || p != text.data() + text.size() || text.empty()) {
+    return make_error("fault '" + std::string(key) + "': '" + std::string(text) +
+                      "' is not a non-negative integer");
+  }
+  return v;
+}
+
+Result<double> parse_rate(std::string_view key, std::string_view text) {
+  // std::from_chars for double is available in libstdc++ 11+.
+  double v = 0;
+  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || p != text.data() + text.size() || text.empty()) {
+    return make_error("fault '" + std::string(key) + "': '" + std::string(text) +
+                      "' is not a number");
+  }
+  if (!(v >= 0.0 && v <= 1.0)) {
+    return make_error("fault '" + std::string(key) + "': rate " + std::string(text) +
+                      " is outside 0..1");
+  }
+  return v;
+}
+
+Result<io::Duration> parse_duration(std::string_view key, std::string_view text) {
+  struct Unit {
+    std::string_view suffix;
+    std::int64_t ns;
+  };
+  constexpr std::array<Unit, 4> kUnits = {
+      Unit{"ns", 1}, Unit{"us", 1000}, Unit{"ms", 1000000}, Unit{"s", 1000000000}};
+  std::int64_t scale = 1000000;  // bare number: milliseconds
+  std::string_view digits = text;
+  for (const auto& u : kUnits) {
+    if (text.size() > u.suffix.size() && text.ends_with(u.suffix)) {
+      scale = u.ns;
+      digits = text.substr(0, text.size() - u.suffix.size());
+      break;
+    }
+  }
+  std::uint64_t v = 0;
+  auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+  if (ec != std::errc{} || p != digits.data() + digits.size() || digits.empty() ||
+      v > static_cast<std::uint64_t>(INT64_MAX / scale)) {
+    return make_error("fault '" + std::string(key) + "': '" + std::string(text) +
+                      "' is not a duration (e.g. 400ms, 2s)");
+  }
+  return io::Duration{static_cast<std::int64_t>(v) * scale};
+}
+
+std::string format_duration(io::Duration d) {
+  auto ns = d.count();
+  if (ns % 1000000000 == 0) return std::to_string(ns / 1000000000) + "s";
+  if (ns % 1000000 == 0) return std::to_string(ns / 1000000) + "ms";
+  if (ns % 1000 == 0) return std::to_string(ns / 1000) + "us";
+  return std::to_string(ns) + "ns";
+}
+
+std::string format_rate(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+bool XArmFaults::any() const {
+  return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after ||
+         hangup_at;
+}
+
+Result<XArmFaults> parse_faults(std::string_view spec) {
+  XArmFaults f;
+  std::size_t pos = 0;
+  while (pos <= spec.size()) {
+    std::size_t comma = spec.find(',', pos);
+    if (comma == std::string_view::npos) comma = spec.size();
+    std::string_view item = spec.substr(pos, comma - pos);
+    pos = comma + 1;
+    if (item.empty()) {
+      if (comma == spec.size()) break;
+      continue;
+    }
+    std::size_t eq = item.find('=');
+    if (eq == std::string_view::npos) {
+      return make_error("fault '" + std::string(item) + "' needs a value (key=value)");
+    }
+    std::string_view key = item.substr(0, eq);
+    std::string_view value = item.substr(eq + 1);
+    if (key == "seed") {
+      auto v = parse_unsigned(key, value);
+      if (!v) return v.error();
+      f.seed = *v;
+    } else if (key == "drop" || key == "corrupt" || key == "late" || key == "dup") {
+      auto v = parse_rate(key, value);
+      if (!v) return v.error();
+      (key == "drop"      ? f.drop
+       : key == "corrupt" ? f.corrupt
+       : key == "late"    ? f.late_ack
+                          : f.duplicate_ack) = *v;
+    } else if (key == "late-by") {
+      auto v = parse_duration(key, value);
+      if (!v) return v.error();
+      f.late_by = *v;
+    } else if (key == "silent-after") {
+      auto v = parse_unsigned(key, value);
+      if (!v) return v.error();
+      f.silent_after = static_cast<std::size_t>(*v);
+    } else if (key == "hangup-at") {
+      auto v = parse_unsigned(key, value);
+      if (!v) return v.error();
+      if (*v == 0) return make_error("fault 'hangup-at': frames count from 1");
+      f.hangup_at = static_cast<std::size_t>(*v);
+    } else {
+      return make_error(unknown_key_message(key));
+    }
+    if (comma == spec.size()) break;
+  }
+  return f;
+}
+
+std::string describe_faults(const XArmFaults& f) {
+  std::string out;
+  auto add = [&](const std::string& item) {
+    if (!out.empty()) out += ",";
+    out += item;
+  };
+  const XArmFaults defaults;
+  if (f.drop > 0) add("drop=" + format_rate(f.drop));
+  if (f.corrupt > 0) add("corrupt=" + format_rate(f.corrupt));
+  if (f.late_ack > 0) add("late=" + format_rate(f.late_ack));
+  if (f.late_by != defaults.late_by) add("late-by=" + format_duration(f.late_by));
+  if (f.duplicate_ack > 0) add("dup=" + format_rate(f.duplicate_ack));
+  if (f.silent_after) add("silent-after=" + std::to_string(*f.silent_after));
+  if (f.hangup_at) add("hangup-at=" + std::to_string(*f.hangup_at));
+  if (out.empty()) return "none";
+  if (f.seed != defaults.seed) add("seed=" + std::to_string(f.seed));
+  return out;
+}
+
+}  // namespace seqc::emu

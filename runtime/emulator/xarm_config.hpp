@@ -1,0 +1,64 @@
+// Configuration of the emulated servo controller: timing, servos on the bus, and the faults it
+// injects on purpose. Everything here is plain data; the same config and seed always give the
+// same behaviour.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "runtime/io/clock.hpp"
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::emu {
+
+// Faults, all deterministic from `seed`. Rates are per frame, 0..1.
+struct XArmFaults {
+  std::uint64_t seed = 1;
+  double drop = 0;     // an incoming frame is lost (no effect, no reply)
+  double corrupt = 0;  // a byte is flipped: in a reply (anywhere), or in a request's framing
+                       // bytes (55 55 LEN) so the controller cannot frame it and ignores it
+  double late_ack = 0;  // a reply is sent late_by later than normal
+  io::Duration late_by = std::chrono::milliseconds(400);
+  double duplicate_ack = 0;  // a reply is sent twice
+  std::optional<std::size_t> silent_after;  // stop answering after this many frames received
+  std::optional<std::size_t> hangup_at;     // hang up (link closes) when frame N (1-based) arrives
+
+  bool any() const;
+};
+
+// Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
+// hangup-at=500,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
+// s (a bare number is milliseconds). Unknown keys, rates outside 0..1 and malformed numbers
+// are errors naming the offending item.
+Result<XArmFaults> parse_faults(std::string_view spec);
+
+// The spec form of `faults` (only non-default items), e.g. "drop=0.05,seed=7"; "none" if none.
+std::string describe_faults(const XArmFaults& faults);
+
+struct XArmConfig {
+  std::uint32_t baud = 0;  // 0 = unpaced; else replies take 10 bits per byte on the wire
+  io::Duration command_time{0};  // processing time of an ordinary frame (busy meanwhile)
+  io::Duration flash_erase_time = std::chrono::milliseconds(60);  // GroupDownload step 1 and
+                                                                   // GroupErase busy time
+  io::Duration flash_write_time = std::chrono::milliseconds(2);   // step 4 busy time
+  std::uint16_t battery_mv = 7500;
+  XArmFaults faults;
+
+  // Bus servos attached: ids 1..servo_count (xArm: 6 bus servos, 0..1000, centre 500).
+  std::size_t servo_count = 6;
+  std::uint16_t servo_min = 0;
+  std::uint16_t servo_max = 1000;
+  std::uint16_t servo_home = 500;
+  std::uint8_t servo_temperature_c = 32;  // what BusServoInfoRead reports
+
+  // Modelling choice (not from the document): the request parser discards a partial frame
+  // when the next byte arrives more than frame_gap after the previous one, so a corrupted LEN
+  // cannot swallow the frames that follow. 0 disables the rule.
+  io::Duration frame_gap = std::chrono::milliseconds(20);
+};
+
+}  // namespace seqc::emu

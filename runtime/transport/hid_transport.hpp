@@ -1,0 +1,45 @@
+// The xArm controller over USB HID as an io::Transport. The controller speaks the serial frame
+// format inside 64-byte reports, so this transport translates at the edges and the uploader
+// sees ordinary serial bytes both ways:
+//   write(): one whole serial frame -> lsc::encode_hid_report (report id 0, zero padding).
+//   read():  one input report -> lsc::decode_hid_report (padding dropped by LEN) ->
+//            lsc::encode_serial, handed out in as many reads as the caller's buffer needs.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "runtime/io/clock.hpp"
+#include "runtime/io/transport.hpp"
+#include "runtime/transport/hid_backend.hpp"
+
+namespace seqc::transport {
+
+class HidTransport final : public io::Transport {
+ public:
+  // `description` is what describe() returns, e.g. "hid:/dev/hidraw3 (0483:5750 LOBOT)".
+  HidTransport(std::unique_ptr<HidDevice> device, io::Clock& clock, std::string description);
+
+  // Exactly one whole serial frame (55 55 LEN CMD DATA) of at most 64 bytes per call.
+  Status write(ByteView bytes) override;
+  io::ReadResult read(std::span<std::uint8_t> buffer, io::TimePoint deadline) override;
+  // Drops reports queued in the device (read with no wait until none is left) and any part of
+  // a report not yet handed out. The uploader calls it before a download.
+  void discard_input() override;
+  std::string describe() const override { return description_; }
+
+  // At most this many queued reports are dropped by one discard_input(), so a device that
+  // never stops sending cannot hold the caller forever.
+  static constexpr int kMaxDrainedReports = 1024;
+
+ private:
+  std::size_t hand_out(std::span<std::uint8_t> buffer);
+
+  std::unique_ptr<HidDevice> device_;
+  io::Clock& clock_;
+  std::string description_;
+  Bytes pending_;  // serial bytes of the last report not yet read
+  std::size_t pending_pos_ = 0;
+};
+
+}  // namespace seqc::transport

@@ -1,0 +1,45 @@
+// What `seqc upload` shows while it works: a progress bar redrawn in place on a terminal,
+// plain lines (one per tenth of the actions) otherwise; with --verbose also every re-send,
+// restart and skipped frame. Formatting is kept apart from the uploader so it can be
+// golden-tested.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+
+#include "runtime/upload/uploader.hpp"
+
+namespace seqc::upload {
+
+// "[##########..........]  510/1020 actions  1.2 kB/s  0:12 left" (width = bar cells).
+std::string format_progress_bar(const UploadProgress& p, int width = 30);
+// "510/1020 actions acknowledged (50%), 1.2 kB/s, about 0:12 left".
+std::string format_progress_line(const UploadProgress& p);
+// "re-sending step 4 (action 17 of 1020: block 0, index 16), attempt 2 of 5: no ..."
+std::string format_retry(const RetryEvent& e);
+
+class ProgressPrinter final : public UploadObserver {
+ public:
+  ProgressPrinter(std::ostream& err, bool terminal, bool verbose);
+  ~ProgressPrinter() override;
+
+  void on_progress(const UploadProgress& progress) override;
+  void on_retry(const RetryEvent& event) override;
+  void on_note(const std::string& note) override;
+  // Ends the bar's line (call before printing the result).
+  void finish();
+
+ private:
+  void message_line(const std::string& text);
+
+  std::ostream& err_;
+  bool terminal_;
+  bool verbose_;
+  bool bar_shown_ = false;
+  std::string last_bar_;
+  std::size_t last_tenth_ = 0;
+  int last_attempt_ = 1;
+};
+
+}  // namespace seqc::upload

@@ -1,0 +1,185 @@
+// Uploads a GroupDownload plan (lsc::plan_group_download) into the servo controller and,
+// when asked, starts the group with GroupRun.
+//
+// Sequence
+//   1. probe: GetBatteryVoltage until it is answered (retried); nothing answers -> NoAnswer.
+//   2. GroupStop (no reply), then a barrier, so a running group is stopped before flash is
+//      erased and the controller has finished with the stop before step 1 arrives.
+//   3. steps 1-5, stop-and-wait: one frame, its acknowledgement, then the next. Each wait has
+//      a deadline of (frame + ack bytes) x seconds_per_byte + a margin; step 1 gets a longer
+//      margin because the controller erases flash first. A frame is re-sent at most
+//      `retries` times; every re-send is reported to the observer.
+//   4. a final barrier after step 5's acknowledgement (see below).
+//   5. GroupRun, only if the download and the final barrier succeeded and `run` is set.
+//
+// A barrier is GetBatteryVoltage: the controller answers in the order it receives, so once
+// its reply arrives, every acknowledgement of an earlier frame has arrived too. Acks that
+// arrive before the barrier's reply are discarded. A dropped barrier is re-sent.
+//
+// Why acknowledgements cannot be mis-paired (an ack "<step> 00" does not say which action
+// it is for, and a shifted upload is the worst outcome):
+//   (a) Every ack's step number is checked; an ack for another step is never accepted.
+//   (b) Before each frame is sent, replies that have already arrived are drained; an extra
+//       ack found there (a duplicate) is discarded. The ack of the previous frame was already
+//       taken, so nothing the controller still owes us is outstanding.
+//   (c) After any re-send, the next frame is sent only after a barrier: a late ack of an
+//       earlier attempt is absorbed by the barrier and cannot be taken for the next frame.
+//   (d) If anything shows that pairing was off -- an ack for an earlier step while waiting
+//       outside a barrier, an ack for another step inside a barrier, or any extra ack before
+//       the final barrier's reply that a re-send of step 5 does not explain -- the attempt is
+//       abandoned and the whole download restarts at step 1 (which erases: restarting is
+//       idempotent), at most `restarts` times, then the upload fails. Success is reported
+//       only after an attempt with no such evidence.
+//
+// Against each fault:
+//   drop        the frame (or its ack) is lost: deadline, re-send, barrier (c).
+//   corrupt     a request with broken framing is ignored by the controller = drop. A corrupted
+//               reply is skipped as garbage (decoder resync) = drop; if it still decodes as an
+//               ack, a step that was never sent in this attempt is ignored, an earlier step
+//               restarts (d), and a refusal is confirmed (below), so a flipped status byte does
+//               not end the upload.
+//   late ack    arrives after the deadline: the re-sent frame is either stored or, for step 4,
+//               re-acked by the controller as a repeat; whichever ack comes first is taken
+//               (same step, same frame) and the barrier (c) absorbs the other.
+//   duplicate   drained before the next send (b); if it arrives later and is taken for the
+//               next frame, the real ack of that frame is left over and shows up as a
+//               wrong-step ack, a drained extra ack, or an extra ack at the final barrier (d).
+//               Whatever was sent early and dropped by the busy controller leaves a gap in
+//               the sequence, which the controller refuses.
+//   busy-drop   only happens if a frame is sent before the previous one was processed, i.e.
+//               after a mis-paired ack; it is then seen as in "duplicate".
+//   silence     every re-send times out; after `retries` the upload fails (NoAck).
+//   hang-up     the link reports HangUp: the upload ends at once (HangUp), never retried.
+//   refusal     "<step> xx" with xx != 00 for the frame being waited on. In a clean attempt:
+//               after a barrier the same frame is sent once more; a second refusal is the
+//               controller's answer and ends the upload (Refused, no restart); a refusal then
+//               an accept was a corrupted ack. In an attempt that already re-sent a frame or
+//               saw an extra ack, the refusal may be our own doing (a mis-paired ack let a
+//               frame go out while the controller was busy; it was dropped and the next one
+//               is refused for the gap), so the download restarts (d) instead.
+//   reordering  the emulator (and perhaps a real board) may send a late ack after a later
+//               reply, so a barrier cannot absorb it; it is then taken as a later frame's
+//               ack and shows up as the gap refusal above -> restart. Reply margins are
+//               chosen longer than ordinary lateness, so this needs a very late ack.
+//   Ctrl-C      the interrupt flag is polled between frames and in every wait slice (<= 100 ms
+//               of the link's clock): Interrupted.
+// Group state when an upload ends early: before step 1 was acknowledged the group is
+// unchanged (or, if step 1 was sent, possibly erased); after it, the group is empty: the
+// controller only makes it valid at step 5.
+//
+// The uploader never sleeps or reads the wall clock: time comes from the link's Clock.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runtime/io/clock.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/upload/controller_link.hpp"
+
+namespace seqc::upload {
+
+struct UploadOptions {
+  std::uint8_t group = 0;  // must match the plan's group
+  int retries = 4;         // re-sends of one frame after its first attempt
+  int restarts = 2;        // whole-download restarts after evidence of mis-pairing
+  // Added to the wire time of a frame and its reply to give the reply's deadline.
+  io::Duration reply_margin = std::chrono::milliseconds(500);
+  // Step 1's margin: the controller erases the group's flash before it acknowledges.
+  io::Duration open_margin = std::chrono::seconds(3);
+  bool run = false;             // send GroupRun after a successful download
+  std::uint16_t run_times = 1;  // GroupRun's count; 0 = loop until stopped
+};
+
+enum class UploadStatus {
+  Completed,     // every step acknowledged and the final barrier clean (GroupRun sent if asked)
+  BadPlan,       // the plan is not a GroupDownload for options.group; nothing was sent
+  NoAnswer,      // the probe was never answered
+  NoAck,         // a frame was not acknowledged after all re-sends
+  Refused,       // the controller refused a frame twice
+  Inconsistent,  // acknowledgements stayed mis-paired after every restart
+  HangUp,        // the device went away
+  Interrupted,   // Ctrl-C
+  LinkError,     // a write or read failed
+};
+const char* to_string(UploadStatus status);
+
+// What is known about the group on the controller when the upload ended.
+enum class GroupState {
+  Unchanged,    // no step 1 was sent
+  MaybeErased,  // step 1 was sent but never acknowledged
+  Empty,        // step 1 was acknowledged; the group is erased until a step 5 arrives
+  Uncertain,    // step 5 was acknowledged, but pairing was not confirmed afterwards
+  Stored,       // Completed: the controller acknowledged every action
+};
+
+// One sentence about the group's state, e.g. "group 0 is now empty".
+std::string describe_group_state(GroupState state, std::uint8_t group);
+
+struct UploadProgress {
+  std::size_t actions_done = 0;  // step-4 acks taken in the current attempt
+  std::size_t actions_total = 0;
+  std::size_t frames_done = 0;  // steps 1-5 acknowledged in the current attempt
+  std::size_t frames_total = 0;
+  std::size_t bytes_sent = 0;  // on the link since the upload began (all attempts)
+  std::size_t bytes_received = 0;
+  io::Duration elapsed{0};  // since the upload began, on the link's clock
+  int attempt = 1;          // 1 + restarts so far
+};
+
+struct RetryEvent {
+  std::string what;    // "step 4 (block 0, action 17)", "barrier", "probe"
+  int attempt = 2;     // the attempt about to be made (2 = first re-send)
+  int max_attempts = 0;
+  std::string reason;  // "no acknowledgement within 0.536 s"
+};
+
+class UploadObserver {
+ public:
+  virtual ~UploadObserver() = default;
+  virtual void on_progress(const UploadProgress& /*progress*/) {}
+  virtual void on_retry(const RetryEvent& /*event*/) {}
+  // Restarts, stale acks discarded, notifications, skipped frames: for verbose output.
+  virtual void on_note(const std::string& /*note*/) {}
+};
+
+struct UploadResult {
+  UploadStatus status = UploadStatus::BadPlan;
+  std::string message;  // for the user when status != Completed
+  GroupState group_state = GroupState::Unchanged;
+  std::size_t actions_total = 0;
+  std::size_t actions_acknowledged = 0;  // in the last attempt
+  std::optional<std::uint16_t> battery_mv;  // from the probe
+  int retries = 0;   // re-sends of frames and barriers, all attempts
+  int restarts = 0;  // whole-download restarts
+  std::size_t stale_acks = 0;  // acks discarded by barriers and drains
+  bool run_sent = false;
+  bool run_reported = false;  // the controller announced the group started
+  io::Duration elapsed{0};
+  LinkStats link;
+
+  bool ok() const { return status == UploadStatus::Completed; }
+};
+
+class Uploader {
+ public:
+  Uploader(ControllerLink& link, UploadOptions options, UploadObserver* observer = nullptr);
+
+  // Runs the whole sequence for `plan` (steps 1..5 as plan_group_download returns them).
+  UploadResult upload(const std::vector<lsc::Request>& plan);
+
+  // Reply deadline for a frame of `frame_bytes` whose reply is `reply_bytes` long.
+  io::Duration reply_timeout(std::size_t frame_bytes, std::size_t reply_bytes, bool open) const;
+
+ private:
+  class Run;
+  ControllerLink& link_;
+  UploadOptions options_;
+  UploadObserver* observer_;
+};
+
+}  // namespace seqc::upload

@@ -1,0 +1,165 @@
+// The servo-controller back end: actions, the download plan, live moves, decode round trips and
+// the simulator.
+#include <gtest/gtest.h>
+
+#include "compiler/backend/decode.hpp"
+#include "compiler/backend/listing.hpp"
+#include "compiler/backend/servo_backend.hpp"
+#include "compiler/backend/simulate.hpp"
+#include "runtime/io/disk.hpp"
+#include "runtime/protocol/lsc_stream.hpp"
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::backend {
+namespace {
+
+using compiler::testing::compile_text;
+using compiler::testing::program_of;
+
+std::string n_actions(int n) {
+  return "robot: lsc-32\nsequence:\n  - move: {ch0: 1000}\n    time: 1s\n  - repeat: " +
+         std::to_string(n - 1) + "\n    do:\n      - wait: 20ms\n";
+}
+
+TEST(Backend, ActionsMirrorKeyframes) {
+  auto out = compile_text("robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
+                          "700ms\n  - wait: 40ms\n");
+  const auto actions = to_actions(program_of(out));
+  ASSERT_EQ(actions.size(), 2u);
+  EXPECT_EQ(actions[0], (lsc::GroupAction{700, {{1, 100}, {6, 900}}}));
+  EXPECT_EQ(actions[1], (lsc::GroupAction{40, {{1, 100}, {6, 900}}}));
+}
+
+TEST(Backend, SmallPlanIsByteExact) {
+  // Written by hand from protocol-notes.md: group 2, one action of 700 ms moving servo 1 to
+  // 100 (64 00) and servo 6 to 900 (84 03).
+  auto out = compile_text("robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
+                          "700ms\n");
+  auto plan = plan_download(program_of(out), 2);
+  ASSERT_TRUE(plan) << plan.error().message;
+  EXPECT_EQ(render_hex(*plan),
+            "55 55 05 05 01 02 01\n"
+            "55 55 07 05 02 02 00 01 00\n"
+            "55 55 06 05 03 02 00 00\n"
+            "55 55 0f 05 04 02 00 00 0b bc 02 01 64 00 06 84 03\n"
+            "55 55 04 05 05 02\n");
+  EXPECT_EQ((*plan)[3].keyframe, std::optional<std::size_t>(0));
+  EXPECT_FALSE((*plan)[4].keyframe);
+}
+
+TEST(Backend, FullGroupPacksIntoExactlyFourBlocks) {
+  auto out = compile_text(n_actions(1020));
+  const compiler::ServoProgram& p = program_of(out);
+  ASSERT_EQ(p.keyframes.size(), 1020u);
+  auto plan = plan_download(p, 0);
+  ASSERT_TRUE(plan) << plan.error().message;
+  ASSERT_EQ(plan->size(), 1u + 4u + 1u + 1020u + 1u);
+  const auto& open = std::get<lsc::GroupDownloadOpen>((*plan)[0].request);
+  EXPECT_EQ(open.block_counts, (std::vector<std::uint8_t>{255, 255, 255, 255}));
+  for (int b = 0; b < 4; ++b) {
+    const auto& size = std::get<lsc::GroupDownloadSize>((*plan)[1 + b].request);
+    EXPECT_EQ(size.block, b);
+    EXPECT_EQ(size.count, 255);
+  }
+  EXPECT_EQ(std::get<lsc::GroupDownloadBlocks>((*plan)[5].request).block_count, 4);
+  const auto& last = std::get<lsc::GroupDownloadAction>((*plan)[1025].request);
+  EXPECT_EQ(last.block, 3);
+  EXPECT_EQ(last.index, 254);
+}
+
+TEST(Backend, TheOneThousandAndTwentyFirstActionIsRefused) {
+  auto out = compile_text(n_actions(1021));
+  EXPECT_FALSE(out.program);
+  ASSERT_EQ(out.diagnostics.error_count(), 1u);
+  EXPECT_NE(out.diagnostics.all()[0].message.find("1021/1020 actions"), std::string::npos);
+}
+
+TEST(Backend, LiveMovesNameEveryUsedServo) {
+  auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: {claw: 100, base: 900}
+    time: 700ms
+  - move: {elbow: 300}
+    time: 300ms
+)");
+  const auto moves = live_moves(program_of(out));
+  ASSERT_EQ(moves.size(), 2u);
+  EXPECT_EQ(moves[1].send_ms, 700u);
+  EXPECT_EQ(moves[1].move.time_ms, 300);
+  using E = lsc::MultiServoMove::Entry;
+  EXPECT_EQ(moves[1].move.servos,
+            (std::vector<E>{{1, std::nullopt}, {4, 300}, {6, std::nullopt}}));
+  auto bytes = lsc::encode_serial(lsc::Request{moves[1].move});
+  ASSERT_TRUE(bytes);
+  EXPECT_EQ(to_hex(*bytes), "55 55 0e 03 03 2c 01 01 00 ff 04 2c 01 06 00 ff");
+}
+
+// compile -> frames -> hex text -> bytes -> frames -> requests == the program's keyframes.
+TEST(Backend, ExamplesRoundTripThroughHex) {
+  for (const char* name : {"walk", "wave", "dance"}) {
+    SCOPED_TRACE(name);
+    io::DiskFileReader disk;
+    auto out = compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name + ".yaml",
+                                      disk);
+    const compiler::ServoProgram& p = program_of(out);
+    auto plan = plan_download(p, 7);
+    ASSERT_TRUE(plan) << plan.error().message;
+    auto bytes = parse_hex(render_hex(*plan));
+    ASSERT_TRUE(bytes);
+    lsc::FrameDecoder decoder;
+    decoder.feed(*bytes);
+    std::vector<lsc::GroupAction> decoded;
+    while (auto frame = decoder.next()) {
+      auto request = lsc::decode_request(*frame);
+      ASSERT_TRUE(request) << request.error().message;
+      if (auto* a = std::get_if<lsc::GroupDownloadAction>(&*request)) {
+        EXPECT_EQ(a->group, 7);
+        decoded.push_back({a->time_ms, a->servos});
+      }
+    }
+    EXPECT_EQ(decoder.skipped_bytes(), 0u);
+    EXPECT_EQ(decoded, to_actions(p));
+    DecodeResult table = decode_frames(*bytes);
+    EXPECT_TRUE(table.issues.empty()) << table.table;
+    EXPECT_EQ(table.actions, p.keyframes.size());
+  }
+}
+
+TEST(Backend, DecodeFlagsASkippedIndex) {
+  auto bytes = parse_hex(
+      "55 55 05 05 01 00 02\n55 55 07 05 02 00 00 02 00\n55 55 06 05 03 00 00 00\n"
+      "55 55 0c 05 04 00 00 01 0b f4 01 01 f4 01\n");
+  ASSERT_TRUE(bytes);
+  DecodeResult r = decode_frames(*bytes);
+  EXPECT_EQ(r.issues, (std::vector<std::string>{
+                          "frame 4: expected block 0 index 0 next, got block 0 index 1",
+                          "frame 4: group 0 download was opened but never closed (step 5 "
+                          "missing)"}));
+}
+
+TEST(Backend, SimulatorMovesInStraightLinesFromHome) {
+  auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: {claw: 700}
+    time: 200ms
+  - move: {claw: 300, base: 600}
+    time: 400ms
+)");
+  Simulation sim = simulate(program_of(out), 100);
+  EXPECT_EQ(sim.duration_ms, 600u);
+  EXPECT_EQ(to_csv(sim),
+            "time_ms,claw,base\n"
+            "0,500,500\n"
+            "100,600,500\n"
+            "200,700,500\n"
+            "300,600,525\n"
+            "400,500,550\n"
+            "500,400,575\n"
+            "600,300,600\n");
+  Simulation odd = simulate(program_of(out), 250);
+  ASSERT_EQ(odd.samples.size(), 4u);  // 0, 250, 500 and the end
+  EXPECT_EQ(odd.samples.back().time_ms, 600u);
+}
+
+}  // namespace
+}  // namespace seqc::backend

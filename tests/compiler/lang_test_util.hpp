@@ -1,0 +1,42 @@
+// Compiling choreographies held in memory, for the language and back-end tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "compiler/compile.hpp"
+#include "compiler/source/diagnostics.hpp"
+
+namespace seqc::compiler::testing {
+
+class MemoryFiles final : public FileReader {
+ public:
+  std::map<std::string, std::string> files;
+  Result<std::string> read(const std::string& path) override {
+    auto it = files.find(path);
+    if (it == files.end()) return make_error(path + ": No such file or directory");
+    return it->second;
+  }
+};
+
+inline CompileOutput compile_text(const std::string& text, bool strict = false) {
+  MemoryFiles files;
+  files.files["main.yaml"] = text;
+  return compile_file("main.yaml", files, CompileOptions{strict});
+}
+
+inline std::string diagnostics_of(const CompileOutput& out) {
+  return render_all(out.diagnostics, out.sources);
+}
+
+// The program, failing the test (with the diagnostics) if there is none.
+inline const ServoProgram& program_of(const CompileOutput& out) {
+  static const ServoProgram empty;
+  const ServoProgram* p = out.servo_program();
+  EXPECT_NE(p, nullptr) << diagnostics_of(out);
+  return p != nullptr ? *p : empty;
+}
+
+}  // namespace seqc::compiler::testing

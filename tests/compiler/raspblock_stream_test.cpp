@@ -1,0 +1,150 @@
+// The compiled Raspblock stream, byte for byte. Every expected frame below was written by hand
+// from seeds/raspblock-driver-board.md and protocol-notes.md B (FF FE FUNC LEN DATA CHK,
+// CHK = FUNC + LEN + sum(DATA), 16-bit values big-endian, rocker signs in 0b00000XYZ with the
+// Z bit set for Z >= 0); the arithmetic is in the comments.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "compiler/backend/raspblock_stream.hpp"
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using testing::compile_text;
+using testing::diagnostics_of;
+
+// "at_ms: hex" per frame.
+std::vector<std::string> frames_of(const std::string& text) {
+  auto out = compile_text(text);
+  const RaspblockProgram* p = out.raspblock_program();
+  EXPECT_NE(p, nullptr) << diagnostics_of(out);
+  if (p == nullptr) return {};
+  auto frames = backend::plan_stream(*p);
+  EXPECT_TRUE(frames.ok());
+  std::vector<std::string> lines;
+  for (const auto& f : *frames) lines.push_back(std::to_string(f.at_ms) + ": " + to_hex(f.bytes));
+  return lines;
+}
+
+// Rocker 0,0,0: data 01 00 00 00 00 00 00 01 (Z = 0 sets the Z bit); 03+08+01+01 = 0d.
+const std::string kStop = "ff fe 03 08 01 00 00 00 00 00 00 01 0d";
+
+TEST(RaspblockStream, DriveThenStop) {
+  // The vendor driver's example: X=-10 -> 01 00 0a 00 00 00 00 05; 03+08+01+0a+05 = 1b.
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "sequence:\n"
+                      "  - drive: {x: -10}\n"
+                      "    time: 500ms\n"),
+            (std::vector<std::string>{"0: ff fe 03 08 01 00 0a 00 00 00 00 05 1b",
+                                      "500: " + kStop}));
+}
+
+TEST(RaspblockStream, PidGimbalDrivesAndAServo) {
+  const std::vector<std::string> want = {
+      // PID position mode, gains 10..17: 01+09+01+0a+...+11 = 0x77.
+      "0: ff fe 01 09 01 0a 0b 0c 0d 0e 0f 10 11 77",
+      // Gimbal 1500 (05 dc), 1000 (03 e8): 02+04+05+dc+03+e8 = 0x1d2 -> d2.
+      "0: ff fe 02 04 05 dc 03 e8 d2",
+      // pan 1500 -> 1700 over 200ms at 100ms resolution: 1600 at 100ms, 1700 at 200ms.
+      "100: ff fe 02 04 06 40 03 e8 37",  // 1600 = 06 40; 02+04+06+40+03+e8 = 0x137
+      "200: ff fe 02 04 06 a4 03 e8 9b",  // 1700 = 06 a4; 0x19b
+      // y=20, z=-150: magnitudes 0x14, 0x96; no bit for y>0, no Z bit for z<0; sum 0xb6.
+      "300: ff fe 03 08 01 00 00 00 14 00 96 00 b6",
+      // The next drive replaces the speeds at once (no stop between): x=5, z=30 -> Z bit.
+      "1300: ff fe 03 08 01 00 05 00 00 00 1e 01 30",
+      // A step that does not drive stops the car first, then servo 3 to 2000 (07 d0): 0xdf.
+      "2300: " + kStop,
+      "2300: ff fe 02 03 03 07 d0 df",
+      // The stream always ends stopped.
+      "2400: " + kStop,
+  };
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "resolution: 100ms\n"
+                      "pid: {mode: position, speed_kp: 10, speed_ki: 11, position_kp: 12,\n"
+                      "      position_ki: 13, position_kd: 14, yaw_kp: 15, yaw_ki: 16, "
+                      "yaw_kd: 17}\n"
+                      "sequence:\n"
+                      "  - move: {pan: 1500, tilt: 1000}\n"
+                      "    time: 100ms\n"
+                      "  - move: {pan: 1700}\n"
+                      "    time: 200ms\n"
+                      "  - drive: {y: 20, z: -150}\n"
+                      "    time: 1s\n"
+                      "  - drive: {x: 5, z: 30}\n"
+                      "    time: 1s\n"
+                      "  - move: {servo3: 2000}\n"
+                      "    time: 100ms\n"),
+            want);
+}
+
+TEST(RaspblockStream, RepeatWithBeatsAndAWait) {
+  const std::string right = "ff fe 03 08 01 00 19 00 00 00 00 01 26";  // x=25: 03+08+01+19+01
+  const std::string left = "ff fe 03 08 01 00 19 00 00 00 00 05 2a";   // x=-25: X|Z bits = 05
+  const std::string spin = "ff fe 03 08 01 00 00 00 00 00 c8 01 d5";   // z=200: c8, Z bit
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "tempo: 120\n"
+                      "sequence:\n"
+                      "  - repeat: 2\n"
+                      "    do:\n"
+                      "      - drive: {x: 25}\n"
+                      "        time: 1b\n"
+                      "      - drive: {x: -25}\n"
+                      "        time: 1b\n"
+                      "  - drive: {z: 200}\n"
+                      "    time: 0.5s\n"
+                      "  - wait: 1s\n"),
+            (std::vector<std::string>{"0: " + right, "500: " + left, "1000: " + right,
+                                      "1500: " + left, "2000: " + spin, "2500: " + kStop,
+                                      "3500: " + kStop}));
+}
+
+TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - move: {servo1: 1000}\n"
+      "    time: 100ms\n"
+      "  - move: {servo1: 1100}\n"
+      "    time: 100ms\n"     // default 20ms resolution: 5 packets, 20 apart
+      "  - move: {servo1: 1100}\n"
+      "    time: 1s\n"        // already there: nothing to send
+      "  - move: {servo1: 90deg}\n"
+      "    time: 40ms\n"
+      "    steps: 2\n"
+      "    ease: in\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  std::vector<std::pair<std::uint32_t, int>> got;
+  for (const TimedPacket& t : p->packets) {
+    if (const auto* s = std::get_if<raspblock::SingleServo>(&t.packet)) {
+      EXPECT_EQ(s->index, 1);
+      got.emplace_back(t.at_ms, s->position);
+    }
+  }
+  // 90deg = 500 + 90 * 2000/180 = 1500; ease in at k=1 of 2: 1100 + 400 * 0.25 = 1200.
+  const std::vector<std::pair<std::uint32_t, int>> want = {
+      {0, 1000},    {100, 1020},  {120, 1040}, {140, 1060}, {160, 1080},
+      {180, 1100},  {1200, 1200}, {1220, 1500}};
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(p->duration_ms, 1240u);
+  ASSERT_FALSE(p->packets.empty());
+  EXPECT_EQ(p->packets.back().packet, (raspblock::Packet{raspblock::Rocker{0, 0, 0}}));
+  EXPECT_EQ(p->packets.back().at_ms, 1240u);
+}
+
+TEST(RaspblockStream, HexListsSendTimesRightAligned) {
+  auto out = compile_text("robot: raspblock\nsequence:\n  - drive: {x: -10}\n    time: 12.5s\n");
+  ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
+  auto frames = backend::plan_stream(*out.raspblock_program());
+  ASSERT_TRUE(frames.ok());
+  EXPECT_EQ(backend::render_stream_hex(*frames),
+            "     0 ms  ff fe 03 08 01 00 0a 00 00 00 00 05 1b\n"
+            " 12500 ms  ff fe 03 08 01 00 00 00 00 00 00 01 0d\n");
+  EXPECT_EQ(to_hex(backend::stop_frame()), kStop);
+}
+
+}  // namespace
+}  // namespace seqc::compiler

@@ -1,0 +1,80 @@
+#include "compiler/lang/units.hpp"
+
+#include <gtest/gtest.h>
+
+namespace seqc::compiler {
+namespace {
+
+TEST(ParseTime, UnitsAndFractions) {
+  auto ms = parse_time("500ms");
+  ASSERT_TRUE(ms);
+  EXPECT_EQ(ms->unit, TimeUnit::Milliseconds);
+  EXPECT_DOUBLE_EQ(ms->amount, 500);
+  auto s = parse_time("1.5s");
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->unit, TimeUnit::Seconds);
+  EXPECT_DOUBLE_EQ(s->amount, 1.5);
+  auto b = parse_time("2b");
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->unit, TimeUnit::Beats);
+}
+
+TEST(ParseTime, BareNumberSuggestsUnits) {
+  auto t = parse_time("500");
+  ASSERT_FALSE(t);
+  EXPECT_EQ(t.error().message, "time '500' has no unit; write '500ms' or '500s'");
+}
+
+TEST(ParseTime, Rejects) {
+  for (const char* bad : {"", "ms", "-5ms", "1.s", "5 ms", "1e3ms", "2sec", ".5s"}) {
+    EXPECT_FALSE(parse_time(bad)) << bad;
+  }
+}
+
+TEST(ParsePosition, Forms) {
+  auto abs = parse_position("500");
+  ASSERT_TRUE(abs);
+  EXPECT_FALSE(abs->relative);
+  EXPECT_FALSE(abs->degrees);
+  EXPECT_DOUBLE_EQ(abs->amount, 500);
+  auto deg = parse_position("90deg");
+  ASSERT_TRUE(deg);
+  EXPECT_TRUE(deg->degrees);
+  auto up = parse_position("+50");
+  ASSERT_TRUE(up);
+  EXPECT_TRUE(up->relative);
+  EXPECT_DOUBLE_EQ(up->amount, 50);
+  auto down = parse_position("-2.5deg");
+  ASSERT_TRUE(down);
+  EXPECT_TRUE(down->relative && down->degrees);
+  EXPECT_DOUBLE_EQ(down->amount, -2.5);
+}
+
+TEST(ParsePosition, Rejects) {
+  for (const char* bad : {"", "+", "deg", "50.5", "5O0", "++5", "90 deg", "90degs"}) {
+    EXPECT_FALSE(parse_position(bad)) << bad;
+  }
+}
+
+TEST(ParseSpeed, UnitsAndDegrees) {
+  auto u = parse_speed("400/s");
+  ASSERT_TRUE(u);
+  EXPECT_FALSE(u->degrees);
+  EXPECT_DOUBLE_EQ(u->per_second, 400);
+  auto d = parse_speed("90deg/s");
+  ASSERT_TRUE(d);
+  EXPECT_TRUE(d->degrees);
+  EXPECT_FALSE(parse_speed("400"));
+  EXPECT_FALSE(parse_speed("0/s"));
+}
+
+TEST(FormatSeconds, TrimsZeros) {
+  EXPECT_EQ(format_seconds(0), "0 s");
+  EXPECT_EQ(format_seconds(12500), "12.5 s");
+  EXPECT_EQ(format_seconds(5627), "5.627 s");
+  EXPECT_EQ(format_seconds(8000), "8 s");
+  EXPECT_EQ(format_seconds(1050), "1.05 s");
+}
+
+}  // namespace
+}  // namespace seqc::compiler
