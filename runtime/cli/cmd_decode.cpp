@@ -57,8 +57,10 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
     }
     backend::DecodeResult decoded = backend::decode_frames(*bytes);
     ctx.out << decoded.table;
-    for (const std::string& issue : decoded.issues) {
-      ctx.err << "seqc: warning: " << *file << ": " << issue << "\n";
+    if (!decoded.issues.empty()) {
+      ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size()
+              << " inconsistenc" << (decoded.issues.size() == 1 ? "y" : "ies")
+              << " (marked '!' in the table)\n";
     }
     result.code = decoded.issues.empty() ? ExitCode::Ok : ExitCode::InvalidInput;
   });

@@ -120,8 +120,8 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   }
   ctx.err.flush();
 
-  auto stopped = server->serve(xarm ? static_cast<emu::PtyDevice&>(xarm_dev) : rasp_dev,
-                               ctx.clock, stop);
+  auto stopped =
+      server->serve(xarm ? static_cast<emu::PtyDevice&>(xarm_dev) : rasp_dev, ctx.clock, stop);
   ExitCode code = ExitCode::Ok;
   if (!stopped) {
     ctx.err << "seqc: error: " << stopped.error().message << "\n";
@@ -160,18 +160,19 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("device", opts->device, "xarm (servo controller) or raspblock (car board)")
       ->required()
       ->check(CLI::IsMember({"xarm", "raspblock"}));
-  opts->baud_opt = cmd->add_option(
-      "--baud", opts->baud, "Reply pacing in baud, 0 = unpaced (xarm default 9600)");
-  opts->faults_opt = cmd->add_option(
-      "--faults", opts->faults,
-      "xarm faults, e.g. drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,"
-      "silent-after=100,hangup-at=500,seed=7");
+  opts->baud_opt = cmd->add_option("--baud", opts->baud,
+                                   "Reply pacing in baud, 0 = unpaced (xarm default 9600)");
+  opts->faults_opt =
+      cmd->add_option("--faults", opts->faults,
+                      "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
+                      "keys: drop, corrupt, late, dup (rates 0..1),\n"
+                      "late-by, silent-after, hangup-at, seed");
   opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
   opts->link_opt =
       cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");
   opts->record_opt = cmd->add_option(
       "--record", opts->record,
-      "On exit, write what was received as CSV (xarm: frames; raspblock: state timeline)");
+      "On exit, write what was received as CSV\n(xarm: every frame; raspblock: state timeline)");
   cmd->callback([opts, &ctx, &result] { result.code = run_emulate(*opts, ctx); });
 }
 

@@ -1,8 +1,8 @@
 // seqc play FILE [--port P] [--strict]: streams a compiled sequence to a device that keeps no
 // program, sending each frame at its time on the host's clock (runtime/player).
 //
-// Today that is the Raspblock car board. The servo controller's live play has its own hook
-// below (play_servo_program), to be filled with backend::live_moves.
+// The Raspblock car board, and the servo controller (xArm / LSC) without storing a group
+// (play_servo_program, servo_play.hpp).
 #include <atomic>
 #include <cstdio>
 #include <memory>
@@ -13,6 +13,7 @@
 #include "compiler/lang/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/servo_play.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/protocol/raspblock.hpp"
@@ -58,14 +59,12 @@ std::string ms_text(io::Duration d) {
 }
 
 // The servo controller (xArm / LSC) streamed live, one MultiServoMove per keyframe
-// (backend::live_moves). Until that exists, say so plainly.
-ExitCode play_servo_program(const compiler::ServoProgram& program, const PlayOptions& o,
+// (servo_play.hpp); --port as for `seqc upload`, default discovery.
+ExitCode play_servo_program(const compiler::CompileOutput& output, const PlayOptions& o,
                             Context& ctx) {
-  (void)program;
-  ctx.err << "seqc: error: `seqc play` does not yet stream to servo-controller robots; use `seqc "
-             "upload "
-          << o.file << "` to store and run the sequence on the controller\n";
-  return ExitCode::Usage;
+  DeviceOptions device;
+  device.port = o.port;
+  return play_on_servo_controller(ctx, output, device);
 }
 
 ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOptions& o,
@@ -175,12 +174,13 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto opts = std::make_shared<PlayOptions>();
   CLI::App* cmd = app.add_subcommand(
       "play",
-      "Stream a sequence to a device live, each frame at its time (the Raspblock car board);\n"
-      "Ctrl-C stops the car (exit 130)");
+      "Stream a sequence to a device live, each frame at its time (the Raspblock car board,\n"
+      "or the servo controller without storing a group); Ctrl-C stops (exit 130)");
   cmd->add_option("FILE", opts->file, "Choreography file (.yaml)")->required();
   cmd->add_option("--port", opts->port,
-                  "Serial port at 115200 baud (/dev/ttyAMA0, ttyUSB0, a pty from `seqc emulate "
-                  "raspblock`) or emu:raspblock");
+                  "Raspblock: serial port at 115200 baud (/dev/ttyAMA0, ttyUSB0, a pty from "
+                  "`seqc emulate raspblock`) or emu:raspblock. Servo controller: as for `seqc "
+                  "upload` (default: the one connected; emu:xarm)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
@@ -189,8 +189,8 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
     // Each robot kind streams its own way.
     if (const auto* car = std::get_if<compiler::RaspblockProgram>(&*c.output.program)) {
       result.code = play_raspblock(*car, *opts, ctx);
-    } else if (const auto* servo = std::get_if<compiler::ServoProgram>(&*c.output.program)) {
-      result.code = play_servo_program(*servo, *opts, ctx);
+    } else if (c.output.servo_program() != nullptr) {
+      result.code = play_servo_program(c.output, *opts, ctx);
     }
   });
 }

@@ -20,8 +20,8 @@ const char* kCheckHint = "check that the controller is powered and connected, an
 
 void add_device_options(CLI::App& cmd, DeviceOptions& options) {
   cmd.add_option("--port", options.port,
-                 "Controller port, as for `seqc upload` (default: the one connected controller; "
-                 "emu:xarm = built-in emulator)");
+                 "Controller port as for `seqc upload`; default: the one connected (emu:xarm: "
+                 "emulator)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
       ->capture_default_str();
 }
@@ -109,7 +109,7 @@ std::optional<lsc::Reply> ControllerSession::exchange(
   if (error_) return std::nullopt;
   upload::WaitResult r = round_trip(request, want);
   if (r.ok()) return std::move(r.reply);
-  fail_wait(r, "waited for " + what + " after " + lsc::describe(request));
+  fail_wait(r, "waiting for " + what);
   return std::nullopt;
 }
 
@@ -124,9 +124,16 @@ bool ControllerSession::tell(const lsc::Request& request) {
     if (r.ok()) return true;
     if (r.status != upload::WaitStatus::Timeout) break;
   }
-  fail_wait(r, lsc::describe(request) + " has no reply of its own, and the battery check sent "
-                   "after it to confirm it arrived got no answer (sent " +
-                   std::to_string(kConfirmAttempts) + " times)");
+  if (r.status == upload::WaitStatus::Timeout && !error_) {
+    fail(ExitCode::DeviceFailure,
+         "no reply from the controller on " + port_name_ + ": " + lsc::describe(request) +
+             " has no answer of its own, and the battery check sent after it went unanswered "
+             "(sent " + std::to_string(kConfirmAttempts) + " times, " + describe_duration(timeout_) +
+             " each), so it may not have arrived; " +
+             kCheckHint);
+  } else {
+    fail_wait(r, "confirming " + lsc::describe(request));
+  }
   return false;
 }
 

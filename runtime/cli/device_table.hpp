@@ -1,5 +1,5 @@
-// A plain text table for device readings: left-aligned columns two spaces apart, a header row,
-// no trailing spaces. Numbers are right-aligned so columns of values line up.
+// A plain text table for device readings: a header row, left-aligned columns two spaces apart,
+// no trailing spaces.
 #pragma once
 
 #include <string>

@@ -20,8 +20,8 @@ std::string where(const compiler::CompileOutput& compiled, const compiler::Keyfr
 
 }  // namespace
 
-ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& compiled,
-                                  const DeviceOptions& device) {
+ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
+                              ControllerSession& s) {
   const compiler::ServoProgram* program = compiled.servo_program();
   if (program == nullptr) {
     ctx.err << "seqc: error: internal: play_on_servo_controller without a servo program\n";
@@ -39,7 +39,7 @@ ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& c
     frames.push_back({std::chrono::milliseconds(m.send_ms), std::move(*bytes)});
   }
 
-  return run_on_controller(ctx, device, [&](ControllerSession& s) {
+  {
     if (!s.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage")) {
       return ExitCode::DeviceFailure;
     }
@@ -79,7 +79,13 @@ ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& c
         return ExitCode::DeviceFailure;
     }
     return ExitCode::Internal;
-  });
+  }
+}
+
+ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& compiled,
+                                  const DeviceOptions& device) {
+  return run_on_controller(
+      ctx, device, [&](ControllerSession& s) { return stream_servo_program(ctx, compiled, s); });
 }
 
 }  // namespace seqc::cli

@@ -16,8 +16,12 @@
 
 namespace seqc::cli {
 
-// `compiled` must hold a ServoProgram.
+// `compiled` must hold a ServoProgram. Opens the port `device` names and streams.
 ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& compiled,
                                   const DeviceOptions& device);
+
+// The same over a session that is already open (tests drive it over their own transport).
+ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
+                              ControllerSession& session);
 
 }  // namespace seqc::cli

@@ -16,7 +16,8 @@ Status EmulatorTransport::write(ByteView bytes) {
   if (emu_.hung_up()) return make_error("emu:xarm: the link has hung up");
   const auto baud = emu_.config().baud;
   if (baud > 0) {
-    const auto wire = io::Duration{10'000'000'000LL / baud} * static_cast<std::int64_t>(bytes.size());
+    const auto wire =
+        io::Duration{10'000'000'000LL / baud} * static_cast<std::int64_t>(bytes.size());
     clock_.sleep_until(clock_.now() + wire);
   }
   emu_.receive(bytes, clock_.now());

@@ -9,9 +9,7 @@ std::uint64_t SplitMix64::next() {
   return z ^ (z >> 31);
 }
 
-double SplitMix64::unit() {
-  return static_cast<double>(next() >> 11) * 0x1.0p-53;
-}
+double SplitMix64::unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
 // The outgoing stream gets its own seed so that adding a reply never changes which incoming
 // frames are dropped.

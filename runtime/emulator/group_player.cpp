@@ -81,8 +81,8 @@ std::optional<io::TimePoint> GroupPlayer::next_notification_at() const {
     loop += d;
     if (i > s_->index) end += d;
   }
-  const auto loops_left = static_cast<std::int64_t>(s_->times) -
-                          static_cast<std::int64_t>(s_->loops) - 1;
+  const auto loops_left =
+      static_cast<std::int64_t>(s_->times) - static_cast<std::int64_t>(s_->loops) - 1;
   return end + loop * loops_left;
 }
 

@@ -9,10 +9,10 @@ namespace seqc::emu {
 namespace {
 
 constexpr std::array<std::string_view, kRaspblockFieldCount> kFieldNames = {
-    "pid.mode",          "pid.speed_kp",    "pid.speed_ki", "pid.position_kp", "pid.position_ki",
-    "pid.position_kd",   "pid.yaw_kp",      "pid.yaw_ki",   "pid.yaw_kd",      "gimbal.horizontal",
-    "gimbal.vertical",   "servo.1",         "servo.2",      "servo.3",         "servo.4",
-    "rocker.x",          "rocker.y",        "rocker.z"};
+    "pid.mode",        "pid.speed_kp", "pid.speed_ki", "pid.position_kp", "pid.position_ki",
+    "pid.position_kd", "pid.yaw_kp",   "pid.yaw_ki",   "pid.yaw_kd",      "gimbal.horizontal",
+    "gimbal.vertical", "servo.1",      "servo.2",      "servo.3",         "servo.4",
+    "rocker.x",        "rocker.y",     "rocker.z"};
 
 // The decoder reports rejections as text; a bad checksum is the one rejection a noisy line
 // produces, so it is counted apart.

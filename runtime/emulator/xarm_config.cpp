@@ -11,9 +11,8 @@
 namespace seqc::emu {
 namespace {
 
-constexpr std::array<std::string_view, 8> kKeys = {"seed",  "drop",         "corrupt",
-                                                   "late",  "late-by",      "dup",
-                                                   "silent-after", "hangup-at"};
+constexpr std::array<std::string_view, 8> kKeys = {"seed",    "drop", "corrupt",      "late",
+                                                   "late-by", "dup",  "silent-after", "hangup-at"};
 
 std::string unknown_key_message(std::string_view key) {
   std::string msg = "unknown fault '" + std::string(key) + "'";
@@ -54,8 +53,8 @@ Result<io::Duration> parse_duration(std::string_view key, std::string_view text)
     std::string_view suffix;
     std::int64_t ns;
   };
-  constexpr std::array<Unit, 4> kUnits = {
-      Unit{"ns", 1}, Unit{"us", 1000}, Unit{"ms", 1000000}, Unit{"s", 1000000000}};
+  constexpr std::array<Unit, 4> kUnits = {Unit{"ns", 1}, Unit{"us", 1000}, Unit{"ms", 1000000},
+                                          Unit{"s", 1000000000}};
   std::int64_t scale = 1000000;  // bare number: milliseconds
   std::string_view digits = text;
   for (const auto& u : kUnits) {
@@ -92,8 +91,7 @@ std::string format_rate(double v) {
 }  // namespace
 
 bool XArmFaults::any() const {
-  return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after ||
-         hangup_at;
+  return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after || hangup_at;
 }
 
 Result<XArmFaults> parse_faults(std::string_view spec) {

@@ -18,12 +18,12 @@ namespace seqc::emu {
 // Faults, all deterministic from `seed`. Rates are per frame, 0..1.
 struct XArmFaults {
   std::uint64_t seed = 1;
-  double drop = 0;     // an incoming frame is lost (no effect, no reply)
-  double corrupt = 0;  // a byte is flipped: in a reply (anywhere), or in a request's framing
-                       // bytes (55 55 LEN) so the controller cannot frame it and ignores it
+  double drop = 0;      // an incoming frame is lost (no effect, no reply)
+  double corrupt = 0;   // a byte is flipped: in a reply (anywhere), or in a request's framing
+                        // bytes (55 55 LEN) so the controller cannot frame it and ignores it
   double late_ack = 0;  // a reply is sent late_by later than normal
   io::Duration late_by = std::chrono::milliseconds(400);
-  double duplicate_ack = 0;  // a reply is sent twice
+  double duplicate_ack = 0;                 // a reply is sent twice
   std::optional<std::size_t> silent_after;  // stop answering after this many frames received
   std::optional<std::size_t> hangup_at;     // hang up (link closes) when frame N (1-based) arrives
 
@@ -40,10 +40,10 @@ Result<XArmFaults> parse_faults(std::string_view spec);
 std::string describe_faults(const XArmFaults& faults);
 
 struct XArmConfig {
-  std::uint32_t baud = 0;  // 0 = unpaced; else replies take 10 bits per byte on the wire
+  std::uint32_t baud = 0;        // 0 = unpaced; else replies take 10 bits per byte on the wire
   io::Duration command_time{0};  // processing time of an ordinary frame (busy meanwhile)
   io::Duration flash_erase_time = std::chrono::milliseconds(60);  // GroupDownload step 1 and
-                                                                   // GroupErase busy time
+                                                                  // GroupErase busy time
   io::Duration flash_write_time = std::chrono::milliseconds(2);   // step 4 busy time
   std::uint16_t battery_mv = 7500;
   XArmFaults faults;

@@ -230,8 +230,7 @@ Bytes XArmEmulator::take_output(io::TimePoint upto) {
   return line_.take(upto);
 }
 
-std::optional<std::vector<lsc::GroupAction>> XArmEmulator::stored_group(
-    std::uint8_t group) const {
+std::optional<std::vector<lsc::GroupAction>> XArmEmulator::stored_group(std::uint8_t group) const {
   return store_.group(group);
 }
 

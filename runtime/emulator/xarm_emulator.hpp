@@ -64,10 +64,10 @@ inline constexpr bool kGroupStoppedHasData = false;
 
 struct ReceivedFrame {
   io::TimePoint at{0};
-  Bytes raw;                         // as the controller saw it (after injected corruption)
-  std::optional<lsc::Frame> frame;   // nullopt: could not be framed (garbage, bad LEN, cut)
-  bool dropped_busy = false;         // arrived while the controller was busy
-  bool dropped_fault = false;        // lost, corrupted, unanswered or hung up by a fault
+  Bytes raw;                        // as the controller saw it (after injected corruption)
+  std::optional<lsc::Frame> frame;  // nullopt: could not be framed (garbage, bad LEN, cut)
+  bool dropped_busy = false;        // arrived while the controller was busy
+  bool dropped_fault = false;       // lost, corrupted, unanswered or hung up by a fault
 };
 
 class XArmEmulator {

@@ -49,7 +49,7 @@ Status ControllerLink::send_bytes(ByteView bytes) {
 
 LinkStats ControllerLink::stats() const {
   LinkStats s = stats_;
-  s.garbage_bytes = decoder_.skipped_bytes();
+  s.garbage_bytes = decoder_.skipped_bytes() + dropped_partial_;
   return s;
 }
 
@@ -140,6 +140,15 @@ WaitStatus ControllerLink::drain(const std::function<void(const lsc::Reply&)>& s
     if (r.status == io::ReadStatus::Error) return WaitStatus::Error;
     return WaitStatus::Timeout;
   }
+}
+
+std::size_t ControllerLink::drop_partial_frame() {
+  const std::size_t n = decoder_.pending_bytes();
+  if (n > 0) {
+    dropped_partial_ += n;
+    decoder_.reset();
+  }
+  return n;
 }
 
 void ControllerLink::discard_input() {

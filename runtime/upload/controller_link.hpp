@@ -96,6 +96,10 @@ class ControllerLink {
 
   // Drops everything pending, in the decoder and in the transport.
   void discard_input();
+  // Drops the start of a frame held in the decoder (after a timeout: a reply whose LEN byte
+  // was corrupted upwards would otherwise swallow the replies that follow). Returns the
+  // number of bytes dropped.
+  std::size_t drop_partial_frame();
 
   bool interrupted() const { return interrupted_ != nullptr && interrupted_->load(); }
   io::Clock& clock() { return clock_; }
@@ -117,6 +121,7 @@ class ControllerLink {
   io::Duration slice_ = std::chrono::milliseconds(100);
   lsc::FrameDecoder decoder_;
   LinkStats stats_;
+  std::size_t dropped_partial_ = 0;
 };
 
 // True for the frames a controller sends on its own (group started / stopped / finished).

@@ -158,6 +158,10 @@ class Uploader::Run final : public LinkObserver {
   }
   void retry(const std::string& what, int attempt, const std::string& reason) {
     ++result_.retries;
+    // Whatever part of a frame is held now will not be completed by the re-send's reply.
+    if (const std::size_t n = link().drop_partial_frame(); n > 0) {
+      note("dropped " + std::to_string(n) + " bytes of an unfinished reply");
+    }
     if (up_.observer_ != nullptr) {
       up_.observer_->on_retry(RetryEvent{what, attempt, max_attempts(), reason});
     }
@@ -537,6 +541,7 @@ class Uploader::Run final : public LinkObserver {
     const bool open = frame.step == 1;
     const io::Duration timeout = up_.reply_timeout(frame.bytes.size(), kAckBytes, open);
     bool refused_once = false;
+    bool suspect_before_refusal = false;
     resent = false;
     int sends = 0;
     int timeouts = 0;
@@ -564,19 +569,21 @@ class Uploader::Run final : public LinkObserver {
           return Flow::Ok;
         }
         if (refused_once) {
+          if (suspect_before_refusal) {
+            // Earlier in this attempt an acknowledgement may have been taken for the wrong
+            // frame; a frame sent too early is dropped by the busy controller and the next
+            // one is then refused for the gap. That refusal is ours, not the controller's
+            // verdict: start again from step 1.
+            restart_reason_ = "the controller refused " + frame.what + " (status " +
+                              hex2(ack.status) +
+                              ") twice, after a re-send or an extra acknowledgement";
+            return Flow::Restart;
+          }
           return fatal(UploadStatus::Refused, "the controller refused " + frame.what +
                                                   " (status " + hex2(ack.status) +
                                                   ", twice in a row)");
         }
-        if (suspect_) {
-          // Earlier in this attempt an acknowledgement may have been taken for the wrong
-          // frame; a frame sent too early is dropped by the busy controller and the next one
-          // is then refused for the gap. That refusal is ours, not the controller's verdict.
-          restart_reason_ = "the controller refused " + frame.what + " (status " +
-                            hex2(ack.status) +
-                            ") after a re-send or an extra acknowledgement in this attempt";
-          return Flow::Restart;
-        }
+        suspect_before_refusal = suspect_;
         refused_once = true;
         suspect_ = true;
         note("the controller refused " + frame.what + " (status " + hex2(ack.status) +

@@ -50,11 +50,11 @@
 //               after a mis-paired ack; it is then seen as in "duplicate".
 //   silence     every re-send times out; after `retries` the upload fails (NoAck).
 //   hang-up     the link reports HangUp: the upload ends at once (HangUp), never retried.
-//   refusal     "<step> xx" with xx != 00 for the frame being waited on. In a clean attempt:
-//               after a barrier the same frame is sent once more; a second refusal is the
-//               controller's answer and ends the upload (Refused, no restart); a refusal then
-//               an accept was a corrupted ack. In an attempt that already re-sent a frame or
-//               saw an extra ack, the refusal may be our own doing (a mis-paired ack let a
+//   refusal     "<step> xx" with xx != 00 for the frame being waited on: after a barrier the
+//               same frame is sent once more. Accepted then: the first was a corrupted ack.
+//               Refused again: in a clean attempt that is the controller's answer and ends
+//               the upload (Refused, no restart). In an attempt that already re-sent a frame
+//               or saw an extra ack, the refusal may be our own doing (a mis-paired ack let a
 //               frame go out while the controller was busy; it was dropped and the next one
 //               is refused for the gap), so the download restarts (d) instead.
 //   reordering  the emulator (and perhaps a real board) may send a late ack after a later

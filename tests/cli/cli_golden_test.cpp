@@ -25,14 +25,14 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-struct Run {
+struct SeqcRun {
   std::string out;
   std::string err;
   int status = -1;
 };
 
 // Runs `seqc args` in `dir` with the shell (args are trusted test strings).
-Run seqc(const fs::path& dir, const std::string& args, const std::string& stdin_file = "") {
+SeqcRun seqc(const fs::path& dir, const std::string& args, const std::string& stdin_file = "") {
   static int counter = 0;
   const fs::path tmp = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp";
   fs::create_directories(tmp);
@@ -43,7 +43,7 @@ Run seqc(const fs::path& dir, const std::string& args, const std::string& stdin_
                     out.string() + "' 2>'" + err.string() + "'";
   cmd += " <" + (stdin_file.empty() ? std::string("/dev/null") : "'" + stdin_file + "'");
   const int raw = std::system(cmd.c_str());
-  Run r{slurp(out), slurp(err), WIFEXITED(raw) ? WEXITSTATUS(raw) : -1};
+  SeqcRun r{slurp(out), slurp(err), WIFEXITED(raw) ? WEXITSTATUS(raw) : -1};
   fs::remove(out);
   fs::remove(err);
   return r;
@@ -91,7 +91,7 @@ TEST(BadFiles, EachHasItsExactDiagnostics) {
   for (const fs::path& yaml : bad) {
     SCOPED_TRACE(yaml.filename().string());
     const std::string name = yaml.filename().string();
-    Run r = seqc(kGolden, "check " + extra_args(yaml) + name);
+    SeqcRun r = seqc(kGolden, "check " + extra_args(yaml) + name);
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.out.rfind(name + ": ", 0), 0u) << r.out;
     EXPECT_EQ(r.out.find(": ok"), std::string::npos) << r.out;
@@ -106,7 +106,7 @@ TEST(Examples, CheckCleanly) {
   for (const fs::path& yaml : examples) {
     const std::string rel = "examples/" + yaml.filename().string();
     SCOPED_TRACE(rel);
-    Run r = seqc(kSource, "check --strict " + rel);
+    SeqcRun r = seqc(kSource, "check --strict " + rel);
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_EQ(r.out.rfind(rel + ": ok (", 0), 0u) << r.out;
@@ -117,36 +117,36 @@ TEST(Examples, ListingsAndHexMatchGoldens) {
   for (const char* name : {"walk", "wave", "dance"}) {
     SCOPED_TRACE(name);
     const std::string rel = std::string("examples/") + name + ".yaml";
-    Run listing = seqc(kSource, "compile --emit listing " + rel);
+    SeqcRun listing = seqc(kSource, "compile --emit listing " + rel);
     EXPECT_EQ(listing.status, 0) << listing.err;
     expect_golden(kGolden / "examples" / (std::string(name) + ".listing"), listing.out);
-    Run hex = seqc(kSource, "compile " + rel);
+    SeqcRun hex = seqc(kSource, "compile " + rel);
     EXPECT_EQ(hex.status, 0) << hex.err;
     expect_golden(kGolden / "examples" / (std::string(name) + ".hex"), hex.out);
   }
 }
 
 TEST(Help, GoldenForSeqcAndOfflineSubcommands) {
-  Run top = seqc(kSource, "--help");
+  SeqcRun top = seqc(kSource, "--help");
   EXPECT_EQ(top.status, 0);
   expect_golden(kCliGolden / "help.txt", top.out);
   for (const char* sub : {"check", "compile", "decode", "simulate"}) {
     SCOPED_TRACE(sub);
-    Run r = seqc(kSource, std::string(sub) + " --help");
+    SeqcRun r = seqc(kSource, std::string(sub) + " --help");
     EXPECT_EQ(r.status, 0);
     expect_golden(kCliGolden / (std::string(sub) + "-help.txt"), r.out);
   }
 }
 
 TEST(Check, SummarisesEveryFileAndFailsIfAnyIsBad) {
-  Run r = seqc(kSource,
+  SeqcRun r = seqc(kSource,
                "check examples/walk.yaml tests/golden/bad-unknown-pose.yaml examples/wave.yaml");
   EXPECT_EQ(r.status, 1);
   expect_golden(kCliGolden / "check-several.stdout", r.out);
 }
 
 TEST(Check, UnreadableFileIsAFileError) {
-  Run r = seqc(kSource, "check examples/no-such.yaml");
+  SeqcRun r = seqc(kSource, "check examples/no-such.yaml");
   EXPECT_EQ(r.status, 5);
   EXPECT_EQ(r.err, "seqc: error: examples/no-such.yaml: No such file or directory\n");
   EXPECT_EQ(r.out, "");
@@ -154,16 +154,16 @@ TEST(Check, UnreadableFileIsAFileError) {
 
 TEST(Check, WarningPassesUnlessStrict) {
   const std::string file = "tests/golden/bad-speed-strict.yaml";
-  Run lenient = seqc(kSource, "check " + file);
+  SeqcRun lenient = seqc(kSource, "check " + file);
   EXPECT_EQ(lenient.status, 0);
   expect_golden(kCliGolden / "check-warning.stderr", lenient.err);
   expect_golden(kCliGolden / "check-warning.stdout", lenient.out);
-  Run strict = seqc(kSource, "check --strict " + file);
+  SeqcRun strict = seqc(kSource, "check --strict " + file);
   EXPECT_EQ(strict.status, 1);
 }
 
 TEST(Compile, JsonGolden) {
-  Run r = seqc(kSource, "compile --emit json --group 3 examples/walk.yaml");
+  SeqcRun r = seqc(kSource, "compile --emit json --group 3 examples/walk.yaml");
   EXPECT_EQ(r.status, 0) << r.err;
   expect_golden(kCliGolden / "walk-group3.json", r.out);
 }
@@ -172,46 +172,46 @@ TEST(Compile, WritesOutputOnlyOnSuccess) {
   const fs::path out = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp/compile-out.hex";
   fs::create_directories(out.parent_path());
   fs::remove(out);
-  Run bad = seqc(kSource, "compile tests/golden/bad-unknown-pose.yaml -o '" + out.string() + "'");
+  SeqcRun bad = seqc(kSource, "compile tests/golden/bad-unknown-pose.yaml -o '" + out.string() + "'");
   EXPECT_EQ(bad.status, 1);
   EXPECT_FALSE(fs::exists(out));
-  Run good = seqc(kSource, "compile examples/walk.yaml -o '" + out.string() + "'");
+  SeqcRun good = seqc(kSource, "compile examples/walk.yaml -o '" + out.string() + "'");
   EXPECT_EQ(good.status, 0) << good.err;
   EXPECT_EQ(good.out, "");
   EXPECT_EQ(slurp(out), slurp(kGolden / "examples/walk.hex"));
 }
 
 TEST(Compile, BadOptionIsAUsageError) {
-  Run r = seqc(kSource, "compile --emit pdf examples/walk.yaml");
+  SeqcRun r = seqc(kSource, "compile --emit pdf examples/walk.yaml");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("seqc: error: ", 0), 0u) << r.err;
-  Run g = seqc(kSource, "compile --group 255 examples/walk.yaml");
+  SeqcRun g = seqc(kSource, "compile --group 255 examples/walk.yaml");
   EXPECT_EQ(g.status, 2);
 }
 
 TEST(Decode, ExampleHexBackToTable) {
-  Run r = seqc(kSource, "decode tests/golden/examples/walk.hex");
+  SeqcRun r = seqc(kSource, "decode tests/golden/examples/walk.hex");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
   expect_golden(kCliGolden / "decode-walk.stdout", r.out);
 }
 
 TEST(Decode, ReadsStdin) {
-  Run r = seqc(kSource, "decode -", (kGolden / "examples/walk.hex").string());
+  SeqcRun r = seqc(kSource, "decode -", (kGolden / "examples/walk.hex").string());
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, slurp(kCliGolden / "decode-walk.stdout"));
 }
 
 TEST(Decode, FlagsInconsistentFrames) {
   // tests/cli/data/inconsistent.hex is written by hand: see the comments in it.
-  Run r = seqc(kSource, "decode tests/cli/data/inconsistent.hex");
+  SeqcRun r = seqc(kSource, "decode tests/cli/data/inconsistent.hex");
   EXPECT_EQ(r.status, 1);
   expect_golden(kCliGolden / "decode-inconsistent.stdout", r.out);
   expect_golden(kCliGolden / "decode-inconsistent.stderr", r.err);
 }
 
 TEST(Simulate, CsvAndDuration) {
-  Run r = seqc(kSource, "simulate --step 100 examples/wave.yaml");
+  SeqcRun r = seqc(kSource, "simulate --step 100 examples/wave.yaml");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "seqc: examples/wave.yaml: 28 actions, 7.2 s\n");
   expect_golden(kCliGolden / "simulate-wave.csv", r.out);

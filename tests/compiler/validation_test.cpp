@@ -168,6 +168,27 @@ TEST(Validation, IncludeErrorsCarryTheIncludeChain) {
   EXPECT_EQ(out.sources.path(out.diagnostics.all()[2].location.file), "a.yaml");
 }
 
+TEST(Validation, SixteenNestedIncludesAreFine) {
+  MemoryFiles files;
+  files.files["main.yaml"] =
+      "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n  - include: d1.yaml\n";
+  for (int i = 1; i <= 16; ++i) {
+    files.files["d" + std::to_string(i) + ".yaml"] =
+        "sequence:\n  - wait: 20ms\n" +
+        (i < 16 ? "  - include: d" + std::to_string(i + 1) + ".yaml\n" : std::string());
+  }
+  auto out = compile_file("main.yaml", files);
+  ASSERT_TRUE(out.servo_program()) << diagnostics_of(out);
+  EXPECT_EQ(out.servo_program()->keyframes.size(), 17u);
+  files.files["d16.yaml"] += "  - include: d17.yaml\n";
+  files.files["d17.yaml"] = "sequence:\n  - wait: 20ms\n";
+  auto deeper = compile_file("main.yaml", files);
+  ASSERT_GE(deeper.diagnostics.all().size(), 1u);
+  EXPECT_EQ(deeper.diagnostics.all()[0].message,
+            "includes nest more than 16 files deep; is there a runaway include chain?");
+  EXPECT_EQ(deeper.diagnostics.all().size(), 1u + 16u);  // the error and 16 "included from"
+}
+
 TEST(Validation, SelfIncludeIsACycle) {
   MemoryFiles files;
   files.files["a.yaml"] =

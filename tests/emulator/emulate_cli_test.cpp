@@ -26,8 +26,8 @@ using Clock = std::chrono::steady_clock;
 
 struct Child {
   pid_t pid = -1;
-  int out = -1;     // the child's stdout
-  int err = -1;     // the child's stderr
+  int out = -1;          // the child's stdout
+  int err = -1;          // the child's stderr
   std::string err_text;  // stderr read so far
 };
 
@@ -191,6 +191,14 @@ TEST(EmulateCommand, UsageErrors) {
   EXPECT_EQ(r.err_text,
             "seqc: error: --faults and --seed apply to the xarm emulator only (the Raspblock "
             "board never replies)\n");
+}
+
+TEST(EmulateCommand, HelpMatchesGolden) {
+  Child c = spawn_seqc({"emulate", "--help"});
+  std::string out;
+  read_until(c.out, out, [](const std::string&) { return false; });
+  EXPECT_EQ(wait_exit(c), 0);
+  EXPECT_EQ(out, slurp(std::string(SEQC_SOURCE_DIR) + "/tests/emulator/golden/emulate-help.txt"));
 }
 
 }  // namespace

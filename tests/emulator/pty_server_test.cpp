@@ -3,17 +3,17 @@
 // deadline, never sleeps.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <fcntl.h>
 #include <poll.h>
 #include <termios.h>
-#include <thread>
 #include <unistd.h>
+#include <atomic>
+#include <thread>
 
 #include <chrono>
 #include <condition_variable>
-#include <mutex>
 #include <filesystem>
+#include <mutex>
 #include <sstream>
 
 #include "runtime/emulator/pty_server.hpp"

@@ -15,9 +15,9 @@ RaspblockChange change(std::int64_t ms, F field, std::optional<int> previous, in
 
 TEST(RaspblockEmulator, TimelineOfStateChanges) {
   RaspblockEmulator board;
-  board.receive(hex("ff fe 02 04 05 dc 03 e8 d2"), at_ms(0));   // gimbal 1500, 1000
-  board.receive(hex("ff fe 02 03 03 07 d0 df"), at_ms(10));     // servo 3 to 2000
-  board.receive(hex("ff fe 03 08 01 00 0a 00 00 00 00 05 1b"), at_ms(20));  // X=-10 (vendor)
+  board.receive(hex("ff fe 02 04 05 dc 03 e8 d2"), at_ms(0));                  // gimbal 1500, 1000
+  board.receive(hex("ff fe 02 03 03 07 d0 df"), at_ms(10));                    // servo 3 to 2000
+  board.receive(hex("ff fe 03 08 01 00 0a 00 00 00 00 05 1b"), at_ms(20));     // X=-10 (vendor)
   board.receive(hex("ff fe 01 09 01 0a 0b 0c 0d 0e 0f 10 11 77"), at_ms(30));  // PID
   board.receive(hex("ff fe 02 04 05 dc 03 e8 d2"), at_ms(50));  // same gimbal: no change
   board.receive(hex("ff fe 02 04 06 40"), at_ms(59));           // split packet...

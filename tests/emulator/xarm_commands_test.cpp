@@ -162,8 +162,7 @@ TEST(XArmCommands, RepliesArePacedByBaud) {
   // A second request while the first reply is still on the wire queues behind it.
   emu.receive(hex("55 55 02 0f"), io::TimePoint{byte * 3});
   EXPECT_EQ(hex_of(emu.take_output(io::TimePoint{byte * 6})), "0f 4c 1d");
-  EXPECT_EQ(hex_of(emu.take_output(io::TimePoint{byte * 12 - io::Duration{1}})),
-            "55 55 04 0f 4c");
+  EXPECT_EQ(hex_of(emu.take_output(io::TimePoint{byte * 12 - io::Duration{1}})), "55 55 04 0f 4c");
   EXPECT_EQ(hex_of(emu.take_output(io::TimePoint{byte * 12})), "1d");
 }
 

@@ -159,8 +159,8 @@ TEST(XArmDownload, FrameArrivingWhileBusyIsDroppedSilently) {
   both.insert(both.end(), frames[2].begin(), frames[2].end());
   io::TimePoint t = at_ms(60);
   // Step 2 takes no time (command_time 0), so both are handled.
-  EXPECT_EQ(exchange(emu, both, t), Bytes({0x55, 0x55, 0x04, 0x05, 0x02, 0x00, 0x55, 0x55, 0x04,
-                                           0x05, 0x03, 0x00}));
+  EXPECT_EQ(exchange(emu, both, t),
+            Bytes({0x55, 0x55, 0x04, 0x05, 0x02, 0x00, 0x55, 0x55, 0x04, 0x05, 0x03, 0x00}));
   // Two actions back to back: the second lands inside the first's 2 ms flash write.
   Bytes two = frames[3];
   two.insert(two.end(), frames[4].begin(), frames[4].end());

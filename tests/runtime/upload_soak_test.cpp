@@ -43,6 +43,18 @@ std::vector<lsc::GroupAction> soak_actions(std::uint64_t seed) {
   return actions;
 }
 
+// Keeps the last notes of an upload, to show how a failure came about.
+class LastNotes final : public UploadObserver {
+ public:
+  void on_retry(const RetryEvent& e) override { add("re-send " + e.what + ": " + e.reason); }
+  void on_note(const std::string& n) override { add(n); }
+  void add(std::string n) {
+    if (notes.size() == 12) notes.erase(notes.begin());
+    notes.push_back(std::move(n));
+  }
+  std::vector<std::string> notes;
+};
+
 TEST(UploadSoak, MixedFaultsNeverReportAWrongGroup) {
   const std::size_t uploads = env_or("SEQC_SOAK_UPLOADS", std::size_t{1000});
   const double scale = env_or("SEQC_SOAK_SCALE", 1.0);
@@ -70,7 +82,8 @@ TEST(UploadSoak, MixedFaultsNeverReportAWrongGroup) {
     ControllerLink link(transport, clock);
     UploadOptions options;
     options.group = static_cast<std::uint8_t>(i % 8);
-    Uploader uploader(link, options);
+    LastNotes notes;
+    Uploader uploader(link, options, &notes);
     const auto actions = soak_actions(i);
     const auto plan = lsc::plan_group_download(options.group, actions);
     ASSERT_TRUE(plan.ok());
@@ -89,6 +102,11 @@ TEST(UploadSoak, MixedFaultsNeverReportAWrongGroup) {
     } else if (hangup) {
       ++hangup_failed;
     } else {
+      if (other_failed < 3) {
+        std::printf("upload %zu (baud %u, faults %s) failed: %s\n", i, config.baud,
+                    emu::describe_faults(config.faults).c_str(), r.message.c_str());
+        for (const auto& n : notes.notes) std::printf("    %s\n", n.c_str());
+      }
       ++other_failed;
       ++failures[std::string(to_string(r.status)) + ": " + r.message];
     }

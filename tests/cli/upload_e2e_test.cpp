@@ -1,0 +1,192 @@
+// `seqc upload` end to end with the real binary: `seqc emulate xarm --link PATH --record CSV`
+// runs as a separate process on a pseudo-terminal, `seqc upload examples/walk.yaml --port PATH
+// --run` talks to it, and the GroupDownload frames the emulator recorded must equal
+// `seqc compile --emit hex` byte for byte. Also: a second seqc on the busy port fails within
+// 100 ms, and the in-process emulator (emu:xarm) path.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const std::string kSeqc = SEQC_BIN;
+const std::string kWalk = std::string(SEQC_SOURCE_DIR) + "/examples/walk.yaml";
+
+pid_t spawn(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+class UploadE2E : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/seqc-upload-e2e-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    link_ = dir_ + "/xarm";
+    record_ = dir_ + "/record.csv";
+    emulator_ = spawn({kSeqc, "emulate", "xarm", "--link", link_, "--record", record_},
+                      dir_ + "/emu.out", dir_ + "/emu.err");
+    ASSERT_GT(emulator_, 0);
+    struct stat st {};
+    for (int i = 0; i < 200 && lstat(link_.c_str(), &st) != 0; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_EQ(lstat(link_.c_str(), &st), 0) << slurp(dir_ + "/emu.err");
+  }
+  void TearDown() override {
+    if (emulator_ > 0) stop_emulator();
+    std::string cmd = "rm -rf '" + dir_ + "'";
+    (void)std::system(cmd.c_str());
+  }
+  int stop_emulator() {
+    kill(emulator_, SIGINT);
+    const int rc = wait_exit(emulator_);
+    emulator_ = -1;
+    return rc;
+  }
+  int run(const std::vector<std::string>& args, std::string* out = nullptr,
+          std::string* err = nullptr) {
+    static int n = 0;
+    const std::string o = dir_ + "/run" + std::to_string(++n) + ".out";
+    const std::string e = dir_ + "/run" + std::to_string(n) + ".err";
+    const int rc = wait_exit(spawn(args, o, e));
+    if (out != nullptr) *out = slurp(o);
+    if (err != nullptr) *err = slurp(e);
+    return rc;
+  }
+
+  std::string dir_, link_, record_;
+  pid_t emulator_ = -1;
+};
+
+TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
+  std::string out, err;
+  ASSERT_EQ(run({kSeqc, "upload", kWalk, "--port", link_, "--run"}, &out, &err), 0) << err;
+  EXPECT_NE(out.find("the controller acknowledged 26 actions into group 0"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("group 0 started"), std::string::npos) << out;
+  EXPECT_EQ(out.find("verified"), std::string::npos);
+
+  std::string hex;
+  ASSERT_EQ(run({kSeqc, "compile", kWalk, "--emit", "hex"}, &hex), 0);
+  ASSERT_EQ(stop_emulator(), 0);
+
+  // CSV: time_s,status,bytes,message. Keep the GroupDownload frames (CMD 05).
+  std::vector<std::string> recorded;
+  for (const auto& l : lines(slurp(record_))) {
+    const auto c1 = l.find(',');
+    const auto c2 = l.find(',', c1 + 1);
+    const auto c3 = l.find(',', c2 + 1);
+    if (c1 == std::string::npos || c3 == std::string::npos) continue;
+    const std::string status = l.substr(c1 + 1, c2 - c1 - 1);
+    const std::string bytes = l.substr(c2 + 1, c3 - c2 - 1);
+    if (status == "ok" && bytes.size() > 11 && bytes.substr(9, 2) == "05") {
+      recorded.push_back(bytes);
+    }
+  }
+  EXPECT_EQ(recorded, lines(hex));
+}
+
+TEST_F(UploadE2E, SecondSeqcOnTheBusyPortFailsWithin100ms) {
+  const pid_t first =
+      spawn({kSeqc, "upload", kWalk, "--port", link_}, dir_ + "/first.out", dir_ + "/first.err");
+  ASSERT_GT(first, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // it holds the port for ~1 s
+  std::string err;
+  const auto t0 = Clock::now();
+  const int rc = run({kSeqc, "upload", kWalk, "--port", link_}, nullptr, &err);
+  const auto took = Clock::now() - t0;
+  EXPECT_EQ(rc, 3) << err;
+  EXPECT_NE(err.find("in use"), std::string::npos) << err;
+  std::printf("busy port: second seqc failed after %.1f ms (process start included)\n",
+              std::chrono::duration<double, std::milli>(took).count());
+  EXPECT_LT(took, std::chrono::milliseconds(100));
+  EXPECT_EQ(wait_exit(first), 0) << slurp(dir_ + "/first.err");
+}
+
+TEST(UploadCli, InvalidFileSendsNothingAndOpensNoPort) {
+  const std::string bad = "/tmp/seqc-upload-bad.yaml";
+  {
+    std::ofstream f(bad);
+    f << "robot: xarm\nsequence: [\n";
+  }
+  // A port that does not exist: reaching it would be exit 3, not 1.
+  std::string cmd = kSeqc + " upload " + bad + " --port /dev/seqc-no-such-port >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::remove(bad.c_str());
+}
+
+TEST(UploadCli, EmulatorInProcessWithFaultsCompletes) {
+  std::string cmd = kSeqc + " upload " + kWalk +
+                    " --port 'emu:xarm?drop=0.05,corrupt=0.05,dup=0.05,seed=3' --run 2>/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[512];
+  std::string out;
+  while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
+  EXPECT_EQ(WEXITSTATUS(pclose(p)), 0);
+  EXPECT_NE(out.find("the controller acknowledged 26 actions into group 0"), std::string::npos)
+      << out;
+}
+
+TEST(UploadCli, HangUpExitsWithDeviceFailureAndSaysTheGroupIsEmpty) {
+  std::string cmd = kSeqc + " upload " + kWalk + " --port 'emu:xarm?hangup-at=20' 2>&1 >/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[512];
+  std::string err;
+  while (fgets(buf, sizeof buf, p) != nullptr) err += buf;
+  EXPECT_EQ(WEXITSTATUS(pclose(p)), 4);
+  EXPECT_NE(err.find("seqc: group 0 is now empty"), std::string::npos) << err;
+}
+
+}  // namespace

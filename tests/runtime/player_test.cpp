@@ -1,0 +1,206 @@
+// The deadline scheduler on a ManualClock: frames go out at start + at_i exactly, a slow write
+// or a late wake-up delays only the frames already due, and an interrupt or failed write sends
+// the safe stop before play() returns. No test here waits in real time.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "runtime/player/player.hpp"
+
+namespace seqc::player {
+namespace {
+
+using std::chrono::milliseconds;
+
+// Records each write with the clock's time; can be told to take time over some writes, fail
+// one, or raise the interrupt flag once a given write is done.
+class FakeLink final : public io::Transport {
+ public:
+  explicit FakeLink(io::ManualClock& clock) : clock_(clock) {}
+  Status write(ByteView bytes) override {
+    const std::size_t n = writes.size() + attempts_failed_;
+    if (fail_at && *fail_at == n) {
+      ++attempts_failed_;
+      fail_at.reset();
+      return make_error("device went away");
+    }
+    writes.push_back({clock_.now(), Bytes(bytes.begin(), bytes.end())});
+    if (auto it = slow.find(n); it != slow.end()) clock_.advance(it->second);
+    if (interrupt_after && *interrupt_after == n && flag != nullptr) flag->store(true);
+    return Ok{};
+  }
+  io::ReadResult read(std::span<std::uint8_t>, io::TimePoint) override { return {}; }
+  void discard_input() override {}
+  std::string describe() const override { return "fake"; }
+
+  struct Write {
+    io::TimePoint at;
+    Bytes bytes;
+  };
+  std::vector<Write> writes;
+  std::map<std::size_t, io::Duration> slow;  // write index -> time it takes
+  std::optional<std::size_t> fail_at;
+  std::optional<std::size_t> interrupt_after;
+  std::atomic<bool>* flag = nullptr;
+
+ private:
+  io::ManualClock& clock_;
+  std::size_t attempts_failed_ = 0;
+};
+
+std::vector<ScheduledFrame> schedule(std::initializer_list<int> at_ms) {
+  std::vector<ScheduledFrame> out;
+  std::uint8_t tag = 0;
+  for (int ms : at_ms) out.push_back({milliseconds(ms), Bytes{tag++}});
+  return out;
+}
+
+const io::TimePoint kStart = milliseconds(5000);
+const Bytes kStop{0xff, 0xfe, 0x03, 0x08, 0x01, 0, 0, 0, 0, 0, 0, 0x01, 0x0d};
+
+TEST(Player, SendsEachFrameAtStartPlusItsTime) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  const auto frames = schedule({0, 0, 20, 1000, 1500});
+  PlayReport r = play(frames, link, clock);
+  EXPECT_EQ(r.end, PlayEnd::Completed);
+  EXPECT_EQ(r.sent, 5u);
+  ASSERT_EQ(link.writes.size(), 5u);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(link.writes[i].at, kStart + frames[i].at) << i;
+    EXPECT_EQ(link.writes[i].bytes, frames[i].bytes);
+    EXPECT_EQ(r.lateness[i], io::Duration{0});
+  }
+  EXPECT_FALSE(r.stop_sent);  // a completed play sends nothing extra
+}
+
+TEST(Player, ASlowWriteDelaysOnlyWhatIsAlreadyDue) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  link.slow[1] = milliseconds(35);  // the write at 20ms takes until 55ms
+  const auto frames = schedule({0, 20, 40, 60, 80, 1000});
+  PlayReport r = play(frames, link, clock);
+  ASSERT_EQ(link.writes.size(), 6u);
+  // 40ms was due during the slow write: sent at 55 (15 late). Every later frame is on time:
+  // deadlines are absolute, so the 35ms never carries over.
+  const std::vector<int> sent_ms = {0, 20, 55, 60, 80, 1000};
+  const std::vector<int> late_ms = {0, 0, 15, 0, 0, 0};
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(link.writes[i].at, kStart + milliseconds(sent_ms[i])) << i;
+    EXPECT_EQ(r.lateness[i], milliseconds(late_ms[i])) << i;
+  }
+  const LatenessSummary s = summarize(r.lateness);
+  EXPECT_EQ(s.p50, io::Duration{0});
+  EXPECT_EQ(s.max, milliseconds(15));
+}
+
+TEST(Player, LatenessDoesNotAccumulateOverManySlowWrites) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  std::vector<ScheduledFrame> frames;
+  for (int i = 0; i < 1000; ++i) {
+    frames.push_back({milliseconds(10 * i), Bytes{1}});
+    link.slow[static_cast<std::size_t>(i)] = milliseconds(3);  // every write takes 3 of 10ms
+  }
+  PlayReport r = play(frames, link, clock);
+  ASSERT_EQ(r.sent, 1000u);
+  // A relative sleep after each send would end 1000 * 3ms = 3s late; here the last frame is
+  // exactly on time.
+  EXPECT_EQ(link.writes.back().at, kStart + milliseconds(9990));
+  EXPECT_EQ(summarize(r.lateness).max, io::Duration{0});
+}
+
+TEST(Player, InterruptSendsTheStopAndSendsNothingElse) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  std::atomic<bool> interrupted{false};
+  link.flag = &interrupted;
+  link.interrupt_after = 1;  // Ctrl-C arrives right after the second frame
+  PlayOptions options;
+  options.interrupted = &interrupted;
+  options.safe_stop = kStop;
+  PlayReport r = play(schedule({0, 100, 5000, 9000}), link, clock, options);
+  EXPECT_EQ(r.end, PlayEnd::Interrupted);
+  EXPECT_EQ(r.sent, 2u);
+  EXPECT_TRUE(r.stop_sent);
+  ASSERT_EQ(link.writes.size(), 3u);
+  EXPECT_EQ(link.writes[2].bytes, kStop);
+  // Noticed within one poll interval, not at the next frame's deadline (5s).
+  EXPECT_LE(link.writes[2].at - kStart, milliseconds(100) + options.poll_interval);
+}
+
+TEST(Player, AnInterruptDuringALongWaitIsNoticedWithinThePollInterval) {
+  io::ManualClock clock(kStart);
+  std::atomic<bool> interrupted{false};
+  PlayOptions options;
+  options.interrupted = &interrupted;
+  options.safe_stop = kStop;
+  options.poll_interval = milliseconds(20);
+  // The flag is raised by a clock observer: after 3 slices of waiting.
+  int slices = 0;
+  class CountingClock final : public io::Clock {
+   public:
+    CountingClock(io::ManualClock& c, int& n, std::atomic<bool>& f) : c_(c), n_(n), f_(f) {}
+    io::TimePoint now() const override { return c_.now(); }
+    void sleep_until(io::TimePoint d) override {
+      c_.sleep_until(d);
+      if (++n_ == 3) f_.store(true);
+    }
+
+   private:
+    io::ManualClock& c_;
+    int& n_;
+    std::atomic<bool>& f_;
+  } counting(clock, slices, interrupted);
+  FakeLink sink(clock);
+  PlayReport r = play(schedule({0, 60000}), sink, counting, options);
+  EXPECT_EQ(r.end, PlayEnd::Interrupted);
+  ASSERT_EQ(sink.writes.size(), 2u);
+  EXPECT_EQ(sink.writes[1].bytes, kStop);
+  EXPECT_EQ(sink.writes[1].at, kStart + milliseconds(60));
+}
+
+TEST(Player, AFailedWriteStillTriesTheStop) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  link.fail_at = 2;
+  PlayOptions options;
+  options.safe_stop = kStop;
+  PlayReport r = play(schedule({0, 10, 20, 30}), link, clock, options);
+  EXPECT_EQ(r.end, PlayEnd::WriteFailed);
+  EXPECT_EQ(r.error, "device went away");
+  EXPECT_EQ(r.sent, 2u);
+  EXPECT_TRUE(r.stop_sent);
+  ASSERT_EQ(link.writes.size(), 3u);
+  EXPECT_EQ(link.writes.back().bytes, kStop);
+}
+
+TEST(Player, AlreadyInterruptedSendsOnlyTheStop) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  std::atomic<bool> interrupted{true};
+  PlayOptions options;
+  options.interrupted = &interrupted;
+  options.safe_stop = kStop;
+  PlayReport r = play(schedule({0, 10}), link, clock, options);
+  EXPECT_EQ(r.end, PlayEnd::Interrupted);
+  EXPECT_EQ(r.sent, 0u);
+  ASSERT_EQ(link.writes.size(), 1u);
+  EXPECT_EQ(link.writes[0].bytes, kStop);
+}
+
+TEST(Player, SummaryUsesNearestRank) {
+  std::vector<io::Duration> v;
+  for (int i = 1; i <= 200; ++i) v.push_back(milliseconds(i));
+  const LatenessSummary s = summarize(v);
+  EXPECT_EQ(s.p50, milliseconds(100));
+  EXPECT_EQ(s.p99, milliseconds(198));
+  EXPECT_EQ(s.max, milliseconds(200));
+  EXPECT_EQ(summarize({}).max, io::Duration{0});
+}
+
+}  // namespace
+}  // namespace seqc::player
