@@ -17,9 +17,9 @@
 #include <variant>
 #include <vector>
 
+#include "compiler/lang/raspblock_program.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/source.hpp"
-#include "compiler/lang/raspblock_program.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 
 namespace seqc::compiler {
@@ -35,9 +35,9 @@ enum class RobotKind {
 
 // One servo as the program sees it, after the file's `robot:` section is applied.
 struct ServoInfo {
-  std::string name;                 // the name diagnostics and listings use
-  std::uint8_t id = 0;              // bus id (xArm) or PWM channel (LSC)
-  int min = 0;                      // limits in device units
+  std::string name;     // the name diagnostics and listings use
+  std::uint8_t id = 0;  // bus id (xArm) or PWM channel (LSC)
+  int min = 0;          // limits in device units
   int max = 0;
   int home = 0;                     // centre for mirroring; simulator's starting position
   std::optional<double> max_speed;  // device units per second; nullopt = unchecked
@@ -55,8 +55,8 @@ struct RobotInfo {
 // One controller action: move the listed servos to their positions over time_ms. Servos not
 // listed keep their position. A wait is an action that re-sends the held positions.
 struct Keyframe {
-  std::uint32_t start_ms = 0;  // when the action starts, from the start of the sequence
-  std::uint16_t time_ms = 0;   // kMinActionMs..kMaxActionMs
+  std::uint32_t start_ms = 0;             // when the action starts, from the start of the sequence
+  std::uint16_t time_ms = 0;              // kMinActionMs..kMaxActionMs
   std::vector<lsc::ServoTarget> targets;  // ascending id, each id once
   Location source;                        // the step it came from
 };

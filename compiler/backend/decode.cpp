@@ -49,9 +49,9 @@ class Decoder {
       issue(fmt::format("group {} download was opened but never closed (step 5 missing)",
                         open_->group));
     }
-    out_.table += fmt::format("# {} frame(s), {} action(s), {} total, {} issue(s)\n",
-                              out_.frames, out_.actions, compiler::format_seconds(total_ms_),
-                              out_.issues.size());
+    out_.table +=
+        fmt::format("# {} frame(s), {} action(s), {} total, {} issue(s)\n", out_.frames,
+                    out_.actions, compiler::format_seconds(total_ms_), out_.issues.size());
     return std::move(out_);
   }
 
@@ -117,8 +117,8 @@ class Decoder {
     for (const lsc::ServoTarget& t : m.servos) {
       servos += fmt::format("{}{}={}", servos.empty() ? "" : " ", t.id, t.position);
     }
-    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, m.group,
-                              m.block, m.index, m.time_ms, servos);
+    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, m.group, m.block,
+                              m.index, m.time_ms, servos);
     if (m.time_ms < lsc::kMinActionMs || m.time_ms > lsc::kMaxActionMs) {
       issue(fmt::format("time {} ms is outside the controller's 20-30000 ms", m.time_ms));
     }
@@ -140,8 +140,7 @@ class Decoder {
       const std::size_t used = ++open_->per_block[m.block];
       const std::size_t announced = m.block < open_->counts.size() ? open_->counts[m.block] : 0;
       if (used > announced) {
-        issue(fmt::format("block {} gets more actions than the {} announced", m.block,
-                          announced));
+        issue(fmt::format("block {} gets more actions than the {} announced", m.block, announced));
       }
     }
   }
@@ -164,8 +163,8 @@ class Decoder {
       servos += fmt::format("{}{}={}", servos.empty() ? "" : " ", e.id,
                             e.position ? std::to_string(*e.position) : std::string("-"));
     }
-    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, "live", "-",
-                              "-", m.time_ms, servos);
+    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, "live", "-", "-",
+                              m.time_ms, servos);
   }
   template <class Other>
   void on_request(const Other& m) {

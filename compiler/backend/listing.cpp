@@ -90,10 +90,10 @@ std::string render_listing(const compiler::ServoProgram& program,
                            const compiler::SourceManager& sources) {
   const std::size_t n = program.keyframes.size();
   const std::size_t blocks = (n + lsc::kActionsPerBlock - 1) / lsc::kActionsPerBlock;
-  std::string out = fmt::format(
-      "# robot {}, group {}: {} action{} in {} block{}, {} frames, {}\n", program.robot.profile,
-      group, n, n == 1 ? "" : "s", blocks, blocks == 1 ? "" : "s", plan.size(),
-      compiler::format_seconds(program.duration_ms()));
+  std::string out = fmt::format("# robot {}, group {}: {} action{} in {} block{}, {} frames, {}\n",
+                                program.robot.profile, group, n, n == 1 ? "" : "s", blocks,
+                                blocks == 1 ? "" : "s", plan.size(),
+                                compiler::format_seconds(program.duration_ms()));
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const PlannedFrame& p = plan[i];
     out += fmt::format("frame {}: {}\n", i + 1, to_hex(p.serial));
@@ -121,15 +121,16 @@ std::string render_json(const compiler::ServoProgram& program,
   const std::vector<std::uint8_t> used = used_servo_ids(program);
   for (std::size_t i = 0; i < used.size(); ++i) {
     const compiler::ServoInfo* s = program.robot.find_id(used[i]);
-    out += fmt::format("{}\n    {{\"name\": {}, \"id\": {}, \"min\": {}, \"max\": {}, \"home\": {}}}",
-                       i == 0 ? "" : ",", json_string(s->name), s->id, s->min, s->max, s->home);
+    out +=
+        fmt::format("{}\n    {{\"name\": {}, \"id\": {}, \"min\": {}, \"max\": {}, \"home\": {}}}",
+                    i == 0 ? "" : ",", json_string(s->name), s->id, s->min, s->max, s->home);
   }
   out += "\n  ],\n  \"keyframes\": [";
   for (std::size_t i = 0; i < program.keyframes.size(); ++i) {
     const compiler::Keyframe& k = program.keyframes[i];
-    out += fmt::format("{}\n    {{\"start_ms\": {}, \"time_ms\": {}, \"source\": {}, \"targets\": [",
-                       i == 0 ? "" : ",", k.start_ms, k.time_ms,
-                       json_string(location_text(k.source, sources)));
+    out += fmt::format(
+        "{}\n    {{\"start_ms\": {}, \"time_ms\": {}, \"source\": {}, \"targets\": [",
+        i == 0 ? "" : ",", k.start_ms, k.time_ms, json_string(location_text(k.source, sources)));
     for (std::size_t j = 0; j < k.targets.size(); ++j) {
       const compiler::ServoInfo* s = program.robot.find_id(k.targets[j].id);
       out += fmt::format("{}{{\"servo\": {}, \"id\": {}, \"position\": {}}}", j == 0 ? "" : ", ",

@@ -21,8 +21,8 @@ std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program);
 struct PlannedFrame {
   lsc::Request request;
   lsc::Frame frame;
-  Bytes serial;                           // 55 55 LEN CMD DATA
-  std::optional<std::size_t> keyframe;    // index into program.keyframes for step-4 packets
+  Bytes serial;                         // 55 55 LEN CMD DATA
+  std::optional<std::size_t> keyframe;  // index into program.keyframes for step-4 packets
 };
 
 // The whole GroupDownload of `program` into `group`, in send order, built on

@@ -2,6 +2,7 @@
 #include "compiler/compile.hpp"
 
 #include "compiler/lang/file_loader.hpp"
+#include "compiler/lang/profiles.hpp"
 #include "compiler/lang/raspblock_lowering.hpp"
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
@@ -52,7 +53,7 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
     robot = parse_robot(*r, reporter);
   } else {
     reporter.error(file.root->location,
-                   "missing 'robot': name the robot this file is for (xarm, lsc-16 or lsc-32)");
+                   "missing 'robot': name the robot this file is for (" + profile_list() + ")");
   }
   if (!robot) return out;
 

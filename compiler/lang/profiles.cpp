@@ -5,6 +5,8 @@ namespace {
 
 // Facts from protocol-notes.md ("Units and ranges seen on these devices").
 const std::vector<RobotProfile>& profiles() {
+  // One row per profile reads better than one field per line.
+  // clang-format off
   static const std::vector<RobotProfile> table = {
       // xArm bus servos: 0-1000 over 0-240 degrees, 500 = centre, ids 1-6.
       {"xarm", RobotKind::ServoController, 1, 6, 0, 1000, 500, 0.0, 1000.0 / 240.0,
@@ -25,6 +27,7 @@ const std::vector<RobotProfile>& profiles() {
       {"raspblock", RobotKind::Raspblock, 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "servo"},
   };
+  // clang-format on
   return table;
 }
 
@@ -41,6 +44,12 @@ std::vector<std::string> profile_names() {
   std::vector<std::string> names;
   for (const RobotProfile& p : profiles()) names.emplace_back(p.name);
   return names;
+}
+
+std::string profile_list() {
+  std::string out;
+  for (const std::string& name : profile_names()) out += (out.empty() ? "" : ", ") + name;
+  return out;
 }
 
 RobotInfo robot_from_profile(const RobotProfile& profile) {

@@ -34,6 +34,8 @@ struct RobotProfile {
 
 const RobotProfile* find_profile(std::string_view name);
 std::vector<std::string> profile_names();
+// "xarm, lsc-16, lsc-32" style list for messages, so adding a profile updates them all.
+std::string profile_list();
 
 // The RobotInfo a profile describes before any per-file servo definitions.
 RobotInfo robot_from_profile(const RobotProfile& profile);

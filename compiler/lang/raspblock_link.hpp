@@ -28,9 +28,9 @@ std::size_t wire_size(const raspblock::Packet& packet);
 
 // A window that needs more than the link carries.
 struct Overload {
-  std::size_t first = 0;       // index of the packet that starts the window
-  std::uint32_t from_ms = 0;   // the window [from_ms, from_ms + kCapacityWindowMs)
-  std::size_t bytes = 0;       // bytes sent in it
+  std::size_t first = 0;      // index of the packet that starts the window
+  std::uint32_t from_ms = 0;  // the window [from_ms, from_ms + kCapacityWindowMs)
+  std::size_t bytes = 0;      // bytes sent in it
   std::uint64_t bytes_per_second() const { return std::uint64_t{bytes} * 1000 / kCapacityWindowMs; }
 };
 

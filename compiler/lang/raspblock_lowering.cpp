@@ -22,8 +22,8 @@ struct Channel {
   std::string_view name;
   int min;
   int max;
-  bool gimbal;          // part of the two-servo gimbal packet
-  std::uint8_t index;   // gimbal: 0 horizontal, 1 vertical; single: servo number 1-4
+  bool gimbal;         // part of the two-servo gimbal packet
+  std::uint8_t index;  // gimbal: 0 horizontal, 1 vertical; single: servo number 1-4
 };
 constexpr std::array<Channel, 6> kChannels = {{
     {"pan", 500, 2500, true, 0},
@@ -48,9 +48,9 @@ struct Axis {
 // kept in runtime/protocol/raspblock.cpp).
 constexpr std::array<Axis, 3> kAxes = {{{"x", 25}, {"y", 25}, {"z", 200}}};
 
-constexpr std::array<std::string_view, 8> kGainNames = {
-    "speed_kp", "speed_ki", "position_kp", "position_ki",
-    "position_kd", "yaw_kp", "yaw_ki", "yaw_kd"};
+constexpr std::array<std::string_view, 8> kGainNames = {"speed_kp",    "speed_ki",    "position_kp",
+                                                        "position_ki", "position_kd", "yaw_kp",
+                                                        "yaw_ki",      "yaw_kd"};
 
 enum class Ease { Linear, In, Out, InOut };
 
@@ -70,7 +70,8 @@ double ease_at(Ease ease, double t) {
 
 std::string grouped(std::uint64_t n) {
   std::string s = std::to_string(n);
-  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<std::size_t>(i), ",");
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
+    s.insert(static_cast<std::size_t>(i), ",");
   return s;
 }
 
@@ -114,9 +115,10 @@ class RaspblockLowering {
       if (const YamlNode* r = main.root->find("robot"); r != nullptr && r->is_map()) {
         for (std::string_view fixed : {"servos", "mirror"}) {
           if (const YamlNode* n = r->find(fixed)) {
-            reporter_.error(n->location, "the raspblock's outputs are fixed (pan, tilt, "
-                                         "servo1-servo4); remove '" +
-                                             std::string(fixed) + "'");
+            reporter_.error(n->location,
+                            "the raspblock's outputs are fixed (pan, tilt, "
+                            "servo1-servo4); remove '" +
+                                std::string(fixed) + "'");
           }
         }
       }
@@ -144,10 +146,9 @@ class RaspblockLowering {
                       "a choreography file must be a map with 'robot' and 'sequence' keys");
       return;
     }
-    reporter_.check_keys(root,
-                         {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name",
-                          "description"},
-                         "at the top level");
+    reporter_.check_keys(
+        root, {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name", "description"},
+        "at the top level");
     if (!is_main) {
       if (const YamlNode* r = root.find("robot")) {
         auto name = included_robot_name(*r, reporter_);
@@ -158,8 +159,9 @@ class RaspblockLowering {
         }
       }
       if (const YamlNode* p = root.find("pid")) {
-        reporter_.error(p->location, "'pid' belongs in the main file: the settings are sent "
-                                     "once, before the first step");
+        reporter_.error(p->location,
+                        "'pid' belongs in the main file: the settings are sent "
+                        "once, before the first step");
       }
     }
     FileScope& scope = scope_for(f);
@@ -217,8 +219,9 @@ class RaspblockLowering {
 
   void pid_section(const YamlNode& pid) {
     if (!pid.is_map()) {
-      reporter_.error(pid.location, "'pid' must be a map: mode (speed or position) and the "
-                                    "gains speed_kp ... yaw_kd, each 0-255");
+      reporter_.error(pid.location,
+                      "'pid' must be a map: mode (speed or position) and the "
+                      "gains speed_kp ... yaw_kd, each 0-255");
       return;
     }
     reporter_.check_keys(pid,
@@ -257,10 +260,11 @@ class RaspblockLowering {
       }
     }
     if (!missing.empty()) {
-      reporter_.error(pid.location, "'pid' sets every value at once, so it needs all of mode, "
-                                    "speed_kp, speed_ki, position_kp, position_ki, "
-                                    "position_kd, yaw_kp, yaw_ki, yaw_kd; missing: " +
-                                        missing);
+      reporter_.error(pid.location,
+                      "'pid' sets every value at once, so it needs all of mode, "
+                      "speed_kp, speed_ki, position_kp, position_ki, "
+                      "position_kd, yaw_kp, yaw_ki, yaw_kd; missing: " +
+                          missing);
       return;
     }
     if (ok) emit(p, pid.location);
@@ -377,8 +381,8 @@ class RaspblockLowering {
       ms *= 60000.0 / *tempo;
     }
     if (ms > static_cast<double>(kRaspblockMaxStreamMs)) {
-      reporter_.error(node.location, "'" + node.scalar +
-                                         "' is longer than a stream may last (24 hours)");
+      reporter_.error(node.location,
+                      "'" + node.scalar + "' is longer than a stream may last (24 hours)");
       return std::nullopt;
     }
     return static_cast<std::uint32_t>(std::llround(ms));
@@ -421,8 +425,9 @@ class RaspblockLowering {
   void run_steps(const YamlNode& list, std::string_view what) {
     if (list.kind == YamlNode::Kind::Null) return;
     if (!list.is_sequence()) {
-      reporter_.error(list.location, std::string(what) + " must be a list of steps (each line "
-                                                         "starting with '- '), not " +
+      reporter_.error(list.location, std::string(what) +
+                                         " must be a list of steps (each line "
+                                         "starting with '- '), not " +
                                          std::string(kind_name(list)));
       return;
     }
@@ -453,12 +458,11 @@ class RaspblockLowering {
       }
     }
     if (alone != nullptr && other != nullptr) {
-      const YamlNode& later =
-          other->location.line > alone->location.line ||
-                  (other->location.line == alone->location.line &&
-                   other->location.column > alone->location.column)
-              ? *other
-              : *alone;
+      const YamlNode& later = other->location.line > alone->location.line ||
+                                      (other->location.line == alone->location.line &&
+                                       other->location.column > alone->location.column)
+                                  ? *other
+                                  : *alone;
       const YamlNode& earlier = &later == other ? *alone : *other;
       reporter_.error(later.location, "a step does one thing: '" + later.scalar +
                                           "' cannot be combined with '" + earlier.scalar +
@@ -469,11 +473,12 @@ class RaspblockLowering {
       const YamlNode* drive = step.find("drive");
       const YamlNode* move = step.find("move");
       if (drive == nullptr && move == nullptr) {
-        if (reporter_.check_keys(step, {"drive", "move", "wait", "repeat", "include", "time",
-                                        "ease", "steps", "do"},
-                                 "in a step")) {
-          reporter_.error(step.location, "a step needs one of: drive, move, wait, repeat, "
-                                         "include");
+        if (reporter_.check_keys(
+                step, {"drive", "move", "wait", "repeat", "include", "time", "ease", "steps", "do"},
+                "in a step")) {
+          reporter_.error(step.location,
+                          "a step needs one of: drive, move, wait, repeat, "
+                          "include");
         }
         return;
       }
@@ -526,8 +531,9 @@ class RaspblockLowering {
 
   std::optional<raspblock::Rocker> parse_drive(const YamlNode& drive) {
     if (!drive.is_map()) {
-      reporter_.error(drive.location, "'drive' takes a map of speeds, e.g. {x: 10, y: 0, z: 0} "
-                                      "(x, y -25 to 25; z -200 to 200)");
+      reporter_.error(drive.location,
+                      "'drive' takes a map of speeds, e.g. {x: 10, y: 0, z: 0} "
+                      "(x, y -25 to 25; z -200 to 200)");
       return std::nullopt;
     }
     reporter_.check_keys(drive, {"x", "y", "z"}, "in 'drive'");
@@ -554,7 +560,6 @@ class RaspblockLowering {
       drive = parse_drive(*drive_node);
       ok = drive.has_value();
     }
-
 
     const YamlNode* ease_node = step.find("ease");
     const YamlNode* steps_node = step.find("steps");
@@ -661,9 +666,10 @@ class RaspblockLowering {
       inline_entries = parse_targets(target, "in this move");
       entries = &inline_entries;
     } else {
-      reporter_.error(target.location, "'move' takes a pose name or a map of output: position, "
-                                       "not " +
-                                           std::string(kind_name(target)));
+      reporter_.error(target.location,
+                      "'move' takes a pose name or a map of output: position, "
+                      "not " +
+                          std::string(kind_name(target)));
       return false;
     }
     // An entry parse_targets rejected is already reported; check the others all the same.
@@ -672,14 +678,12 @@ class RaspblockLowering {
       double units = 0;
       std::string how;
       if (e.value.relative) {
-        const double delta =
-            e.value.degrees ? e.value.amount * kUnitsPerDegree : e.value.amount;
+        const double delta = e.value.degrees ? e.value.amount * kUnitsPerDegree : e.value.amount;
         const std::optional<int>& base = pos_[e.channel];
         if (!base) {
           reporter_.error(e.at,
                           "'" + std::string(kChannels[e.channel].name) +
-                              "' has no known position yet, so the relative move '" +
-                              e.written +
+                              "' has no known position yet, so the relative move '" + e.written +
                               "' has nothing to add to; move it to an absolute position first",
                           note);
           ok = false;
@@ -692,8 +696,8 @@ class RaspblockLowering {
         units = absolute_units(e);
       }
       if (out.count(e.channel) != 0) {
-        reporter_.error(e.at, "'" + std::string(kChannels[e.channel].name) +
-                                  "' is given twice in this move");
+        reporter_.error(
+            e.at, "'" + std::string(kChannels[e.channel].name) + "' is given twice in this move");
         ok = false;
         continue;
       }
@@ -741,17 +745,18 @@ class RaspblockLowering {
         const int h = next[kPan].value_or(pos_[kPan].value_or(kHome));
         const int v = next[kTilt].value_or(pos_[kTilt].value_or(kHome));
         if (pos_[kPan] != h || pos_[kTilt] != v) {
-          emit_at(send, raspblock::GimbalServos{static_cast<std::uint16_t>(h),
-                                                static_cast<std::uint16_t>(v)},
-                  at);
+          emit_at(
+              send,
+              raspblock::GimbalServos{static_cast<std::uint16_t>(h), static_cast<std::uint16_t>(v)},
+              at);
           pos_[kPan] = h;
           pos_[kTilt] = v;
         }
       }
       for (std::size_t c = kTilt + 1; c < kChannels.size(); ++c) {
         if (!next[c] || pos_[c] == next[c]) continue;
-        emit_at(send, raspblock::SingleServo{kChannels[c].index,
-                                             static_cast<std::uint16_t>(*next[c])},
+        emit_at(send,
+                raspblock::SingleServo{kChannels[c].index, static_cast<std::uint16_t>(*next[c])},
                 at);
         pos_[c] = next[c];
       }
@@ -791,8 +796,9 @@ class RaspblockLowering {
       return;
     }
     if (reporter_.include_depth() >= 16) {
-      reporter_.error(value.location, "includes nest more than 16 files deep; is there a "
-                                      "runaway include chain?");
+      reporter_.error(value.location,
+                      "includes nest more than 16 files deep; is there a "
+                      "runaway include chain?");
       return;
     }
     auto loaded = loader_.load(path);

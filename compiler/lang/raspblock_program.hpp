@@ -16,9 +16,9 @@
 namespace seqc::compiler {
 
 struct TimedPacket {
-  std::uint32_t at_ms = 0;    // send time from the start of the play
-  raspblock::Packet packet;   // already range-checked: raspblock::encode accepts it
-  Location source;            // the step (or the `pid` section) it came from
+  std::uint32_t at_ms = 0;   // send time from the start of the play
+  raspblock::Packet packet;  // already range-checked: raspblock::encode accepts it
+  Location source;           // the step (or the `pid` section) it came from
 };
 
 struct RaspblockProgram {

@@ -20,7 +20,7 @@ bool is_identifier(std::string_view s) {
 
 const RobotProfile* profile_named(const YamlNode& value, Reporter& reporter) {
   if (!value.is_scalar()) {
-    reporter.error(value.location, "the robot profile must be a name: one of xarm, lsc-16, lsc-32");
+    reporter.error(value.location, "the robot profile must be a name: one of " + profile_list());
     return nullptr;
   }
   const RobotProfile* profile = find_profile(value.scalar);
@@ -83,9 +83,9 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
   } else if (existing != robot.names.end()) {
     index = existing->second;
   } else {
-    reporter.error(key.location,
-                   "servo '" + name + "' needs an 'id' (" + std::string(profile.name) +
-                       " ids are " + range_text(profile.first_id, profile.last_id) + ")");
+    reporter.error(key.location, "servo '" + name + "' needs an 'id' (" +
+                                     std::string(profile.name) + " ids are " +
+                                     range_text(profile.first_id, profile.last_id) + ")");
     return;
   }
   if (!value.is_map()) return;
@@ -109,14 +109,13 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
     return;
   }
   if (const YamlNode* n = value.find("home")) {
-    home = parse_integer(*n, servo.min, servo.max,
-                         "'home' within " + name + "'s limits", reporter);
+    home = parse_integer(*n, servo.min, servo.max, "'home' within " + name + "'s limits", reporter);
     if (home) servo.home = static_cast<int>(*home);
   } else if (servo.home < servo.min || servo.home > servo.max) {
     reporter.error(value.location, "servo '" + name + "' limits " +
                                        range_text(servo.min, servo.max) +
-                                       " exclude the profile's home " +
-                                       std::to_string(servo.home) + "; give it a 'home'");
+                                       " exclude the profile's home " + std::to_string(servo.home) +
+                                       "; give it a 'home'");
   }
   if (const YamlNode* n = value.find("max_speed")) {
     if (!n->is_scalar()) {
@@ -124,8 +123,8 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
     } else if (auto speed = parse_speed(n->scalar); !speed) {
       reporter.error(n->location, speed.error().message);
     } else {
-      servo.max_speed = speed->degrees ? speed->per_second * profile.units_per_degree
-                                       : speed->per_second;
+      servo.max_speed =
+          speed->degrees ? speed->per_second * profile.units_per_degree : speed->per_second;
     }
   }
 }
@@ -215,7 +214,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
     reporter.check_keys(value, {"profile", "servos", "mirror"}, "in 'robot'");
     profile_node = value.find("profile");
     if (profile_node == nullptr) {
-      reporter.error(value.location, "'robot' needs a 'profile': one of xarm, lsc-16, lsc-32");
+      reporter.error(value.location, "'robot' needs a 'profile': one of " + profile_list());
       return std::nullopt;
     }
   }

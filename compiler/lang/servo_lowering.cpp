@@ -32,8 +32,9 @@ double ease_at(Ease ease, double t) {
 }
 
 std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
-  return a > std::numeric_limits<std::uint64_t>::max() - b ? std::numeric_limits<std::uint64_t>::max()
-                                                            : a + b;
+  return a > std::numeric_limits<std::uint64_t>::max() - b
+             ? std::numeric_limits<std::uint64_t>::max()
+             : a + b;
 }
 std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
   if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a) {
@@ -223,8 +224,8 @@ class ServoLowering {
       bool duplicate = false;
       for (const PoseEntry& other : out) duplicate = duplicate || other.servo == e.servo;
       if (duplicate) {
-        reporter_.error(key.location, "servo '" + robot_.info.servos[e.servo].name +
-                                          "' is given twice " + where);
+        reporter_.error(key.location,
+                        "servo '" + robot_.info.servos[e.servo].name + "' is given twice " + where);
         continue;
       }
       out.push_back(std::move(e));
@@ -294,8 +295,9 @@ class ServoLowering {
   void run_steps(const YamlNode& list, std::string_view what) {
     if (list.kind == YamlNode::Kind::Null) return;
     if (!list.is_sequence()) {
-      reporter_.error(list.location, std::string(what) + " must be a list of steps (each line "
-                                                         "starting with '- '), not " +
+      reporter_.error(list.location, std::string(what) +
+                                         " must be a list of steps (each line "
+                                         "starting with '- '), not " +
                                          std::string(kind_name(list)));
       return;
     }
@@ -326,11 +328,10 @@ class ServoLowering {
       }
     }
     if (verb_key == nullptr) {
-      if (reporter_.check_keys(step, {"move", "wait", "repeat", "include", "mirror", "time",
-                                      "ease", "steps", "do"},
-                               "in a step")) {
-        reporter_.error(step.location,
-                        "a step needs one of: move, wait, repeat, include, mirror");
+      if (reporter_.check_keys(
+              step, {"move", "wait", "repeat", "include", "mirror", "time", "ease", "steps", "do"},
+              "in a step")) {
+        reporter_.error(step.location, "a step needs one of: move, wait, repeat, include, mirror");
       }
       return;
     }
@@ -390,8 +391,8 @@ class ServoLowering {
       const Pose* pose = find_pose(target);
       if (pose == nullptr) return;
       entries = &pose->entries;
-      if (pose != home_.get()) note = Reporter::Note{target.location, "in this move to pose '" +
-                                                                          target.scalar + "'"};
+      if (pose != home_.get())
+        note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
     } else if (target.is_map()) {
       inline_entries = parse_positions(target, "in this move");
       entries = &inline_entries;
@@ -414,8 +415,8 @@ class ServoLowering {
     bool eased = false;
     if (const YamlNode* e = step.find("ease")) {
       static const std::map<std::string, Ease, std::less<>> kEases = {
-          {"linear", Ease::Linear},     {"in", Ease::In},       {"out", Ease::Out},
-          {"in-out", Ease::InOut},      {"ease-in", Ease::In},  {"ease-out", Ease::Out},
+          {"linear", Ease::Linear},     {"in", Ease::In},      {"out", Ease::Out},
+          {"in-out", Ease::InOut},      {"ease-in", Ease::In}, {"ease-out", Ease::Out},
           {"ease-in-out", Ease::InOut},
       };
       auto it = e->is_scalar() ? kEases.find(e->scalar) : kEases.end();
@@ -443,8 +444,8 @@ class ServoLowering {
       std::string how;
       double units = 0;
       if (e.value.relative) {
-        double delta = e.value.degrees ? robot_.degrees_to_units(e.value.amount, true)
-                                       : e.value.amount;
+        double delta =
+            e.value.degrees ? robot_.degrees_to_units(e.value.amount, true) : e.value.amount;
         if (reflect) delta = -delta;
         const std::optional<int>& base = pos_[servo];
         if (!base) {
@@ -560,9 +561,9 @@ class ServoLowering {
       const ServoInfo& info = robot_.info.servos[servo];
       reporter_.warning(step.location,
                         "'" + info.name + "' moves " + std::to_string(f.delta) + " in " +
-                            std::to_string(f.ms) + "ms (" +
-                            std::to_string(std::llround(f.speed)) + "/s), faster than its " +
-                            "max_speed " + std::to_string(std::llround(*info.max_speed)) + "/s",
+                            std::to_string(f.ms) + "ms (" + std::to_string(std::llround(f.speed)) +
+                            "/s), faster than its " + "max_speed " +
+                            std::to_string(std::llround(*info.max_speed)) + "/s",
                         note);
     }
   }

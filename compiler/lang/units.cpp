@@ -43,8 +43,8 @@ Result<TimeValue> parse_time(std::string_view text) {
   }
   const std::string_view unit = text.substr(n);
   if (unit.empty()) {
-    return make_error("time '" + std::string(text) + "' has no unit; write '" +
-                      std::string(text) + "ms' or '" + std::string(text) + "s'");
+    return make_error("time '" + std::string(text) + "' has no unit; write '" + std::string(text) +
+                      "ms' or '" + std::string(text) + "s'");
   }
   if (unit == "ms") return TimeValue{amount, TimeUnit::Milliseconds};
   if (unit == "s") return TimeValue{amount, TimeUnit::Seconds};

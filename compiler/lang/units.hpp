@@ -24,7 +24,7 @@ Result<TimeValue> parse_time(std::string_view text);
 struct PositionValue {
   bool relative = false;  // written with a sign: +50, -10deg
   bool degrees = false;
-  double amount = 0;      // signed for relative values
+  double amount = 0;  // signed for relative values
 };
 
 // "500", "90deg", "+50", "-10deg", "+2.5deg". Device units must be whole numbers.

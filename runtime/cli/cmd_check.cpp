@@ -38,15 +38,15 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
       }
       const compiler::Diagnostics& d = c.output.diagnostics;
       if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
-        ctx.out << fmt::format("{}: ok ({}, {}){}\n", path, plural(car->packets.size(), "packet"),
-                               compiler::format_seconds(car->duration_ms),
-                               d.warning_count() ? ", " + plural(d.warning_count(), "warning")
-                                                 : "");
+        ctx.out << fmt::format(
+            "{}: ok ({}, {}){}\n", path, plural(car->packets.size(), "packet"),
+            compiler::format_seconds(car->duration_ms),
+            d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
       } else if (const compiler::ServoProgram* p = c.output.servo_program()) {
-        ctx.out << fmt::format("{}: ok ({}/{} actions, {}){}\n", path, p->keyframes.size(),
-                               lsc::kMaxActions, compiler::format_seconds(p->duration_ms()),
-                               d.warning_count() ? ", " + plural(d.warning_count(), "warning")
-                                                 : "");
+        ctx.out << fmt::format(
+            "{}: ok ({}/{} actions, {}){}\n", path, p->keyframes.size(), lsc::kMaxActions,
+            compiler::format_seconds(p->duration_ms()),
+            d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
       } else {
         invalid = true;
         const std::size_t errors = d.error_count() + (opts->strict ? d.warning_count() : 0);
@@ -55,8 +55,8 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
                                warnings ? ", " + plural(warnings, "warning") : "");
       }
     }
-    result.code = unreadable ? ExitCode::FileError
-                             : (invalid ? ExitCode::InvalidInput : ExitCode::Ok);
+    result.code =
+        unreadable ? ExitCode::FileError : (invalid ? ExitCode::InvalidInput : ExitCode::Ok);
   });
 }
 

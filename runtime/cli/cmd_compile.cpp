@@ -44,15 +44,15 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
         result.code = ExitCode::Internal;
         return;
       }
-      const std::string text =
-          opts->emit == "hex"       ? backend::render_stream_hex(*frames)
-          : opts->emit == "listing" ? backend::render_stream_listing(*car, *frames, c.output.sources)
-                                    : backend::render_stream_json(*car, *frames);
+      const std::string text = opts->emit == "hex" ? backend::render_stream_hex(*frames)
+                               : opts->emit == "listing"
+                                   ? backend::render_stream_listing(*car, *frames, c.output.sources)
+                                   : backend::render_stream_json(*car, *frames);
       if (opts->output.empty()) {
         ctx.out << text;
       } else if (auto written = io::write_file_atomically(opts->output, text); !written) {
-        ctx.err << "seqc: error: cannot write '" << opts->output
-                << "': " << written.error().message << "\n";
+        ctx.err << "seqc: error: cannot write '" << opts->output << "': " << written.error().message
+                << "\n";
         result.code = ExitCode::FileError;
       }
       return;

@@ -29,7 +29,8 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto file = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "decode", "Decode servo controller frames (hex) into a readable action table");
-  cmd->add_option("FILE", *file, "Hex frames, as `seqc compile --emit hex` writes them; - for stdin")
+  cmd->add_option("FILE", *file,
+                  "Hex frames, as `seqc compile --emit hex` writes them; - for stdin")
       ->required();
   cmd->callback([&ctx, &result, file] {
     std::string text;
@@ -58,9 +59,8 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
     backend::DecodeResult decoded = backend::decode_frames(*bytes);
     ctx.out << decoded.table;
     if (!decoded.issues.empty()) {
-      ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size()
-              << " inconsistenc" << (decoded.issues.size() == 1 ? "y" : "ies")
-              << " (marked '!' in the table)\n";
+      ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size() << " inconsistenc"
+              << (decoded.issues.size() == 1 ? "y" : "ies") << " (marked '!' in the table)\n";
     }
     result.code = decoded.issues.empty() ? ExitCode::Ok : ExitCode::InvalidInput;
   });

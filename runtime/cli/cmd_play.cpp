@@ -126,16 +126,15 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
   const player::LatenessSummary late = player::summarize(report.lateness);
 
   ExitCode code = ExitCode::Ok;
-  const std::string stop_text =
-      report.stop_sent ? "sent the stop (all speeds 0)"
-                       : "could not send the stop: " + report.stop_error +
-                             "; the car may still be moving";
+  const std::string stop_text = report.stop_sent ? "sent the stop (all speeds 0)"
+                                                 : "could not send the stop: " + report.stop_error +
+                                                       "; the car may still be moving";
   switch (report.end) {
     case player::PlayEnd::Completed:
       ctx.err << "seqc: played " << report.sent << " frames in "
               << compiler::format_seconds(program.duration_ms) << "; lateness p50 "
-              << ms_text(late.p50) << ", p99 " << ms_text(late.p99) << ", max "
-              << ms_text(late.max) << "\n";
+              << ms_text(late.p50) << ", p99 " << ms_text(late.p99) << ", max " << ms_text(late.max)
+              << "\n";
       break;
     case player::PlayEnd::Interrupted:
       ctx.err << "seqc: interrupted after " << report.sent << " of " << schedule.size()

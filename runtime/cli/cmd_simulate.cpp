@@ -28,8 +28,14 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
+    if (!c.output.program) return;
     const compiler::ServoProgram* program = c.output.servo_program();
-    if (program == nullptr) return;
+    if (program == nullptr) {  // other robot kinds have no servo-controller model to simulate
+      ctx.err << "seqc: error: " << opts->file
+              << ": simulate models the servo controller (xarm, lsc-16, lsc-32) only\n";
+      result.code = ExitCode::InvalidInput;
+      return;
+    }
     const backend::Simulation sim =
         backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms));
     const std::string csv = backend::to_csv(sim);

@@ -60,9 +60,8 @@ void print_dry_run(Context& ctx, const UploadArgs& a, const std::vector<lsc::Req
   for (const auto& r : plan) ctx.out << line_for(r, "");
   ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
   if (a.run) {
-    ctx.out << line_for(lsc::GroupRun{static_cast<std::uint8_t>(a.group),
-                                      static_cast<std::uint16_t>(a.times)},
-                        "");
+    ctx.out << line_for(
+        lsc::GroupRun{static_cast<std::uint8_t>(a.group), static_cast<std::uint16_t>(a.times)}, "");
     ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
   }
 }
@@ -148,8 +147,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   ctx.out << "the controller acknowledged " << plural(r.actions_acknowledged, "action")
           << " into group " << a.group << " (" << detail << ")\n";
   if (a.run) {
-    const std::string times = a.times == 0 ? "looping until stopped"
-                                           : plural(static_cast<std::size_t>(a.times), "time");
+    const std::string times =
+        a.times == 0 ? "looping until stopped" : plural(static_cast<std::size_t>(a.times), "time");
     if (r.run_reported) {
       ctx.out << "group " << a.group << " started (" << times << ")\n";
     } else {
@@ -181,7 +180,8 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "Write every byte sent and received, with times, to this file (docs/trace.md)");
   cmd->add_flag("--verbose", a->verbose, "Report every re-send, restart and skipped frame");
   cmd->add_flag("--strict", a->strict, "Treat warnings as errors");
-  cmd->add_option("--retries", a->retries, "Re-sends of one frame before giving up (0-20, default 4)")
+  cmd->add_option("--retries", a->retries,
+                  "Re-sends of one frame before giving up (0-20, default 4)")
       ->check(CLI::Range(0, 20));
   cmd->callback([&ctx, &result, a] { result.code = run_upload(ctx, *a); });
 }

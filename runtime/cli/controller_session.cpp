@@ -34,15 +34,19 @@ std::string describe_duration(io::Duration d) {
 
 ControllerSession::ControllerSession(upload::ControllerLink& link, io::Duration timeout,
                                      std::string port_name)
-    : link_(link), timeout_(timeout), port_name_(std::move(port_name)) {}
+    : link_(link), timeout_(timeout), port_name_(std::move(port_name)) {
+  link_.set_observer(this);
+}
+
+ControllerSession::~ControllerSession() { link_.set_observer(nullptr); }
 
 void ControllerSession::fail(ExitCode code, std::string message) {
   if (!error_) error_ = DeviceError{code, std::move(message)};
 }
 
 void ControllerSession::drain() {
-  // Replies nobody waits for any more (a late answer, a finished group) must not be taken
-  // for the answer to the next request. Notifications are kept for the command to report.
+  // Replies nobody waits for any more (a late answer) must not be taken for the answer to the
+  // next request. Notifications are kept (on_notification) for the command to report.
   link_.drain([](const lsc::Reply&) {});
 }
 
@@ -73,9 +77,8 @@ upload::WaitResult ControllerSession::round_trip(
   const io::TimePoint deadline = link_.clock().now() + timeout_;
   return link_.wait_for(
       [&](const lsc::Reply& reply) {
-        if (want(reply)) return upload::Verdict::Take;
-        if (upload::is_notification(reply)) notifications_.push_back(reply);
-        return upload::Verdict::Skip;
+        // Skipped notifications reach on_notification through the link.
+        return want(reply) ? upload::Verdict::Take : upload::Verdict::Skip;
       },
       deadline);
 }

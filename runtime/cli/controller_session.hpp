@@ -13,6 +13,7 @@
 // waiting is the link's, on the injected clock.
 #pragma once
 
+#include <cstdio>
 #include <functional>
 #include <optional>
 #include <string>
@@ -40,10 +41,14 @@ struct DeviceError {
   std::string message;
 };
 
-class ControllerSession {
+class ControllerSession final : private upload::LinkObserver {
  public:
   // `port_name` is what messages call the device ("emu:xarm", "/dev/ttyUSB0 at 9600 baud").
+  // Becomes the link's observer, to keep the notifications it skips.
   ControllerSession(upload::ControllerLink& link, io::Duration timeout, std::string port_name);
+  ~ControllerSession() override;
+  ControllerSession(const ControllerSession&) = delete;
+  ControllerSession& operator=(const ControllerSession&) = delete;
 
   // Sends `request` and returns the first reply of type R; nullopt on failure (see error()).
   // `what` names the awaited reply for the message, e.g. "the battery voltage".

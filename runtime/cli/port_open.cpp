@@ -27,8 +27,7 @@ PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
   if (ctx.xarm_emulator != nullptr && ctx.xarm_clock != nullptr) {
     // The caller's emulator (Context::xarm_emulator); its own config holds any faults.
     OpenedPort port;
-    port.transport =
-        std::make_unique<emu::EmulatorTransport>(*ctx.xarm_emulator, *ctx.xarm_clock);
+    port.transport = std::make_unique<emu::EmulatorTransport>(*ctx.xarm_emulator, *ctx.xarm_clock);
     port.clock = ctx.xarm_clock;
     PortOpenResult r;
     r.port = std::move(port);
@@ -37,15 +36,14 @@ PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
   emu::XArmConfig config;
   auto faults = emu::parse_faults(spec.emulator_options);
   if (!faults) {
-    return failure(ExitCode::Usage, "--port " + transport::format_port(spec) + ": " +
-                                        faults.error().message);
+    return failure(ExitCode::Usage,
+                   "--port " + transport::format_port(spec) + ": " + faults.error().message);
   }
   config.faults = *faults;
   OpenedPort port;
   port.emulated_clock = std::make_unique<io::ManualClock>();
   port.emulator = std::make_unique<emu::XArmEmulator>(config);
-  port.transport =
-      std::make_unique<emu::EmulatorTransport>(*port.emulator, *port.emulated_clock);
+  port.transport = std::make_unique<emu::EmulatorTransport>(*port.emulator, *port.emulated_clock);
   port.clock = port.emulated_clock.get();
   PortOpenResult r;
   r.port = std::move(port);

@@ -79,14 +79,17 @@ std::string describe_group_state(GroupState state, std::uint8_t group) {
     case GroupState::Unchanged:
       return g + " is unchanged";
     case GroupState::MaybeErased:
-      return g + " is unchanged, unless the controller acted on the opening frame it never "
-                 "acknowledged (then it is empty)";
+      return g +
+             " is unchanged, unless the controller acted on the opening frame it never "
+             "acknowledged (then it is empty)";
     case GroupState::Empty:
-      return g + " is now empty (the controller erased it; it only becomes valid when a "
-                 "download completes)";
+      return g +
+             " is now empty (the controller erased it; it only becomes valid when a "
+             "download completes)";
     case GroupState::Uncertain:
-      return g + " holds what the controller stored last, which may not match the file; "
-                 "upload again";
+      return g +
+             " holds what the controller stored last, which may not match the file; "
+             "upload again";
     case GroupState::Stored:
       return g + " holds the acknowledged actions";
   }
@@ -203,8 +206,7 @@ class Uploader::Run final : public LinkObserver {
     auto st = link().send_bytes(bytes);
     if (st) return Flow::Ok;
     return fatal(UploadStatus::LinkError, "writing to " + link().transport().describe() +
-                                              " failed while " + doing + ": " +
-                                              st.error().message);
+                                              " failed while " + doing + ": " + st.error().message);
   }
 
   // Checks the plan and encodes every frame; returns an error message or "".
@@ -215,8 +217,8 @@ class Uploader::Run final : public LinkObserver {
       const int step = lsc::group_download_step(r);
       if (step == 0) return "the download plan holds a request that is not a GroupDownload step";
       if (group_of(r) != opt().group) {
-        return "the download plan is for group " + std::to_string(group_of(r)) +
-               ", not group " + std::to_string(opt().group);
+        return "the download plan is for group " + std::to_string(group_of(r)) + ", not group " +
+               std::to_string(opt().group);
       }
       if (step < last_step) return "the download plan's steps are out of order";
       last_step = step;
@@ -295,8 +297,8 @@ class Uploader::Run final : public LinkObserver {
                          " attempts");
       }
       ++result_.restarts;
-      note("restarting the download from step 1 (attempt " +
-           std::to_string(result_.restarts + 1) + "): " + restart_reason_);
+      note("restarting the download from step 1 (attempt " + std::to_string(result_.restarts + 1) +
+           "): " + restart_reason_);
       if (barrier(Barrier::Sync, 0) == Flow::Fatal) return Flow::Fatal;
     }
     completed_ = true;
@@ -310,8 +312,8 @@ class Uploader::Run final : public LinkObserver {
     const io::Duration timeout = up_.reply_timeout(kProbeBytes, kProbeReplyBytes, false);
     for (int attempt = 1; attempt <= max_attempts(); ++attempt) {
       if (link().interrupted()) return fatal(UploadStatus::Interrupted, "interrupted");
-      if (attempt > 1) retry("probe (battery voltage)", attempt, "no reply within " +
-                                                                  seconds_text(timeout));
+      if (attempt > 1)
+        retry("probe (battery voltage)", attempt, "no reply within " + seconds_text(timeout));
       if (send(request, "asking the controller for its battery voltage") != Flow::Ok) {
         return Flow::Fatal;
       }
@@ -377,11 +379,11 @@ class Uploader::Run final : public LinkObserver {
     };
     for (int attempt = 1; attempt <= max_attempts(); ++attempt) {
       if (link().interrupted()) return fatal(UploadStatus::Interrupted, "interrupted");
-      if (attempt > 1) retry("barrier (battery voltage)", attempt, "no reply within " +
-                                                                    seconds_text(timeout));
+      if (attempt > 1)
+        retry("barrier (battery voltage)", attempt, "no reply within " + seconds_text(timeout));
       const io::TimePoint sent_at = clock().now();
-      earliest = sent_at + (wire_check_ ? min_wire_time(kProbeBytes + kProbeReplyBytes)
-                                        : io::Duration{0});
+      earliest =
+          sent_at + (wire_check_ ? min_wire_time(kProbeBytes + kProbeReplyBytes) : io::Duration{0});
       early = false;
       if (send(request, "checking that the controller has answered everything") != Flow::Ok) {
         return Flow::Fatal;
@@ -422,8 +424,7 @@ class Uploader::Run final : public LinkObserver {
         } else if (ack->step >= 1 && ack->step <= current_step) {
           if (mispaired.empty()) mispaired = "an unexpected " + lsc::describe(r);
         } else {
-          note("ignored an acknowledgement of a step not sent (corrupted?): " +
-               lsc::describe(r));
+          note("ignored an acknowledgement of a step not sent (corrupted?): " + lsc::describe(r));
         }
         return;
       }
@@ -484,8 +485,10 @@ class Uploader::Run final : public LinkObserver {
 
   void discard_early(const lsc::Reply& r) {
     ++result_.stale_acks;
-    note("discarded an acknowledgement that came sooner than the wire allows (a duplicate or "
-         "late one): " + lsc::describe(r));
+    note(
+        "discarded an acknowledgement that came sooner than the wire allows (a duplicate or "
+        "late one): " +
+        lsc::describe(r));
   }
 
   // Waits for `frame`'s ack after it was sent at `sent_at`. `mispaired` is set when an ack
@@ -579,9 +582,8 @@ class Uploader::Run final : public LinkObserver {
                               ") twice, after a re-send or an extra acknowledgement";
             return Flow::Restart;
           }
-          return fatal(UploadStatus::Refused, "the controller refused " + frame.what +
-                                                  " (status " + hex2(ack.status) +
-                                                  ", twice in a row)");
+          return fatal(UploadStatus::Refused, "the controller refused " + frame.what + " (status " +
+                                                  hex2(ack.status) + ", twice in a row)");
         }
         suspect_before_refusal = suspect_;
         refused_once = true;

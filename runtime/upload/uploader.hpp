@@ -132,8 +132,8 @@ struct UploadProgress {
 };
 
 struct RetryEvent {
-  std::string what;    // "step 4 (block 0, action 17)", "barrier", "probe"
-  int attempt = 2;     // the attempt about to be made (2 = first re-send)
+  std::string what;  // "step 4 (block 0, action 17)", "barrier", "probe"
+  int attempt = 2;   // the attempt about to be made (2 = first re-send)
   int max_attempts = 0;
   std::string reason;  // "no acknowledgement within 0.536 s"
 };
@@ -152,11 +152,11 @@ struct UploadResult {
   std::string message;  // for the user when status != Completed
   GroupState group_state = GroupState::Unchanged;
   std::size_t actions_total = 0;
-  std::size_t actions_acknowledged = 0;  // in the last attempt
+  std::size_t actions_acknowledged = 0;     // in the last attempt
   std::optional<std::uint16_t> battery_mv;  // from the probe
-  int retries = 0;   // re-sends of frames and barriers, all attempts
-  int restarts = 0;  // whole-download restarts
-  std::size_t stale_acks = 0;  // acks discarded by barriers and drains
+  int retries = 0;                          // re-sends of frames and barriers, all attempts
+  int restarts = 0;                         // whole-download restarts
+  std::size_t stale_acks = 0;               // acks discarded by barriers and drains
   bool run_sent = false;
   bool run_reported = false;  // the controller announced the group started
   io::Duration elapsed{0};

@@ -63,7 +63,8 @@ Sample measure(const std::vector<std::string>& args, const char* out_path = "/de
 }
 
 Sample median(std::vector<Sample> v) {
-  std::sort(v.begin(), v.end(), [](const Sample& a, const Sample& b) { return a.wall_ms < b.wall_ms; });
+  std::sort(v.begin(), v.end(),
+            [](const Sample& a, const Sample& b) { return a.wall_ms < b.wall_ms; });
   Sample m = v[v.size() / 2];
   for (const Sample& s : v) m.max_rss_kib = std::max(m.max_rss_kib, s.max_rss_kib);
   return m;
@@ -92,8 +93,10 @@ int main(int argc, char** argv) {
   int runs = 7;
   std::string dir = ".";
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-    else if (std::strcmp(argv[i], "--dir") == 0 && i + 1 < argc) dir = argv[++i];
+    if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc)
+      runs = std::max(1, std::atoi(argv[++i]));
+    else if (std::strcmp(argv[i], "--dir") == 0 && i + 1 < argc)
+      dir = argv[++i];
     else {
       std::fprintf(stderr, "usage: compile_bench [--runs N] [--dir DIR]\n");
       return 2;
@@ -132,9 +135,10 @@ int main(int argc, char** argv) {
   const Sample p = median(py_runs);
   std::printf("input: %s (%zu bytes, 1020 actions x 32 servos, lsc-32)\n", file.c_str(),
               yaml.size());
-  std::printf("method: separate processes (fork+exec), wall = CLOCK_MONOTONIC around fork..wait4,\n"
-              "        peak RSS = wait4 ru_maxrss; median wall of %d interleaved runs, max RSS\n",
-              runs);
+  std::printf(
+      "method: separate processes (fork+exec), wall = CLOCK_MONOTONIC around fork..wait4,\n"
+      "        peak RSS = wait4 ru_maxrss; median wall of %d interleaved runs, max RSS\n",
+      runs);
   std::printf("seqc compile (parse+validate+plan+encode): %8.1f ms  %7.1f MiB\n", s.wall_ms,
               static_cast<double>(s.max_rss_kib) / 1024.0);
   std::printf("PyYAML load (/usr/bin/python3, %s): %8.1f ms  %7.1f MiB\n", loader.c_str(),

@@ -117,8 +117,8 @@ void report(const char* name, const Result& r, std::size_t frames) {
   std::printf(
       "%-9s host lateness p50 %8.3f  p99 %8.3f  max %8.3f ms | board lateness p50 %8.3f  p99 "
       "%8.3f  max %8.3f ms | drift %9.3f ms | %zu/%zu packets, bytes %s\n",
-      name, ms(host.p50), ms(host.p99), ms(host.max), ms(board.p50), ms(board.p99),
-      ms(board.max), drift, r.received, frames, r.bytes_equal ? "identical" : "DIFFER");
+      name, ms(host.p50), ms(host.p99), ms(host.max), ms(board.p50), ms(board.p99), ms(board.max),
+      drift, r.received, frames, r.bytes_equal ? "identical" : "DIFFER");
 }
 
 }  // namespace
@@ -129,12 +129,16 @@ int main(int argc, char** argv) {
   std::string which = "both";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--stream-minutes") minutes = std::atof(argv[i + 1]);
-    else if (a == "--scale") scale = std::atof(argv[i + 1]);
-    else if (a == "--player") which = argv[i + 1];
+    if (a == "--stream-minutes")
+      minutes = std::atof(argv[i + 1]);
+    else if (a == "--scale")
+      scale = std::atof(argv[i + 1]);
+    else if (a == "--player")
+      which = argv[i + 1];
     else {
-      std::fprintf(stderr, "usage: play_bench [--stream-minutes M] [--scale S] "
-                           "[--player deadline|naive|both]\n");
+      std::fprintf(stderr,
+                   "usage: play_bench [--stream-minutes M] [--scale S] "
+                   "[--player deadline|naive|both]\n");
       return 2;
     }
   }
@@ -155,17 +159,18 @@ int main(int argc, char** argv) {
   for (double offset = 0; offset < target_ms; offset += program.duration_ms) {
     for (const auto& f : *one) {
       const double t = (offset + f.at_ms) * scale;
-      frames.push_back({std::chrono::duration_cast<io::Duration>(
-                            std::chrono::duration<double, std::milli>(t)),
-                        f.bytes});
+      frames.push_back(
+          {std::chrono::duration_cast<io::Duration>(std::chrono::duration<double, std::milli>(t)),
+           f.bytes});
       bytes += f.bytes.size();
     }
   }
   const double real_s = std::chrono::duration<double>(frames.back().at).count();
-  std::printf("play_bench: examples/car-dance.yaml repeated to %.1f min of stream (%zu frames, "
-              "%zu bytes), send times x%.3g -> %.1f s real time, %.0f B/s on a 11,520 B/s link; "
-              "SteadyClock, SerialTransport 115200 baud over a pty, emulator on a thread\n",
-              minutes, frames.size(), bytes, scale, real_s, static_cast<double>(bytes) / real_s);
+  std::printf(
+      "play_bench: examples/car-dance.yaml repeated to %.1f min of stream (%zu frames, "
+      "%zu bytes), send times x%.3g -> %.1f s real time, %.0f B/s on a 11,520 B/s link; "
+      "SteadyClock, SerialTransport 115200 baud over a pty, emulator on a thread\n",
+      minutes, frames.size(), bytes, scale, real_s, static_cast<double>(bytes) / real_s);
   std::fflush(stdout);
   if (which == "deadline" || which == "both") report("deadline", run(frames, false), frames.size());
   std::fflush(stdout);

@@ -69,8 +69,7 @@ int bench(std::uint32_t baud, std::size_t count) {
   upload::Uploader uploader(link, {});
   const auto t0 = std::chrono::steady_clock::now();
   const upload::UploadResult r = uploader.upload(plan);
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stop = true;
   serving.join();
 
@@ -82,8 +81,7 @@ int bench(std::uint32_t baud, std::size_t count) {
       "%zu bytes sent + %zu received = %zu bytes -> wire bound %.3f s; wall/bound = %.3f "
       "(re-sends %d, restarts %d)\n",
       count, baud, upload::to_string(r.status), stored ? "= plan" : "!= plan", wall,
-      r.link.bytes_sent, r.link.bytes_received, bytes, bound, wall / bound, r.retries,
-      r.restarts);
+      r.link.bytes_sent, r.link.bytes_received, bytes, bound, wall / bound, r.retries, r.restarts);
   return r.ok() && stored ? 0 : 1;
 }
 

@@ -39,8 +39,8 @@ SeqcRun seqc(const fs::path& dir, const std::string& args, const std::string& st
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
   const fs::path out = tmp / ("out-" + tag);
   const fs::path err = tmp / ("err-" + tag);
-  std::string cmd = "cd '" + dir.string() + "' && '" SEQC_BIN "' " + args + " >'" +
-                    out.string() + "' 2>'" + err.string() + "'";
+  std::string cmd = "cd '" + dir.string() + "' && '" SEQC_BIN "' " + args + " >'" + out.string() +
+                    "' 2>'" + err.string() + "'";
   cmd += " <" + (stdin_file.empty() ? std::string("/dev/null") : "'" + stdin_file + "'");
   const int raw = std::system(cmd.c_str());
   SeqcRun r{slurp(out), slurp(err), WIFEXITED(raw) ? WEXITSTATUS(raw) : -1};
@@ -139,8 +139,8 @@ TEST(Help, GoldenForSeqcAndOfflineSubcommands) {
 }
 
 TEST(Check, SummarisesEveryFileAndFailsIfAnyIsBad) {
-  SeqcRun r = seqc(kSource,
-               "check examples/walk.yaml tests/golden/bad-unknown-pose.yaml examples/wave.yaml");
+  SeqcRun r = seqc(
+      kSource, "check examples/walk.yaml tests/golden/bad-unknown-pose.yaml examples/wave.yaml");
   EXPECT_EQ(r.status, 1);
   expect_golden(kCliGolden / "check-several.stdout", r.out);
 }
@@ -172,7 +172,8 @@ TEST(Compile, WritesOutputOnlyOnSuccess) {
   const fs::path out = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp/compile-out.hex";
   fs::create_directories(out.parent_path());
   fs::remove(out);
-  SeqcRun bad = seqc(kSource, "compile tests/golden/bad-unknown-pose.yaml -o '" + out.string() + "'");
+  SeqcRun bad =
+      seqc(kSource, "compile tests/golden/bad-unknown-pose.yaml -o '" + out.string() + "'");
   EXPECT_EQ(bad.status, 1);
   EXPECT_FALSE(fs::exists(out));
   SeqcRun good = seqc(kSource, "compile examples/walk.yaml -o '" + out.string() + "'");

@@ -38,7 +38,7 @@ TEST(DeviceBattery, UnansweredCommandIsConfirmedTwiceThenFails) {
   DeviceHarness h(config);
   RunResult r = h.run({"servo", "off", "1", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 4);
-  EXPECT_EQ(h.received(), hex("55 55 03 14 01 01  55 55 02 0f  55 55 02 0f"));
+  EXPECT_EQ(h.received(), hex("55 55 04 14 01 01  55 55 02 0f  55 55 02 0f"));
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err,
             "seqc: error: no reply from the controller on emu:xarm: MultiServoOff servos=[1] has "

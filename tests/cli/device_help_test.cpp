@@ -60,9 +60,9 @@ INSTANTIATE_TEST_SUITE_P(
                       std::vector<std::string>{"bus-info"},
                       std::vector<std::string>{"bus-info", "read"},
                       std::vector<std::string>{"bus-info", "write"}),
-    [](const ::testing::TestParamInfo<std::vector<std::string>>& info) {
+    [](const ::testing::TestParamInfo<std::vector<std::string>>& param_info) {
       std::string name;
-      for (const std::string& a : info.param) {
+      for (const std::string& a : param_info.param) {
         for (char c : a) name += (c == '-') ? '_' : c;
         name += '_';
       }

@@ -116,16 +116,9 @@ TEST(RaspblockCli, PlayNeedsAPortAndASerialOne) {
   EXPECT_EQ(xarm.err,
             "seqc: error: --port emu:xarm is the servo controller's emulator; "
             "tests/golden/raspblock/small.yaml is for the raspblock (use --port emu:raspblock)\n");
-  SeqcRun missing = seqc({"play", "tests/golden/raspblock/small.yaml", "--port", "/nonexistent/tty"});
+  SeqcRun missing =
+      seqc({"play", "tests/golden/raspblock/small.yaml", "--port", "/nonexistent/tty"});
   EXPECT_EQ(missing.status, 3) << missing.err;
-}
-
-TEST(RaspblockCli, ServoControllerPlayIsNotYetThere) {
-  SeqcRun r = seqc({"play", "examples/walk.yaml", "--port", "emu:xarm"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err,
-            "seqc: error: `seqc play` does not yet stream to servo-controller robots; use `seqc "
-            "upload examples/walk.yaml` to store and run the sequence on the controller\n");
 }
 
 TEST(RaspblockCli, UploadExplanationForABoardWithoutStorage) {

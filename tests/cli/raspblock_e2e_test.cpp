@@ -42,8 +42,8 @@ std::vector<Row> parse_csv(const std::string& text) {
 }
 
 TEST(RaspblockEndToEnd, EmulatorRecordsTheCompiledCarDance) {
-  const fs::path tmp = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp" /
-                       ("e2e-" + std::to_string(::getpid()));
+  const fs::path tmp =
+      fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp" / ("e2e-" + std::to_string(::getpid()));
   fs::create_directories(tmp);
   const fs::path csv = tmp / "timeline.csv";
   const fs::path emu_err = tmp / "emulate.stderr";
@@ -67,9 +67,9 @@ TEST(RaspblockEndToEnd, EmulatorRecordsTheCompiledCarDance) {
   while (::read(pipefd[0], &c, 1) == 1 && c != '\n') pty += c;
   ASSERT_FALSE(pty.empty()) << "seqc emulate printed no terminal";
 
-  const std::string play = "cd '" + std::string(SEQC_SOURCE_DIR) + "' && '" SEQC_BIN
-                           "' play examples/car-dance.yaml --port " + pty + " 2>'" +
-                           (tmp / "play.stderr").string() + "'";
+  const std::string play = "cd '" + std::string(SEQC_SOURCE_DIR) +
+                           "' && '" SEQC_BIN "' play examples/car-dance.yaml --port " + pty +
+                           " 2>'" + (tmp / "play.stderr").string() + "'";
   const int raw = std::system(play.c_str());
   ::usleep(200000);  // the last bytes reach the emulator
   ::kill(emu, SIGINT);
@@ -84,8 +84,8 @@ TEST(RaspblockEndToEnd, EmulatorRecordsTheCompiledCarDance) {
 
   // What the compiled stream means for the board, fed in at the stream's own times.
   seqc::io::DiskFileReader files;
-  auto compiled =
-      seqc::compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/car-dance.yaml", files);
+  auto compiled = seqc::compiler::compile_file(
+      std::string(SEQC_SOURCE_DIR) + "/examples/car-dance.yaml", files);
   ASSERT_NE(compiled.raspblock_program(), nullptr);
   auto frames = seqc::backend::plan_stream(*compiled.raspblock_program());
   ASSERT_TRUE(frames.ok());

@@ -22,8 +22,9 @@ std::string n_actions(int n) {
 }
 
 TEST(Backend, ActionsMirrorKeyframes) {
-  auto out = compile_text("robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
-                          "700ms\n  - wait: 40ms\n");
+  auto out = compile_text(
+      "robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
+      "700ms\n  - wait: 40ms\n");
   const auto actions = to_actions(program_of(out));
   ASSERT_EQ(actions.size(), 2u);
   EXPECT_EQ(actions[0], (lsc::GroupAction{700, {{1, 100}, {6, 900}}}));
@@ -33,8 +34,9 @@ TEST(Backend, ActionsMirrorKeyframes) {
 TEST(Backend, SmallPlanIsByteExact) {
   // Written by hand from protocol-notes.md: group 2, one action of 700 ms moving servo 1 to
   // 100 (64 00) and servo 6 to 900 (84 03).
-  auto out = compile_text("robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
-                          "700ms\n");
+  auto out = compile_text(
+      "robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
+      "700ms\n");
   auto plan = plan_download(program_of(out), 2);
   ASSERT_TRUE(plan) << plan.error().message;
   EXPECT_EQ(render_hex(*plan),
@@ -87,8 +89,7 @@ sequence:
   EXPECT_EQ(moves[1].send_ms, 700u);
   EXPECT_EQ(moves[1].move.time_ms, 300);
   using E = lsc::MultiServoMove::Entry;
-  EXPECT_EQ(moves[1].move.servos,
-            (std::vector<E>{{1, std::nullopt}, {4, 300}, {6, std::nullopt}}));
+  EXPECT_EQ(moves[1].move.servos, (std::vector<E>{{1, std::nullopt}, {4, 300}, {6, std::nullopt}}));
   auto bytes = lsc::encode_serial(lsc::Request{moves[1].move});
   ASSERT_TRUE(bytes);
   EXPECT_EQ(to_hex(*bytes), "55 55 0e 03 03 2c 01 01 00 ff 04 2c 01 06 00 ff");
@@ -99,8 +100,8 @@ TEST(Backend, ExamplesRoundTripThroughHex) {
   for (const char* name : {"walk", "wave", "dance"}) {
     SCOPED_TRACE(name);
     io::DiskFileReader disk;
-    auto out = compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name + ".yaml",
-                                      disk);
+    auto out =
+        compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name + ".yaml", disk);
     const compiler::ServoProgram& p = program_of(out);
     auto plan = plan_download(p, 7);
     ASSERT_TRUE(plan) << plan.error().message;

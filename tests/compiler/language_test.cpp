@@ -14,7 +14,8 @@ using testing::program_of;
 
 std::vector<lsc::ServoTarget> T(std::initializer_list<std::pair<int, int>> list) {
   std::vector<lsc::ServoTarget> out;
-  for (auto [id, p] : list) out.push_back({static_cast<std::uint8_t>(id), static_cast<std::uint16_t>(p)});
+  for (auto [id, p] : list)
+    out.push_back({static_cast<std::uint8_t>(id), static_cast<std::uint16_t>(p)});
   return out;
 }
 

@@ -34,12 +34,12 @@ const std::string kStop = "ff fe 03 08 01 00 00 00 00 00 00 01 0d";
 
 TEST(RaspblockStream, DriveThenStop) {
   // The vendor driver's example: X=-10 -> 01 00 0a 00 00 00 00 05; 03+08+01+0a+05 = 1b.
-  EXPECT_EQ(frames_of("robot: raspblock\n"
-                      "sequence:\n"
-                      "  - drive: {x: -10}\n"
-                      "    time: 500ms\n"),
-            (std::vector<std::string>{"0: ff fe 03 08 01 00 0a 00 00 00 00 05 1b",
-                                      "500: " + kStop}));
+  EXPECT_EQ(
+      frames_of("robot: raspblock\n"
+                "sequence:\n"
+                "  - drive: {x: -10}\n"
+                "    time: 500ms\n"),
+      (std::vector<std::string>{"0: ff fe 03 08 01 00 0a 00 00 00 00 05 1b", "500: " + kStop}));
 }
 
 TEST(RaspblockStream, PidGimbalDrivesAndAServo) {
@@ -84,21 +84,21 @@ TEST(RaspblockStream, RepeatWithBeatsAndAWait) {
   const std::string right = "ff fe 03 08 01 00 19 00 00 00 00 01 26";  // x=25: 03+08+01+19+01
   const std::string left = "ff fe 03 08 01 00 19 00 00 00 00 05 2a";   // x=-25: X|Z bits = 05
   const std::string spin = "ff fe 03 08 01 00 00 00 00 00 c8 01 d5";   // z=200: c8, Z bit
-  EXPECT_EQ(frames_of("robot: raspblock\n"
-                      "tempo: 120\n"
-                      "sequence:\n"
-                      "  - repeat: 2\n"
-                      "    do:\n"
-                      "      - drive: {x: 25}\n"
-                      "        time: 1b\n"
-                      "      - drive: {x: -25}\n"
-                      "        time: 1b\n"
-                      "  - drive: {z: 200}\n"
-                      "    time: 0.5s\n"
-                      "  - wait: 1s\n"),
-            (std::vector<std::string>{"0: " + right, "500: " + left, "1000: " + right,
-                                      "1500: " + left, "2000: " + spin, "2500: " + kStop,
-                                      "3500: " + kStop}));
+  EXPECT_EQ(
+      frames_of("robot: raspblock\n"
+                "tempo: 120\n"
+                "sequence:\n"
+                "  - repeat: 2\n"
+                "    do:\n"
+                "      - drive: {x: 25}\n"
+                "        time: 1b\n"
+                "      - drive: {x: -25}\n"
+                "        time: 1b\n"
+                "  - drive: {z: 200}\n"
+                "    time: 0.5s\n"
+                "  - wait: 1s\n"),
+      (std::vector<std::string>{"0: " + right, "500: " + left, "1000: " + right, "1500: " + left,
+                                "2000: " + spin, "2500: " + kStop, "3500: " + kStop}));
 }
 
 TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
@@ -108,9 +108,9 @@ TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
       "  - move: {servo1: 1000}\n"
       "    time: 100ms\n"
       "  - move: {servo1: 1100}\n"
-      "    time: 100ms\n"     // default 20ms resolution: 5 packets, 20 apart
+      "    time: 100ms\n"  // default 20ms resolution: 5 packets, 20 apart
       "  - move: {servo1: 1100}\n"
-      "    time: 1s\n"        // already there: nothing to send
+      "    time: 1s\n"  // already there: nothing to send
       "  - move: {servo1: 90deg}\n"
       "    time: 40ms\n"
       "    steps: 2\n"
@@ -125,9 +125,9 @@ TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
     }
   }
   // 90deg = 500 + 90 * 2000/180 = 1500; ease in at k=1 of 2: 1100 + 400 * 0.25 = 1200.
-  const std::vector<std::pair<std::uint32_t, int>> want = {
-      {0, 1000},    {100, 1020},  {120, 1040}, {140, 1060}, {160, 1080},
-      {180, 1100},  {1200, 1200}, {1220, 1500}};
+  const std::vector<std::pair<std::uint32_t, int>> want = {{0, 1000},    {100, 1020}, {120, 1040},
+                                                           {140, 1060},  {160, 1080}, {180, 1100},
+                                                           {1200, 1200}, {1220, 1500}};
   EXPECT_EQ(got, want);
   EXPECT_EQ(p->duration_ms, 1240u);
   ASSERT_FALSE(p->packets.empty());

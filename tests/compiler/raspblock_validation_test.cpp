@@ -29,21 +29,21 @@ std::vector<std::string> messages(const CompileOutput& out) {
 
 TEST(RaspblockValidation, RangesKeysAndNamesInOneRun) {
   auto out = compile_text(
-      "robot: raspblock\n"                              // 1
+      "robot: raspblock\n"  // 1
       "pid: {mode: postion, speed_kp: 256, speed_ki: 1, position_kp: 1, position_ki: 1,\n"
       "      position_kd: 1, yaw_kp: 1, yaw_ki: 1, yaw_kd: 1}\n"
-      "sequence:\n"                                     // 4
-      "  - drive: {x: 30, y: -26, z: -201}\n"           // 5
-      "    tme: 1s\n"                                   // 6
-      "  - move: {pna: 1500, tilt: 2000}\n"             // 7
-      "    time: 1s\n"                                  // 8
-      "  - move: {servo5: 1500}\n"                      // 9
-      "    time: 1s\n"                                  // 10
-      "  - wait: 1s\n"                                  // 11
-      "    drive: {x: 1}\n"                             // 12
-      "  - drive: {x: 1}\n"                             // 13
-      "  - move: {servo1: +10}\n"                       // 14
-      "    time: 2b\n");                                // 15
+      "sequence:\n"                            // 4
+      "  - drive: {x: 30, y: -26, z: -201}\n"  // 5
+      "    tme: 1s\n"                          // 6
+      "  - move: {pna: 1500, tilt: 2000}\n"    // 7
+      "    time: 1s\n"                         // 8
+      "  - move: {servo5: 1500}\n"             // 9
+      "    time: 1s\n"                         // 10
+      "  - wait: 1s\n"                         // 11
+      "    drive: {x: 1}\n"                    // 12
+      "  - drive: {x: 1}\n"                    // 13
+      "  - move: {servo1: +10}\n"              // 14
+      "    time: 2b\n");                       // 15
   EXPECT_FALSE(out.program);
   EXPECT_EQ(messages(out),
             (std::vector<std::string>{
@@ -125,15 +125,16 @@ TEST(RaspblockValidation, FixedOutputsCannotBeRedefined) {
       "robot: {profile: raspblock, servos: {arm: 1}}\n"
       "sequence:\n"
       "  - wait: 1s\n");
-  EXPECT_EQ(messages(out), (std::vector<std::string>{
-                               "1:37 error: the raspblock's outputs are fixed (pan, tilt, "
-                               "servo1-servo4); remove 'servos'"}));
+  EXPECT_EQ(messages(out),
+            (std::vector<std::string>{"1:37 error: the raspblock's outputs are fixed (pan, tilt, "
+                                      "servo1-servo4); remove 'servos'"}));
 }
 
 TEST(RaspblockValidation, UnknownRobotSuggestsRaspblock) {
   auto out = compile_text("robot: raspblok\nsequence:\n  - wait: 1s\n");
-  EXPECT_EQ(messages(out), (std::vector<std::string>{
-                               "1:8 error: unknown robot 'raspblok'; did you mean 'raspblock'?"}));
+  EXPECT_EQ(
+      messages(out),
+      (std::vector<std::string>{"1:8 error: unknown robot 'raspblok'; did you mean 'raspblock'?"}));
 }
 
 TEST(RaspblockValidation, AStreamBeyondTheLinkIsAnErrorSayingWhereAndHowMuch) {
@@ -167,7 +168,8 @@ TEST(RaspblockValidation, CapacityWindowIsExactAtTheEdge) {
   // 1,152 bytes in a 100ms window is exactly the link; one byte more is not.
   std::vector<TimedPacket> packets;
   const raspblock::Packet single = raspblock::SingleServo{1, 1500};  // 8 bytes
-  for (int i = 0; i < 144; ++i) packets.push_back({static_cast<std::uint32_t>(i % 100), single, {}});
+  for (int i = 0; i < 144; ++i)
+    packets.push_back({static_cast<std::uint32_t>(i % 100), single, {}});
   EXPECT_TRUE(find_overloads(packets).empty());  // 144 * 8 = 1,152
   packets.push_back({99, raspblock::Rocker{}, Location{0, 9, 1}});
   auto over = find_overloads(packets);

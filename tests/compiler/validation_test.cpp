@@ -95,8 +95,8 @@ sequence:
       - move: {claw: 1001}
         time: 100ms
 )");
-  EXPECT_EQ(messages(out), std::vector<std::string>{
-                               "7:22 error: 'claw' would move to 1001, above its max 1000"});
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{"7:22 error: 'claw' would move to 1001, above its max 1000"});
 }
 
 TEST(Validation, RelativeDriftIsCaughtAtTheFirstPassThatOverflows) {
@@ -155,7 +155,8 @@ sequence:
 
 TEST(Validation, IncludeErrorsCarryTheIncludeChain) {
   MemoryFiles files;
-  files.files["a.yaml"] = "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n  - include: b.yaml\n";
+  files.files["a.yaml"] =
+      "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n  - include: b.yaml\n";
   files.files["b.yaml"] = "sequence:\n  - include: c.yaml\n";
   files.files["c.yaml"] = "sequence:\n  - move: {claw: 2000}\n    time: 1s\n";
   auto out = compile_file("a.yaml", files);
@@ -206,8 +207,8 @@ sequence:
   - move: {gripper: 600, claw: 250}
     time: 1s
 )");
-  EXPECT_EQ(messages(out), std::vector<std::string>{
-                               "6:26 error: servo 'gripper' is given twice in this move"});
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{"6:26 error: servo 'gripper' is given twice in this move"});
 }
 
 TEST(Validation, ServoNamedLikeAnotherProfileServo) {

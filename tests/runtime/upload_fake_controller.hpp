@@ -100,8 +100,8 @@ class FakeController final : public io::Transport {
   };
 
   io::Duration wire(std::size_t bytes) const {
-    return io::Duration(static_cast<long long>(static_cast<double>(bytes) *
-                                               script_.seconds_per_byte * 1e9));
+    return io::Duration(
+        static_cast<long long>(static_cast<double>(bytes) * script_.seconds_per_byte * 1e9));
   }
 
   void emit(const lsc::Frame& frame, io::TimePoint ready, std::size_t n) {

@@ -117,8 +117,8 @@ TEST(UploadSoak, MixedFaultsNeverReportAWrongGroup) {
       "soak: %zu uploads of 1020 actions (fault rates x%.2f): %zu completed, %zu with a hang-up "
       "fault (%zu failed, %zu completed before it), %zu other failures, %zu reported success "
       "with a wrong group; %zu re-sends, %zu restarts\n",
-      uploads, scale, completed, hangup_failed + hangup_completed, hangup_failed,
-      hangup_completed, other_failed, wrong_success, retries, restarts);
+      uploads, scale, completed, hangup_failed + hangup_completed, hangup_failed, hangup_completed,
+      other_failed, wrong_success, retries, restarts);
   for (const auto& [what, n] : failures) std::printf("  failure x%zu: %s\n", n, what.c_str());
 
   EXPECT_EQ(wrong_success, 0u);
