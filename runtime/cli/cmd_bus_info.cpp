@@ -32,7 +32,8 @@ std::string warning_text(std::uint8_t bits) {
   for (int b = 0; b < 3; ++b) {
     if ((bits >> b) & 1) out += (out.empty() ? "" : ",") + std::string(kWarningNames[b]);
   }
-  if ((bits & ~0x07) != 0) out += (out.empty() ? "" : ",") + std::string("bits ") + std::to_string(bits);
+  if ((bits & ~0x07) != 0)
+    out += (out.empty() ? "" : ",") + std::string("bits ") + std::to_string(bits);
   return out.empty() ? "none" : out;
 }
 
@@ -65,14 +66,11 @@ std::string limits_table(const lsc::BusServoLimits& l, std::vector<std::vector<s
   table.add({"millivolts-min", std::to_string(l.millivolts_min)});
   table.add({"millivolts-max", std::to_string(l.millivolts_max)});
   table.add({"temp-max", std::to_string(l.temp_max)});
-  table.add({"led", l.led_status == 0 ? "on" : l.led_status == 1 ? "off" : std::to_string(l.led_status)});
+  table.add({"led", l.led_status == 0   ? "on"
+                    : l.led_status == 1 ? "off"
+                                        : std::to_string(l.led_status)});
   table.add({"led-warning", warning_text(l.led_warning)});
   return table.render();
-}
-
-ExitCode usage(Context& ctx, const std::string& message) {
-  ctx.err << "seqc: error: " << message << "\n";
-  return ExitCode::Usage;
 }
 
 // ---- read ----------------------------------------------------------------------------------
@@ -107,16 +105,15 @@ struct WriteOptions {
   std::optional<std::string> led_warning;
 
   bool complete() const {
-    return servo && position_min && position_max && millivolts_min && millivolts_max &&
-           temp_max && led && led_warning;
+    return servo && position_min && position_max && millivolts_min && millivolts_max && temp_max &&
+           led && led_warning;
   }
 };
 
 // The fields the user gave, checked; `base` supplies the others.
 struct Changes {
   std::optional<std::uint8_t> servo;
-  std::optional<std::uint16_t> position_min, position_max, millivolts_min, millivolts_max,
-      temp_max;
+  std::optional<std::uint16_t> position_min, position_max, millivolts_min, millivolts_max, temp_max;
   std::optional<std::uint8_t> led_status, led_warning;
 };
 
@@ -176,16 +173,17 @@ std::optional<std::string> inconsistent(const lsc::BusServoLimits& l) {
 
 ExitCode write_info(Context& ctx, const WriteOptions& o) {
   if (!o.one_servo) {
-    return usage(ctx, std::string("bus-info write is not addressed to one servo: every servo on "
-                                  "the bus takes these settings at once. Disconnect all servos "
-                                  "but the one to configure, then add ") +
-                          kConfirmFlag);
+    return usage_error(ctx,
+                       std::string("bus-info write is not addressed to one servo: every servo on "
+                                   "the bus takes these settings at once. Disconnect all servos "
+                                   "but the one to configure, then add ") +
+                           kConfirmFlag);
   }
   auto changes = check_changes(o);
-  if (!changes) return usage(ctx, changes.error().message);
+  if (!changes) return usage_error(ctx, changes.error().message);
   if (o.complete()) {
     auto whole = apply(*changes, 0, {});
-    if (auto bad = inconsistent(whole.limits)) return usage(ctx, *bad);
+    if (auto bad = inconsistent(whole.limits)) return usage_error(ctx, *bad);
   }
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     lsc::BusServoInfoWrite write = apply(*changes, 0, {});
@@ -239,8 +237,8 @@ void add_bus_info_command(CLI::App& app, Context& ctx, Outcome& result) {
   write_cmd->add_option("--led", w->led, "Status LED: on or off")
       ->check(CLI::IsMember({"on", "off"}));
   write_cmd->add_option("--led-warning", w->led_warning,
-                        "Which faults flash the LED: comma list of overheat, overvoltage, "
-                        "overposition, or none");
+                        "Faults the LED flashes for: overheat,overvoltage,overposition "
+                        "(any) or none");
   add_device_options(*write_cmd, w->device);
   write_cmd->callback([w, &ctx, &result] { result.code = write_info(ctx, *w); });
 }

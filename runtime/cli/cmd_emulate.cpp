@@ -1,5 +1,6 @@
 // `seqc emulate xarm|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
 // path is the one line on stdout; progress and the Raspblock's state changes go to stderr.
+// On exit, --record writes what was received and --dump-groups (xarm) the stored groups.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/commands.hpp"
+#include "runtime/emulator/group_dump.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
@@ -29,11 +31,13 @@ struct EmulateOptions {
   std::uint64_t seed = 1;
   std::string link;
   std::string record;
+  std::string dump_groups;
   CLI::Option* baud_opt = nullptr;
   CLI::Option* faults_opt = nullptr;
   CLI::Option* seed_opt = nullptr;
   CLI::Option* link_opt = nullptr;
   CLI::Option* record_opt = nullptr;
+  CLI::Option* dump_groups_opt = nullptr;
 };
 
 std::string seconds(io::TimePoint at) {
@@ -79,6 +83,11 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   if (!xarm && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
     ctx.err << "seqc: error: --faults and --seed apply to the xarm emulator only (the Raspblock "
                "board never replies)\n";
+    return ExitCode::Usage;
+  }
+  if (!xarm && o.dump_groups_opt->count() > 0) {
+    ctx.err << "seqc: error: --dump-groups applies to the xarm emulator only (the Raspblock "
+               "board stores no groups)\n";
     return ExitCode::Usage;
   }
   emu::XArmConfig config;
@@ -146,6 +155,13 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
       return ExitCode::FileError;
     }
   }
+  if (o.dump_groups_opt->count() > 0) {
+    if (auto ok = io::write_file_atomically(o.dump_groups, emu::dump_groups(xarm_emu)); !ok) {
+      ctx.err << "seqc: error: --dump-groups " << o.dump_groups << ": " << ok.error().message
+              << "\n";
+      return ExitCode::FileError;
+    }
+  }
   return code;
 }
 
@@ -160,8 +176,9 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("device", opts->device, "xarm (servo controller) or raspblock (car board)")
       ->required()
       ->check(CLI::IsMember({"xarm", "raspblock"}));
-  opts->baud_opt = cmd->add_option("--baud", opts->baud,
-                                   "Reply pacing in baud, 0 = unpaced (xarm default 9600)");
+  opts->baud_opt = cmd->add_option(
+      "--baud", opts->baud,
+      "xarm: line rate both ways (10 bits per byte), 0 = unpaced\n(default 9600)");
   opts->faults_opt =
       cmd->add_option("--faults", opts->faults,
                       "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
@@ -173,6 +190,10 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   opts->record_opt = cmd->add_option(
       "--record", opts->record,
       "On exit, write what was received as CSV\n(xarm: every frame; raspblock: state timeline)");
+  opts->dump_groups_opt = cmd->add_option(
+      "--dump-groups", opts->dump_groups,
+      "xarm: on exit, write every valid stored group, one action\n"
+      "per line: GROUP INDEX TIME_MS ID=POSITION ...");
   cmd->callback([opts, &ctx, &result] { result.code = run_emulate(*opts, ctx); });
 }
 

@@ -30,11 +30,6 @@ Result<GroupTarget> parse_group_target(const std::string& text) {
   return GroupTarget{*g, false};
 }
 
-ExitCode usage(Context& ctx, const std::string& message) {
-  ctx.err << "seqc: error: " << message << "\n";
-  return ExitCode::Usage;
-}
-
 bool saw_start(const ControllerSession& s, std::uint8_t group) {
   for (const lsc::Reply& r : s.notifications()) {
     if (auto* started = std::get_if<lsc::GroupStarted>(&r); started && started->group == group) {
@@ -54,13 +49,14 @@ struct RunOptions {
 
 ExitCode run_group(Context& ctx, const RunOptions& o) {
   auto group = parse_group(o.group);
-  if (!group) return usage(ctx, group.error().message);
-  if (o.forever && o.times_opt->count() > 0) return usage(ctx, "give --times or --forever, not both");
+  if (!group) return usage_error(ctx, group.error().message);
+  if (o.forever && o.times_opt->count() > 0)
+    return usage_error(ctx, "give --times or --forever, not both");
   std::uint16_t times = 0;
   if (!o.forever) {
     if (o.times < 1 || o.times > 65535) {
-      return usage(ctx, "--times must be 1..65535, got " + std::to_string(o.times) +
-                            " (--forever loops until `seqc group stop`)");
+      return usage_error(ctx, "--times must be 1..65535, got " + std::to_string(o.times) +
+                                  " (--forever loops until `seqc group stop`)");
     }
     times = static_cast<std::uint16_t>(o.times);
   }
@@ -104,7 +100,7 @@ struct EraseOptions {
 
 ExitCode erase_group(Context& ctx, const EraseOptions& o) {
   auto target = parse_group_target(o.group);
-  if (!target) return usage(ctx, target.error().message);
+  if (!target) return usage_error(ctx, target.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.ask<lsc::GroupErased>(lsc::GroupErase{target->group}, "the erase confirmation")) {
       return ExitCode::DeviceFailure;
@@ -122,10 +118,10 @@ struct SpeedOptions {
 
 ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
   auto target = parse_group_target(o.group);
-  if (!target) return usage(ctx, target.error().message);
+  if (!target) return usage_error(ctx, target.error().message);
   auto percent = lsc::checked_u16(o.percent, "percent");
-  if (!percent) return usage(ctx, percent.error().message);
-  if (*percent == 0) return usage(ctx, "percent must be 1..65535 (100 = as stored), got 0");
+  if (!percent) return usage_error(ctx, percent.error().message);
+  if (*percent == 0) return usage_error(ctx, "percent must be 1..65535 (100 = as stored), got 0");
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::GroupSpeed{target->group, *percent})) return ExitCode::DeviceFailure;
     ctx.out << target->text() << " speed " << *percent

@@ -23,18 +23,6 @@ namespace {
 constexpr long long kOffsetMin = -128;
 constexpr long long kOffsetMax = 127;
 
-ExitCode usage(Context& ctx, const std::string& message) {
-  ctx.err << "seqc: error: " << message << "\n";
-  return ExitCode::Usage;
-}
-
-std::string join_labels(const std::vector<std::uint8_t>& ids,
-                        const std::optional<compiler::RobotInfo>& robot) {
-  std::string out;
-  for (std::uint8_t id : ids) out += (out.empty() ? "" : ", ") + servo_label(id, robot);
-  return out;
-}
-
 struct Options {
   DeviceOptions device;
   std::vector<std::string> servos;
@@ -43,15 +31,11 @@ struct Options {
   std::string robot;
 };
 
-void add_robot_option(CLI::App& cmd, std::string& robot) {
-  cmd.add_option("--robot", robot, "Robot profile (xarm, lsc-16, lsc-32): allows servo names");
-}
-
 ExitCode read_offsets(Context& ctx, const Options& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage(ctx, ids.error().message);
+  if (!ids) return usage_error(ctx, ids.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     auto reply = s.ask<lsc::ServoOffsets>(lsc::ServoOffsetRead{*ids}, "the offsets");
     if (!reply) return ExitCode::DeviceFailure;
@@ -74,7 +58,7 @@ ExitCode read_offsets(Context& ctx, const Options& o) {
     ctx.out << table.render();
     if (!missing.empty()) {
       ctx.err << "seqc: error: the controller reported no offset for "
-              << join_labels(missing, *robot) << " (not on the bus, or not answering)\n";
+              << servo_labels(missing, *robot) << " (not on the bus, or not answering)\n";
       return ExitCode::DeviceFailure;
     }
     return ExitCode::Ok;
@@ -83,35 +67,35 @@ ExitCode read_offsets(Context& ctx, const Options& o) {
 
 ExitCode adjust_offset(Context& ctx, const Options& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto id = parse_servo(o.servo, *robot);
-  if (!id) return usage(ctx, id.error().message);
+  if (!id) return usage_error(ctx, id.error().message);
   auto number = parse_integer(o.offset, "offset");
-  if (!number) return usage(ctx, number.error().message);
+  if (!number) return usage_error(ctx, number.error().message);
   auto offset = lsc::checked_i16(*number, "offset");
-  if (!offset) return usage(ctx, offset.error().message);
+  if (!offset) return usage_error(ctx, offset.error().message);
   if (*number < kOffsetMin || *number > kOffsetMax) {
-    return usage(ctx, "offset must be " + std::to_string(kOffsetMin) + ".." +
-                          std::to_string(kOffsetMax) + ", got " + std::to_string(*number) +
-                          " (ServoOffsetRead reports offsets as a signed byte)");
+    return usage_error(ctx, "offset must be " + std::to_string(kOffsetMin) + ".." +
+                                std::to_string(kOffsetMax) + ", got " + std::to_string(*number) +
+                                " (ServoOffsetRead reports offsets as a signed byte)");
   }
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::ServoOffsetAdjust{*id, *offset})) return ExitCode::DeviceFailure;
     ctx.out << servo_label(*id, *robot) << ": offset set to " << *offset
-            << " (volatile: lost at power-off unless written with `seqc offset write "
-            << int{*id} << "`)\n";
+            << " (volatile: lost at power-off unless written with `seqc offset write " << int{*id}
+            << "`)\n";
     return ExitCode::Ok;
   });
 }
 
 ExitCode write_offsets(Context& ctx, const Options& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage(ctx, ids.error().message);
+  if (!ids) return usage_error(ctx, ids.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::ServoOffsetWrite{*ids})) return ExitCode::DeviceFailure;
-    ctx.out << join_labels(*ids, *robot) << ": offset written (kept over power-off)\n";
+    ctx.out << servo_labels(*ids, *robot) << ": offset written (kept over power-off)\n";
     return ExitCode::Ok;
   });
 }

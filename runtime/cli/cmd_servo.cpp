@@ -18,22 +18,6 @@
 namespace seqc::cli {
 namespace {
 
-ExitCode usage(Context& ctx, const std::string& message) {
-  ctx.err << "seqc: error: " << message << "\n";
-  return ExitCode::Usage;
-}
-
-std::string join_labels(const std::vector<std::uint8_t>& ids,
-                        const std::optional<compiler::RobotInfo>& robot) {
-  std::string out;
-  for (std::uint8_t id : ids) out += (out.empty() ? "" : ", ") + servo_label(id, robot);
-  return out;
-}
-
-void add_robot_option(CLI::App& cmd, std::string& robot) {
-  cmd.add_option("--robot", robot, "Robot profile (xarm, lsc-16, lsc-32): allows servo names");
-}
-
 // ---- read ----------------------------------------------------------------------------------
 
 struct ReadOptions {
@@ -44,14 +28,16 @@ struct ReadOptions {
 
 ExitCode read_positions(Context& ctx, const ReadOptions& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   std::vector<std::string> names = o.servos;
   if (names.empty()) {
-    if (!*robot) return usage(ctx, "name the servos to read, or give --robot to read all of a profile's");
+    if (!*robot)
+      return usage_error(ctx,
+                         "name the servos to read, or give --robot to read all of a profile's");
     for (const auto& s : (*robot)->servos) names.push_back(std::to_string(s.id));
   }
   auto ids = parse_servo_list(names, *robot);
-  if (!ids) return usage(ctx, ids.error().message);
+  if (!ids) return usage_error(ctx, ids.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{*ids}, "the positions");
     if (!reply) return ExitCode::DeviceFailure;
@@ -74,7 +60,7 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
     ctx.out << table.render();
     if (!missing.empty()) {
       ctx.err << "seqc: error: the controller reported no position for "
-              << join_labels(missing, *robot) << " (not on the bus, or not answering)\n";
+              << servo_labels(missing, *robot) << " (not on the bus, or not answering)\n";
       return ExitCode::DeviceFailure;
     }
     return ExitCode::Ok;
@@ -91,12 +77,12 @@ struct OffOptions {
 
 ExitCode servos_off(Context& ctx, const OffOptions& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage(ctx, ids.error().message);
+  if (!ids) return usage_error(ctx, ids.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::MultiServoOff{*ids})) return ExitCode::DeviceFailure;
-    ctx.out << join_labels(*ids, *robot) << ": off (no torque)\n";
+    ctx.out << servo_labels(*ids, *robot) << ": off (no torque)\n";
     return ExitCode::Ok;
   });
 }
@@ -112,18 +98,19 @@ struct MoveOptions {
 
 ExitCode move_servos(Context& ctx, const MoveOptions& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto ms = parse_milliseconds(o.time, "--time");
-  if (!ms) return usage(ctx, ms.error().message);
-  if (o.targets.size() > 255) return usage(ctx, "at most 255 servos fit in one move");
+  if (!ms) return usage_error(ctx, ms.error().message);
+  if (o.targets.size() > 255) return usage_error(ctx, "at most 255 servos fit in one move");
   lsc::MultiServoMove move;
   move.time_ms = *ms;
   std::string summary;
   for (const std::string& text : o.targets) {
     auto t = parse_target(text, *robot);
-    if (!t) return usage(ctx, t.error().message);
+    if (!t) return usage_error(ctx, t.error().message);
     for (const auto& e : move.servos) {
-      if (e.id == t->id) return usage(ctx, "servo " + std::to_string(t->id) + " is named twice");
+      if (e.id == t->id)
+        return usage_error(ctx, "servo " + std::to_string(t->id) + " is named twice");
     }
     move.servos.push_back({t->id, t->position});
     summary += (summary.empty() ? "" : ", ") + servo_label(t->id, *robot) + " to " +
@@ -148,11 +135,11 @@ struct ModeOptions {
 
 ExitCode set_mode(Context& ctx, const ModeOptions& o) {
   auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage(ctx, robot.error().message);
+  if (!robot) return usage_error(ctx, robot.error().message);
   auto id = parse_servo(o.servo, *robot);
-  if (!id) return usage(ctx, id.error().message);
+  if (!id) return usage_error(ctx, id.error().message);
   auto ms = parse_milliseconds(o.time, "--time");
-  if (!ms) return usage(ctx, ms.error().message);
+  if (!ms) return usage_error(ctx, ms.error().message);
   const lsc::ServoMode mode = o.mode == "motor" ? lsc::ServoMode::Motor : lsc::ServoMode::Servo;
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::ServoSpeed{*id, mode, *ms})) return ExitCode::DeviceFailure;
@@ -164,13 +151,13 @@ ExitCode set_mode(Context& ctx, const ModeOptions& o) {
 }  // namespace
 
 void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
-  CLI::App* servo = app.add_subcommand(
-      "servo", "Read, move or release single servos on the servo controller");
+  CLI::App* servo =
+      app.add_subcommand("servo", "Read, move or release single servos on the servo controller");
   servo->require_subcommand(1);
 
   auto read = std::make_shared<ReadOptions>();
-  CLI::App* read_cmd = servo->add_subcommand(
-      "read", "Print the positions of servos as a table (ServoPositionRead)");
+  CLI::App* read_cmd =
+      servo->add_subcommand("read", "Print the positions of servos as a table (ServoPositionRead)");
   read_cmd->add_option("SERVO", read->servos,
                        "Servo ids (or names with --robot); default with --robot: all of them");
   add_robot_option(*read_cmd, read->robot);
@@ -188,7 +175,8 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto move = std::make_shared<MoveOptions>();
   CLI::App* move_cmd = servo->add_subcommand(
       "move", "Move servos to positions together, e.g. `1=500 2=700 --time 1s` (MultiServoMove)");
-  move_cmd->add_option("TARGET", move->targets, "SERVO=POSITION, e.g. 1=500 (claw=200 with --robot)")
+  move_cmd
+      ->add_option("TARGET", move->targets, "SERVO=POSITION, e.g. 1=500 (claw=200 with --robot)")
       ->required();
   move_cmd->add_option("--time", move->time, "How long the move takes (ms or s, at most 65535ms)")
       ->capture_default_str();

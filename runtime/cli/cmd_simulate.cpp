@@ -1,6 +1,7 @@
 // seqc simulate FILE [-o out.csv] [--step MS]: servo positions over time as CSV.
 #include <string>
 
+#include "compiler/backend/raspblock_simulate.hpp"
 #include "compiler/backend/simulate.hpp"
 #include "compiler/lang/units.hpp"
 #include "runtime/cli/commands.hpp"
@@ -18,7 +19,7 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "simulate", "Print each servo's position over time as the controller would move it (CSV)");
+      "simulate", "Print each servo's position (or the car's state) over time, as CSV");
   cmd->add_option("FILE", opts->file, "Choreography file (.yaml)")->required();
   cmd->add_option("-o,--output", opts->output, "Write the CSV here instead of stdout");
   cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
@@ -29,18 +30,28 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
     if (!c.output.program) return;
-    const compiler::ServoProgram* program = c.output.servo_program();
-    if (program == nullptr) {  // other robot kinds have no servo-controller model to simulate
-      ctx.err << "seqc: error: " << opts->file
-              << ": simulate models the servo controller (xarm, lsc-16, lsc-32) only\n";
+    std::string csv;
+    std::uint64_t duration_ms = 0;
+    std::string what;
+    if (const compiler::ServoProgram* program = c.output.servo_program()) {
+      const backend::Simulation sim =
+          backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms));
+      csv = backend::to_csv(sim);
+      duration_ms = sim.duration_ms;
+      what = std::to_string(program->keyframes.size()) + " actions";
+    } else if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
+      const backend::CarSimulation sim =
+          backend::simulate_car(*car, static_cast<std::uint32_t>(opts->step_ms));
+      csv = backend::to_csv(sim);
+      duration_ms = sim.duration_ms;
+      what = std::to_string(car->packets.size()) + " packets";
+    } else {
+      ctx.err << "seqc: error: " << opts->file << ": this robot kind cannot be simulated\n";
       result.code = ExitCode::InvalidInput;
       return;
     }
-    const backend::Simulation sim =
-        backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms));
-    const std::string csv = backend::to_csv(sim);
-    ctx.err << "seqc: " << opts->file << ": " << program->keyframes.size() << " actions, "
-            << compiler::format_seconds(sim.duration_ms) << "\n";
+    ctx.err << "seqc: " << opts->file << ": " << what << ", "
+            << compiler::format_seconds(duration_ms) << "\n";
     if (opts->output.empty()) {
       ctx.out << csv;
     } else if (auto written = io::write_file_atomically(opts->output, csv); !written) {

@@ -19,11 +19,18 @@ const char* kCheckHint = "check that the controller is powered and connected, an
 }  // namespace
 
 void add_device_options(CLI::App& cmd, DeviceOptions& options) {
-  cmd.add_option("--port", options.port,
-                 "Controller port as for `seqc upload`; default: the one connected (emu:xarm: "
-                 "emulator)");
+  cmd.add_option("--port", options.port, "Port, as for `seqc upload` (default: the connected one)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
       ->capture_default_str();
+}
+
+void add_robot_option(CLI::App& cmd, std::string& profile) {
+  cmd.add_option("--robot", profile, "Robot profile (xarm, lsc-16, lsc-32): allows servo names");
+}
+
+ExitCode usage_error(Context& ctx, const std::string& message) {
+  ctx.err << "seqc: error: " << message << "\n";
+  return ExitCode::Usage;
 }
 
 std::string describe_duration(io::Duration d) {
@@ -58,15 +65,12 @@ bool ControllerSession::send(const lsc::Request& request) {
   }
   auto sent = link_.send(request);
   if (!sent) {
-    fail(ExitCode::DeviceFailure,
-         "cannot send " + lsc::describe(request) + " to " + port_name_ + ": " +
-             sent.error().message);
+    fail(ExitCode::DeviceFailure, "cannot send " + lsc::describe(request) + " to " + port_name_ +
+                                      ": " + sent.error().message);
     return false;
   }
   return true;
 }
-
-bool ControllerSession::send_only(const lsc::Request& request) { return send(request); }
 
 upload::WaitResult ControllerSession::round_trip(
     const lsc::Request& request, const std::function<bool(const lsc::Reply&)>& want) {
@@ -88,9 +92,9 @@ void ControllerSession::fail_wait(const upload::WaitResult& r, const std::string
     case upload::WaitStatus::Matched:
       return;
     case upload::WaitStatus::Timeout:
-      fail(ExitCode::DeviceFailure, "no reply from the controller on " + port_name_ +
-                                        " within " + describe_duration(timeout_) + " (" + what +
-                                        "); " + kCheckHint);
+      fail(ExitCode::DeviceFailure, "no reply from the controller on " + port_name_ + " within " +
+                                        describe_duration(timeout_) + " (" + what + "); " +
+                                        kCheckHint);
       return;
     case upload::WaitStatus::HangUp:
       fail(ExitCode::DeviceFailure,
@@ -131,9 +135,9 @@ bool ControllerSession::tell(const lsc::Request& request) {
     fail(ExitCode::DeviceFailure,
          "no reply from the controller on " + port_name_ + ": " + lsc::describe(request) +
              " has no answer of its own, and the battery check sent after it went unanswered "
-             "(sent " + std::to_string(kConfirmAttempts) + " times, " + describe_duration(timeout_) +
-             " each), so it may not have arrived; " +
-             kCheckHint);
+             "(sent " +
+             std::to_string(kConfirmAttempts) + " times, " + describe_duration(timeout_) +
+             " each), so it may not have arrived; " + kCheckHint);
   } else {
     fail_wait(r, "confirming " + lsc::describe(request));
   }

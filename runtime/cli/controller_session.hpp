@@ -13,7 +13,6 @@
 // waiting is the link's, on the injected clock.
 #pragma once
 
-#include <cstdio>
 #include <functional>
 #include <optional>
 #include <string>
@@ -31,10 +30,14 @@ namespace seqc::cli {
 
 // The options every device command takes.
 struct DeviceOptions {
-  std::string port;           // empty: find the one connected controller
+  std::string port;  // empty: find the one connected controller
   std::string timeout = "1s";
 };
 void add_device_options(CLI::App& cmd, DeviceOptions& options);
+// --robot PROFILE, for commands that accept servo names.
+void add_robot_option(CLI::App& cmd, std::string& profile);
+// Prints "seqc: error: MESSAGE" and returns ExitCode::Usage.
+ExitCode usage_error(Context& ctx, const std::string& message);
 
 struct DeviceError {
   ExitCode code = ExitCode::DeviceFailure;
@@ -63,9 +66,6 @@ class ControllerSession final : private upload::LinkObserver {
   // Sends a request the controller does not answer and confirms it arrived (see above).
   bool tell(const lsc::Request& request);
 
-  // Sends without confirmation (live play, where the next deadline must not wait on replies).
-  bool send_only(const lsc::Request& request);
-
   // Group notifications received so far, in order.
   const std::vector<lsc::Reply>& notifications() const { return notifications_; }
   const std::optional<DeviceError>& error() const { return error_; }
@@ -74,6 +74,7 @@ class ControllerSession final : private upload::LinkObserver {
   const std::string& port_name() const { return port_name_; }
 
  private:
+  void on_notification(const lsc::Reply& reply) override { notifications_.push_back(reply); }
   std::optional<lsc::Reply> exchange(const lsc::Request& request,
                                      const std::function<bool(const lsc::Reply&)>& want,
                                      const std::string& what);

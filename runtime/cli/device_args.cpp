@@ -52,7 +52,8 @@ Result<long long> parse_integer(std::string_view text, const char* field) {
 
 Result<std::uint8_t> parse_servo(std::string_view text,
                                  const std::optional<compiler::RobotInfo>& robot) {
-  const bool numeric = !text.empty() && text.find_first_not_of("0123456789+-") == std::string_view::npos;
+  const bool numeric =
+      !text.empty() && text.find_first_not_of("0123456789+-") == std::string_view::npos;
   if (!numeric) {
     if (!robot) {
       return make_error("servo " + quoted(text) +
@@ -67,9 +68,8 @@ Result<std::uint8_t> parse_servo(std::string_view text,
   auto id = lsc::checked_u8(*number, "servo");
   if (!id) return id.error();
   if (robot && robot->find_id(*id) == nullptr) {
-    return make_error("servo " + std::to_string(*id) + " is not a servo of the " +
-                      robot->profile + " profile (ids " +
-                      std::to_string(robot->servos.front().id) + ".." +
+    return make_error("servo " + std::to_string(*id) + " is not a servo of the " + robot->profile +
+                      " profile (ids " + std::to_string(robot->servos.front().id) + ".." +
                       std::to_string(robot->servos.back().id) + ")");
   }
   return *id;
@@ -79,8 +79,7 @@ Result<std::vector<std::uint8_t>> parse_servo_list(
     const std::vector<std::string>& texts, const std::optional<compiler::RobotInfo>& robot) {
   if (texts.empty()) return make_error("name at least one servo");
   if (texts.size() > 255) {
-    return make_error("at most 255 servos fit in one request, got " +
-                      std::to_string(texts.size()));
+    return make_error("at most 255 servos fit in one request, got " + std::to_string(texts.size()));
   }
   std::vector<std::uint8_t> ids;
   for (const std::string& t : texts) {
@@ -163,6 +162,13 @@ std::string servo_label(std::uint8_t id, const std::optional<compiler::RobotInfo
   if (robot) {
     if (const compiler::ServoInfo* s = robot->find_id(id)) out += " (" + s->name + ")";
   }
+  return out;
+}
+
+std::string servo_labels(const std::vector<std::uint8_t>& ids,
+                         const std::optional<compiler::RobotInfo>& robot) {
+  std::string out;
+  for (std::uint8_t id : ids) out += (out.empty() ? "" : ", ") + servo_label(id, robot);
   return out;
 }
 

@@ -49,5 +49,8 @@ Result<std::uint8_t> parse_group(std::string_view text);
 
 // "servo 1" or, with a profile, "servo 1 (claw)".
 std::string servo_label(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot);
+// "servo 1, servo 2 (elbow)".
+std::string servo_labels(const std::vector<std::uint8_t>& ids,
+                         const std::optional<compiler::RobotInfo>& robot);
 
 }  // namespace seqc::cli

@@ -1,5 +1,6 @@
 #include "runtime/cli/servo_play.hpp"
 
+#include <algorithm>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -10,6 +11,9 @@
 
 namespace seqc::cli {
 namespace {
+
+// How often Ctrl-C is looked at while the last move finishes.
+constexpr io::Duration kPollInterval = std::chrono::milliseconds(20);
 
 std::string where(const compiler::CompileOutput& compiled, const compiler::Keyframe& k) {
   if (k.source.file == compiler::kNoFile || k.source.file >= compiled.sources.file_count()) {
@@ -44,8 +48,8 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
       return ExitCode::DeviceFailure;
     }
     ctx.err << "seqc: playing " << frames.size() << " moves ("
-            << compiler::format_seconds(program->duration_ms()) << ") live on "
-            << s.port_name() << "; Ctrl-C stops\n";
+            << compiler::format_seconds(program->duration_ms()) << ") live on " << s.port_name()
+            << "; Ctrl-C stops\n";
     player::PlayOptions options;
     options.interrupted = ctx.interrupted;
     const player::PlayReport report =
@@ -59,6 +63,18 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
     };
     switch (report.end) {
       case player::PlayEnd::Completed: {
+        // The last move is still running: return when the sequence ends, so "played" means
+        // the robot is in its final pose (and the next command sees it there).
+        io::Clock& clock = s.link().clock();
+        const io::TimePoint end =
+            report.started + std::chrono::milliseconds(program->duration_ms());
+        while (clock.now() < end) {
+          if (ctx.interrupted != nullptr && ctx.interrupted->load()) {
+            ctx.err << "seqc: interrupted during the last move: every step was sent\n";
+            return ExitCode::Interrupted;
+          }
+          clock.sleep_until(std::min(end, clock.now() + kPollInterval));
+        }
         const player::LatenessSummary late = player::summarize(report.lateness);
         const auto us = [](io::Duration d) {
           return std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(d).count());
@@ -74,8 +90,8 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
                 << "; the servos finish the move they were given\n";
         return ExitCode::Interrupted;
       case player::PlayEnd::WriteFailed:
-        ctx.err << "seqc: error: sending to " << s.port_name() << " failed " << last_step()
-                << ": " << report.error << "\n";
+        ctx.err << "seqc: error: sending to " << s.port_name() << " failed " << last_step() << ": "
+                << report.error << "\n";
         return ExitCode::DeviceFailure;
     }
     return ExitCode::Internal;

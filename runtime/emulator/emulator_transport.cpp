@@ -5,7 +5,7 @@
 namespace seqc::emu {
 
 EmulatorTransport::EmulatorTransport(XArmEmulator& emulator, io::ManualClock& clock)
-    : emu_(emulator), clock_(clock) {}
+    : emu_(emulator), clock_(clock), input_(emulator.config().baud) {}
 
 double EmulatorTransport::seconds_per_byte() const {
   const auto baud = emu_.config().baud;
@@ -14,13 +14,13 @@ double EmulatorTransport::seconds_per_byte() const {
 
 Status EmulatorTransport::write(ByteView bytes) {
   if (emu_.hung_up()) return make_error("emu:xarm: the link has hung up");
-  const auto baud = emu_.config().baud;
-  if (baud > 0) {
-    const auto wire =
-        io::Duration{10'000'000'000LL / baud} * static_cast<std::int64_t>(bytes.size());
-    clock_.sleep_until(clock_.now() + wire);
+  const io::TimePoint arrived = input_.push(bytes, clock_.now());
+  clock_.sleep_until(arrived);
+  for (const InputLine::Arrival& a : input_.take(arrived)) {
+    if (emu_.hung_up()) break;
+    emu_.receive(a.bytes, a.at);
   }
-  emu_.receive(bytes, clock_.now());
+  input_.clear();  // only left over after a hang-up
   return Ok{};
 }
 

@@ -1,7 +1,10 @@
 // io::Transport over an in-process XArmEmulator sharing a ManualClock ("emu:xarm"), so the
 // uploader's real code runs against the emulated controller in emulated time.
-//   write()  paces by the emulator's baud on the clock (10 bits per byte, if baud > 0), then
-//            delivers the bytes at the new time. Fails once the link has hung up.
+//   write()  puts the bytes on the same receive line model as the pty server (InputLine at the
+//            emulator's baud: byte k of a write at t arrives at t + (k+1) x 10 bits / baud),
+//            advances the clock until the last of them has arrived, as if the host waited for
+//            its bytes to drain, and hands each to the emulator at its own arrival time. Fails
+//            once the link has hung up.
 //   read()   returns output already due; otherwise advances the clock to the next output
 //            byte if that comes by the deadline, else to the deadline -> Timeout. A hung-up
 //            link -> HangUp.
@@ -9,6 +12,7 @@
 
 #include <string>
 
+#include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
@@ -30,7 +34,8 @@ class EmulatorTransport final : public io::Transport {
 
   XArmEmulator& emu_;
   io::ManualClock& clock_;
-  Bytes inbox_;  // output taken from the emulator but not yet read
+  InputLine input_;  // the host's bytes on their way to the controller
+  Bytes inbox_;      // output taken from the emulator but not yet read
 };
 
 }  // namespace seqc::emu

@@ -1,5 +1,12 @@
 // What the pseudo-terminal server drives: a byte-level device in emulated time, and adapters
 // for the two emulators.
+//
+// The server stamps the bytes it reads from the pty with the time it read them and calls
+// receive(); it calls take_output(now) whenever it wakes and writes what comes back. It
+// sleeps until next_output_at(), which is when the device next has something to do: usually
+// the next output byte, but possibly earlier (a lower bound), e.g. when a received byte is
+// due to reach the emulated controller. Waking early is harmless; waking late only delays
+// the output in real time, never in emulated time.
 #pragma once
 
 #include <cstddef>
@@ -7,6 +14,7 @@
 #include <ostream>
 
 #include "runtime/emulator/raspblock_emulator.hpp"
+#include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/bytes.hpp"
@@ -22,16 +30,29 @@ class PtyDevice {
   virtual bool hung_up() const = 0;
 };
 
+// The servo controller behind a pty. A pty has no line rate: whatever the host writes is
+// readable at once. The device puts the host's bytes on an InputLine at the emulator's baud,
+// so each byte reaches the controller after its wire time (byte k of a write at t at
+// t + (k+1) x 10 bits / baud, queued behind bytes still on the line) and a frame is processed
+// only once its last byte has arrived, as on a real UART. Every byte is handed to the
+// emulator stamped with its own delivery time, however late the server wakes, so the
+// emulated timeline depends only on when the host wrote.
 class XArmPtyDevice final : public PtyDevice {
  public:
-  explicit XArmPtyDevice(XArmEmulator& emu) : emu_(emu) {}
-  void receive(ByteView bytes, io::TimePoint at) override { emu_.receive(bytes, at); }
-  std::optional<io::TimePoint> next_output_at() const override { return emu_.next_output_at(); }
-  Bytes take_output(io::TimePoint upto) override { return emu_.take_output(upto); }
+  explicit XArmPtyDevice(XArmEmulator& emu) : emu_(emu), input_(emu.config().baud) {}
+  void receive(ByteView bytes, io::TimePoint at) override;
+  std::optional<io::TimePoint> next_output_at() const override;
+  Bytes take_output(io::TimePoint upto) override;
   bool hung_up() const override { return emu_.hung_up(); }
 
+  // Bytes written by the host that have not reached the controller yet.
+  bool input_pending() const { return !input_.empty(); }
+
  private:
+  void deliver(io::TimePoint upto);
+
   XArmEmulator& emu_;
+  InputLine input_;
 };
 
 // Prints each new timeline entry (describe_change) on `log`, if given, as it happens.

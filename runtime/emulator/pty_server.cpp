@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
@@ -114,6 +115,17 @@ void PtyServer::close_fds() {
 Result<PtyServer::Stopped> PtyServer::serve(PtyDevice& device, io::Clock& clock,
                                             const std::atomic<bool>& stop) {
   if (master_ < 0) return make_error("the pseudo-terminal is closed");
+  // The default timer slack (50 us) would make every timed wake-up late by up to a byte time
+  // at 115200 baud; this thread's waits are the emulated line's timing, so ask for none.
+  // (Restored on return: the caller's thread keeps its own setting.)
+  const int old_slack = ::prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0);
+  ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
+  struct RestoreSlack {
+    int slack;
+    ~RestoreSlack() {
+      if (slack > 0) ::prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(slack), 0, 0, 0);
+    }
+  } restore_slack{old_slack};
   const io::TimePoint origin = clock.now();
   auto now = [&] { return clock.now() - origin; };
   Bytes pending;  // due output the master could not take yet

@@ -7,7 +7,9 @@
 // serve() reads bytes from the master with poll, feeds them to the device stamped with the
 // clock's time (relative to the start of serve(), so the device's times begin near 0), and
 // writes the device's output when it is due, until `stop` becomes true or the device hangs
-// up (then both sides are closed: the client sees the link go away).
+// up (then both sides are closed: the client sees the link go away). It sleeps until the
+// device's next_output_at() (the device's line timing, e.g. the xArm's receive line, is the
+// device's business: see pty_device.hpp) or until the host writes, with no timer slack.
 #pragma once
 
 #include <atomic>

@@ -58,6 +58,44 @@ void RequestFramer::feed(ByteView bytes, io::TimePoint at, std::vector<Piece>& o
   flush_garbage(out);
 }
 
+InputLine::InputLine(std::uint32_t baud)
+    : byte_time_(baud == 0 ? io::Duration{0} : io::Duration{10'000'000'000LL / baud}) {}
+
+io::TimePoint InputLine::push(ByteView bytes, io::TimePoint at) {
+  io::TimePoint t = at;
+  for (std::uint8_t b : bytes) {
+    t = (last_delivery_ ? std::max(at, *last_delivery_) : at) + byte_time_;
+    last_delivery_ = t;
+    queue_.push_back(Byte{t, b});
+  }
+  return t;
+}
+
+std::optional<io::TimePoint> InputLine::next_delivery_at() const {
+  if (empty()) return std::nullopt;
+  return queue_[head_].at;
+}
+
+std::vector<InputLine::Arrival> InputLine::take(io::TimePoint upto) {
+  std::vector<Arrival> out;
+  for (; head_ < queue_.size() && queue_[head_].at <= upto; ++head_) {
+    const Byte& b = queue_[head_];
+    if (out.empty() || out.back().at != b.at) out.push_back(Arrival{b.at, {}});
+    out.back().bytes.push_back(b.value);
+  }
+  // Compact once everything queued so far has been delivered (the usual case after a frame).
+  if (empty()) {
+    queue_.clear();
+    head_ = 0;
+  }
+  return out;
+}
+
+void InputLine::clear() {
+  queue_.clear();
+  head_ = 0;
+}
+
 OutputLine::OutputLine(std::uint32_t baud)
     : byte_time_(baud == 0 ? io::Duration{0} : io::Duration{10'000'000'000LL / baud}) {}
 

@@ -1,5 +1,6 @@
-// The two halves of the emulated controller's UART: the receive parser that cuts incoming
-// bytes into frames, and the transmit line that sends replies one byte after another.
+// The emulated controller's UART: the receive line that delivers the host's bytes at the line
+// rate, the receive parser that cuts them into frames, and the transmit line that sends
+// replies one byte after another.
 #pragma once
 
 #include <cstddef>
@@ -40,6 +41,44 @@ class RequestFramer {
   std::optional<io::TimePoint> last_at_;
   Bytes garbage_;
   Bytes frame_;  // 55, 55 55, 55 55 LEN, or more of a frame
+};
+
+// Receive side on the wire: the host may hand over many bytes at once (a pty or a driver's
+// buffer takes them instantly), but the line carries one byte every 10 bits at `baud`. A byte
+// written at time t is delivered at max(t, the previous byte's delivery) + 10 bits / baud, so
+// a frame is complete (and can be processed) only after its own wire time, and bytes written
+// while the line is busy queue behind the ones before them. Baud 0 delivers at once.
+class InputLine {
+ public:
+  // Bytes delivered together (more than one only when unpaced).
+  struct Arrival {
+    io::TimePoint at;
+    Bytes bytes;
+  };
+
+  explicit InputLine(std::uint32_t baud);
+
+  // The host writes `bytes` at `at`. Returns when the last of them is delivered (`at` for
+  // none).
+  io::TimePoint push(ByteView bytes, io::TimePoint at);
+  // When the next queued byte is delivered; nullopt when none is queued.
+  std::optional<io::TimePoint> next_delivery_at() const;
+  // The bytes delivered at or before `upto`, in order, grouped by delivery time; removed.
+  std::vector<Arrival> take(io::TimePoint upto);
+  bool empty() const { return head_ == queue_.size(); }
+  // Drops the queued bytes (the line stays busy until the last of them would have arrived).
+  void clear();
+  io::Duration byte_time() const { return byte_time_; }
+
+ private:
+  struct Byte {
+    io::TimePoint at;
+    std::uint8_t value;
+  };
+  io::Duration byte_time_;
+  std::vector<Byte> queue_;  // delivery times ascending; [head_, end) still queued
+  std::size_t head_ = 0;
+  std::optional<io::TimePoint> last_delivery_;
 };
 
 // Transmit side: messages become ready at some time and go out in order of readiness, one

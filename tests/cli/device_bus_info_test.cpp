@@ -44,15 +44,30 @@ TEST(DeviceBusInfo, WriteIsRefusedWithoutTheConfirmation) {
 
 TEST(DeviceBusInfo, WriteWithEveryFieldSendsOneFrame) {
   DeviceHarness h;
-  RunResult r = h.run({"bus-info", "write", "--servo", "1", "--position-min", "100",
-                       "--position-max", "900", "--millivolts-min", "6000", "--millivolts-max",
-                       "8400", "--temp-max", "85", "--led", "on", "--led-warning",
-                       "overheat,overposition", "--i-have-one-servo-attached", "--port",
+  RunResult r = h.run({"bus-info",
+                       "write",
+                       "--servo",
+                       "1",
+                       "--position-min",
+                       "100",
+                       "--position-max",
+                       "900",
+                       "--millivolts-min",
+                       "6000",
+                       "--millivolts-max",
+                       "8400",
+                       "--temp-max",
+                       "85",
+                       "--led",
+                       "on",
+                       "--led-warning",
+                       "overheat,overposition",
+                       "--i-have-one-servo-attached",
+                       "--port",
                        "emu:xarm"});
   EXPECT_EQ(r.code, 0) << r.err;
   // 1b id pminLo pminHi pmaxLo pmaxHi mvminLo mvminHi mvmaxLo mvmaxHi tLo tHi led warn
-  EXPECT_EQ(h.received(),
-            hex("55 55 0f 1b 01 64 00 84 03 70 17 d0 20 55 00 00 05  55 55 02 0f"));
+  EXPECT_EQ(h.received(), hex("55 55 0f 1b 01 64 00 84 03 70 17 d0 20 55 00 00 05  55 55 02 0f"));
   EXPECT_EQ(r.out,
             "written to every servo on the bus (kept over power-off):\n"
             "field           value\n"
@@ -89,8 +104,8 @@ TEST(DeviceBusInfo, WriteRangeErrors) {
       {{"--led-warning", "smoke"},
        "--led-warning: unknown warning 'smoke'; use a comma list of overheat, overvoltage, "
        "overposition, or none"},
-      {{"--servo", "1", "--position-min", "800", "--position-max", "200", "--millivolts-min",
-        "0", "--millivolts-max", "0", "--temp-max", "0", "--led", "on", "--led-warning", "none"},
+      {{"--servo", "1", "--position-min", "800", "--position-max", "200", "--millivolts-min", "0",
+        "--millivolts-max", "0", "--temp-max", "0", "--led", "on", "--led-warning", "none"},
        "position-min 800 is above position-max 200"},
   };
   for (const Case& c : cases) {

@@ -44,22 +44,17 @@ TEST_P(DeviceHelp, MatchesGolden) {
 
 INSTANTIATE_TEST_SUITE_P(
     Commands, DeviceHelp,
-    ::testing::Values(std::vector<std::string>{"group"}, std::vector<std::string>{"group", "run"},
-                      std::vector<std::string>{"group", "stop"},
-                      std::vector<std::string>{"group", "erase"},
-                      std::vector<std::string>{"group", "speed"},
-                      std::vector<std::string>{"battery"}, std::vector<std::string>{"servo"},
-                      std::vector<std::string>{"servo", "read"},
-                      std::vector<std::string>{"servo", "off"},
-                      std::vector<std::string>{"servo", "move"},
-                      std::vector<std::string>{"servo", "mode"},
-                      std::vector<std::string>{"offset"},
-                      std::vector<std::string>{"offset", "read"},
-                      std::vector<std::string>{"offset", "adjust"},
-                      std::vector<std::string>{"offset", "write"},
-                      std::vector<std::string>{"bus-info"},
-                      std::vector<std::string>{"bus-info", "read"},
-                      std::vector<std::string>{"bus-info", "write"}),
+    ::testing::Values(
+        std::vector<std::string>{"group"}, std::vector<std::string>{"group", "run"},
+        std::vector<std::string>{"group", "stop"}, std::vector<std::string>{"group", "erase"},
+        std::vector<std::string>{"group", "speed"}, std::vector<std::string>{"battery"},
+        std::vector<std::string>{"servo"}, std::vector<std::string>{"servo", "read"},
+        std::vector<std::string>{"servo", "off"}, std::vector<std::string>{"servo", "move"},
+        std::vector<std::string>{"servo", "mode"}, std::vector<std::string>{"offset"},
+        std::vector<std::string>{"offset", "read"}, std::vector<std::string>{"offset", "adjust"},
+        std::vector<std::string>{"offset", "write"}, std::vector<std::string>{"bus-info"},
+        std::vector<std::string>{"bus-info", "read"},
+        std::vector<std::string>{"bus-info", "write"}),
     [](const ::testing::TestParamInfo<std::vector<std::string>>& param_info) {
       std::string name;
       for (const std::string& a : param_info.param) {

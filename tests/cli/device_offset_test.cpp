@@ -31,9 +31,9 @@ TEST(DeviceOffset, AdjustIsVolatileUntilWritten) {
 
 TEST(DeviceOffset, WriteKeepsTheOffsetOverPowerOff) {
   DeviceHarness h;
-  ASSERT_EQ(h.run({"offset", "adjust", "wrist_roll", "15", "--robot", "xarm", "--port",
-                   "emu:xarm"}).code,
-            0);
+  ASSERT_EQ(
+      h.run({"offset", "adjust", "wrist_roll", "15", "--robot", "xarm", "--port", "emu:xarm"}).code,
+      0);
   h.mark();
   RunResult r = h.run({"offset", "write", "2", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 0) << r.err;

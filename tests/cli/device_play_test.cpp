@@ -54,6 +54,7 @@ TEST(DevicePlay, StreamsEachKeyframeAtItsStart) {
     EXPECT_EQ(got[i + 1].at - start, send_at[i]) << i;
   }
   EXPECT_EQ(r.out, "played 3 moves, 1.75 s (send lateness p50 0 us, p99 0 us, max 0 us)\n");
+  EXPECT_EQ(h.clock.now() - start, milliseconds(1750));  // returns when the sequence ends
 
   // The final pose: what the program last set for every servo, the rest where they were.
   const io::TimePoint end = start + milliseconds(1750);
@@ -74,8 +75,7 @@ TEST(DevicePlay, NoControllerIsADeviceFailureBeforeAnyMove) {
   RunResult r = h.run({"play", "try.yaml", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 4);
   EXPECT_EQ(h.received(), hex("55 55 02 0f"));
-  EXPECT_NE(r.err.find("seqc: error: no reply from the controller on emu:xarm"),
-            std::string::npos)
+  EXPECT_NE(r.err.find("seqc: error: no reply from the controller on emu:xarm"), std::string::npos)
       << r.err;
 }
 

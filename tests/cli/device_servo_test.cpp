@@ -122,16 +122,15 @@ TEST(DeviceServo, OffSendsMultiServoOff) {
 
 TEST(DeviceServo, ModeSendsServoSpeed) {
   DeviceHarness h;
-  RunResult r =
-      h.run({"servo", "mode", "3", "motor", "--time", "500ms", "--port", "emu:xarm"});
+  RunResult r = h.run({"servo", "mode", "3", "motor", "--time", "500ms", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 0) << r.err;
   // 1a servo mode msLo msHi
   EXPECT_EQ(h.received(), hex("55 55 06 1a 03 01 f4 01  55 55 02 0f"));
   EXPECT_EQ(r.out, "servo 3: motor mode, 500 ms\n");
 
   h.mark();
-  r = h.run({"servo", "mode", "claw", "servo", "--time", "0ms", "--robot", "xarm", "--port",
-             "emu:xarm"});
+  r = h.run(
+      {"servo", "mode", "claw", "servo", "--time", "0ms", "--robot", "xarm", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(h.received(), hex("55 55 06 1a 01 00 00 00  55 55 02 0f"));
   EXPECT_EQ(r.out, "servo 1 (claw): servo mode, 0 ms\n");

@@ -1,7 +1,9 @@
 // `seqc upload` end to end with the real binary: `seqc emulate xarm --link PATH --record CSV`
 // runs as a separate process on a pseudo-terminal, `seqc upload examples/walk.yaml --port PATH
 // --run` talks to it, and the GroupDownload frames the emulator recorded must equal
-// `seqc compile --emit hex` byte for byte. Also: a second seqc on the busy port fails within
+// `seqc compile --emit hex` byte for byte, and the group the emulator stored (its
+// --dump-groups file) must equal the keyframes of `seqc compile --emit json`, action by
+// action. Also: a second seqc on the busy port fails within
 // 100 ms, and the in-process emulator (emu:xarm) path.
 #include <gtest/gtest.h>
 
@@ -64,6 +66,38 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// The unsigned number after `"key": ` at or after `from` in `text` (-1 if absent); `from`
+// moves past it.
+long json_number(const std::string& text, const std::string& key, std::size_t& from) {
+  const std::string needle = "\"" + key + "\":";
+  const auto at = text.find(needle, from);
+  if (at == std::string::npos) return -1;
+  std::size_t i = at + needle.size();
+  while (i < text.size() && text[i] == ' ') ++i;
+  const std::size_t start = i;
+  while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+  from = i;
+  return i > start ? std::stol(text.substr(start, i - start)) : -1;
+}
+
+// The actions `seqc compile --emit json` says group `group` gets, one per keyframe (each
+// keyframe line: {"start_ms": .., "time_ms": T, ..., "targets": [{.., "id": I, "position": P},
+// ...]}), in the --dump-groups form "GROUP INDEX TIME ID=POS ...".
+std::vector<std::string> compiled_actions(const std::string& json, int group) {
+  std::vector<std::string> out;
+  for (const auto& l : lines(json)) {
+    if (l.find("\"start_ms\":") == std::string::npos) continue;
+    std::size_t pos = 0;
+    std::string action = std::to_string(group) + " " + std::to_string(out.size()) + " " +
+                         std::to_string(json_number(l, "time_ms", pos));
+    for (long id; (id = json_number(l, "id", pos)) >= 0;) {
+      action += " " + std::to_string(id) + "=" + std::to_string(json_number(l, "position", pos));
+    }
+    out.push_back(action);
+  }
+  return out;
+}
+
 class UploadE2E : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -72,7 +106,9 @@ class UploadE2E : public ::testing::Test {
     dir_ = tmpl;
     link_ = dir_ + "/xarm";
     record_ = dir_ + "/record.csv";
-    emulator_ = spawn({kSeqc, "emulate", "xarm", "--link", link_, "--record", record_},
+    groups_ = dir_ + "/groups.txt";
+    emulator_ = spawn({kSeqc, "emulate", "xarm", "--link", link_, "--record", record_,
+                       "--dump-groups", groups_},
                       dir_ + "/emu.out", dir_ + "/emu.err");
     ASSERT_GT(emulator_, 0);
     struct stat st {};
@@ -103,7 +139,7 @@ class UploadE2E : public ::testing::Test {
     return rc;
   }
 
-  std::string dir_, link_, record_;
+  std::string dir_, link_, record_, groups_;
   pid_t emulator_ = -1;
 };
 
@@ -115,9 +151,19 @@ TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   EXPECT_NE(out.find("group 0 started"), std::string::npos) << out;
   EXPECT_EQ(out.find("verified"), std::string::npos);
 
-  std::string hex;
+  std::string hex, json;
   ASSERT_EQ(run({kSeqc, "compile", kWalk, "--emit", "hex"}, &hex), 0);
+  ASSERT_EQ(run({kSeqc, "compile", kWalk, "--emit", "json"}, &json), 0);
   ASSERT_EQ(stop_emulator(), 0);
+
+  // What the controller stored, as the separate emulator process wrote it on exit.
+  std::vector<std::string> stored;
+  for (const auto& l : lines(slurp(groups_))) {
+    if (!l.empty() && l[0] != '#') stored.push_back(l);
+  }
+  const std::vector<std::string> compiled = compiled_actions(json, 0);
+  ASSERT_EQ(compiled.size(), 26u) << json;
+  EXPECT_EQ(stored, compiled);
 
   // CSV: time_s,status,bytes,message. Keep the GroupDownload frames (CMD 05).
   std::vector<std::string> recorded;

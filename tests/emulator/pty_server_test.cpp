@@ -125,6 +125,29 @@ TEST(PtyServer, XArmRoundTripThroughTheSlaveTty) {
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));
 }
 
+// A pty hands the host's bytes over at once; the server must still not let the controller
+// see a frame before its wire time, nor answer before the reply's wire time: request and
+// reply together are 10 bytes, 10.4 ms at 9600 baud, however fast the machine is.
+TEST(PtyServer, XArmAnswersNoSoonerThanBothDirectionsTakeOnTheWire) {
+  auto server = PtyServer::open({9600, std::nullopt});
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  XArmConfig config;
+  config.baud = 9600;
+  XArmEmulator emu(config);
+  XArmPtyDevice device(emu);
+  Served served(*server, device);
+  const int fd = open_raw(server->slave_path());
+  ASSERT_GE(fd, 0);
+  const Bytes request = hex("55 55 02 0f");
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(::write(fd, request.data(), request.size()), 4);
+  EXPECT_EQ(hex_of(read_bytes(fd, 6)), "55 55 04 0f 4c 1d");
+  const auto took = std::chrono::steady_clock::now() - t0;
+  EXPECT_GE(took, std::chrono::microseconds(10 * 1'041'666 / 1000)) << "4 bytes in + 6 out";
+  ::close(fd);
+  ASSERT_TRUE(served.finish().ok());
+}
+
 TEST(PtyServer, HangUpClosesTheLink) {
   auto server = PtyServer::open({});
   ASSERT_TRUE(server.ok()) << server.error().message;
