@@ -18,6 +18,10 @@ struct NotInSubset {};
 
 constexpr int kEof = -1;
 
+// yaml-cpp refuses a key longer than 1024 characters ("illegal map value"); well below that,
+// this reader leaves long keys to it.
+constexpr std::size_t kMaxKeyLength = 1000;
+
 bool is_alnum(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
@@ -158,7 +162,7 @@ class FastReader {
     const FastEvent at = mark(FastEvent::Kind::Scalar);
     const std::string_view value = scalar();
     if (key_colon()) {
-      if (inline_value) fail();
+      if (inline_value || value.size() > kMaxKeyLength) fail();
       block_map(at, value);
       return;
     }
@@ -204,7 +208,7 @@ class FastReader {
       if (next_indent_ > static_cast<int>(indent)) fail();
       at = mark(FastEvent::Kind::Scalar);
       key = scalar();
-      if (!key_colon()) fail();
+      if (!key_colon() || key.size() > kMaxKeyLength) fail();
     }
     push(FastEvent::Kind::MapEnd);
     --depth_;
@@ -258,7 +262,7 @@ class FastReader {
       for (;;) {
         const FastEvent at = mark(FastEvent::Kind::Scalar);
         const std::string_view key = scalar();
-        if (peek() != ':' || peek(1) != ' ') fail();
+        if (peek() != ':' || peek(1) != ' ' || key.size() > kMaxKeyLength) fail();
         emit_scalar(at, key);
         pos_ += 2;
         skip_spaces();

@@ -61,6 +61,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "compiler/yaml/yaml_fast.hpp"
 #include "compiler/yaml/yaml_prescan.hpp"
 
 namespace seqc::compiler {
@@ -122,6 +123,34 @@ class TreeBuilder final : public YAML::EventHandler {
 
   std::optional<YamlNode> take_root() { return std::move(root_); }
 
+  // Feeds the fast reader's events through the same handlers yaml-cpp's parser would call.
+  void replay(const std::vector<yaml_detail::FastEvent>& events) {
+    using K = yaml_detail::FastEvent::Kind;
+    static const std::string kPlain = "?";  // yaml-cpp's tag for untagged plain nodes
+    OnDocumentStart(events.empty() ? YAML::Mark() : to_mark(events.front()));
+    for (const yaml_detail::FastEvent& e : events) {
+      switch (e.kind) {
+        case K::Null:
+          OnNull(to_mark(e), YAML::NullAnchor);
+          break;
+        case K::Scalar:
+          scalar(to_mark(e), kPlain, e.value);
+          break;
+        case K::SeqStart:
+          open(to_mark(e), kPlain, YamlNode::Kind::Sequence);
+          break;
+        case K::MapStart:
+          open(to_mark(e), kPlain, YamlNode::Kind::Map);
+          break;
+        case K::SeqEnd:
+        case K::MapEnd:
+          close();
+          break;
+      }
+    }
+    OnDocumentEnd();
+  }
+
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (documents_++ == 0) return;
     const std::size_t pos = offset(mark);
@@ -158,19 +187,7 @@ class TreeBuilder final : public YAML::EventHandler {
 
   void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t /*anchor*/,
                 const std::string& value) override {
-    count_node(mark);
-    check_tag(mark, tag);
-    const std::size_t pos = offset(mark);
-    if (tag == "!" && pos < text_.size() && (text_[pos] == '"' || text_[pos] == '\'') &&
-        !yaml_detail::quoted_scalar_closes(text_, pos)) {  // finding 3
-      fail(location(mark), "unterminated quoted string");
-    }
-    YamlNode node;
-    node.kind = YamlNode::Kind::Scalar;
-    node.location = location(mark);
-    node.scalar = value;
-    node.quoted = tag == "!";
-    complete(std::move(node));
+    scalar(mark, tag, value);
   }
 
   void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t /*anchor*/,
@@ -192,6 +209,30 @@ class TreeBuilder final : public YAML::EventHandler {
     bool key_usable = false;
     std::unordered_map<std::string, Location> seen;  // a map's keys so far
   };
+
+  static YAML::Mark to_mark(const yaml_detail::FastEvent& e) {
+    YAML::Mark m;
+    m.pos = static_cast<int>(e.pos);
+    m.line = static_cast<int>(e.line);
+    m.column = static_cast<int>(e.column);
+    return m;
+  }
+
+  void scalar(const YAML::Mark& mark, const std::string& tag, std::string_view value) {
+    count_node(mark);
+    check_tag(mark, tag);
+    const std::size_t pos = offset(mark);
+    if (tag == "!" && pos < text_.size() && (text_[pos] == '"' || text_[pos] == '\'') &&
+        !yaml_detail::quoted_scalar_closes(text_, pos)) {  // finding 3
+      fail(location(mark), "unterminated quoted string");
+    }
+    YamlNode node;
+    node.kind = YamlNode::Kind::Scalar;
+    node.location = location(mark);
+    node.scalar = value;
+    node.quoted = tag == "!";
+    complete(std::move(node));
+  }
 
   [[noreturn]] void fail(Location at, std::string message) {
     diags_.error(at, std::move(message));
@@ -314,11 +355,15 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
   }
 
   TreeBuilder builder(text, bom, file, diags, limits);
-  std::istringstream in{std::string(body)};
   try {
-    YAML::Parser parser(in);
-    // Finding 1: the second document aborts, so this runs at most twice.
-    for (int i = 0; i < 2 && parser.HandleNextDocument(builder); ++i) {
+    if (auto events = yaml_detail::fast_events(body, limits.max_depth)) {
+      builder.replay(*events);  // the common case; see yaml_fast.hpp
+    } else {
+      std::istringstream in{std::string(body)};
+      YAML::Parser parser(in);
+      // Finding 1: the second document aborts, so this runs at most twice.
+      for (int i = 0; i < 2 && parser.HandleNextDocument(builder); ++i) {
+      }
     }
   } catch (const Abort&) {
     return std::nullopt;

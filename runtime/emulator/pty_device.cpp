@@ -4,9 +4,21 @@
 
 namespace seqc::emu {
 
+XArmPtyDevice::XArmPtyDevice(XArmEmulator& emu)
+    : emu_(emu), input_(emu.config().baud), framer_(emu.config().frame_gap) {}
+
 void XArmPtyDevice::receive(ByteView bytes, io::TimePoint at) {
-  if (emu_.hung_up()) return;
-  input_.push(bytes, at);
+  if (emu_.hung_up() || bytes.empty()) return;
+  std::vector<RequestFramer::Piece> pieces;
+  for (std::uint8_t b : bytes) {
+    const io::TimePoint t = input_.push(ByteView(&b, 1), at);
+    framer_.feed(ByteView(&b, 1), t, pieces);
+    for (const auto& piece : pieces) {
+      if (piece.framed) frame_ends_.push_back(t);
+    }
+    pieces.clear();
+    last_arrival_ = t;
+  }
   deliver(at);  // unpaced (baud 0): at once
 }
 
@@ -15,12 +27,22 @@ void XArmPtyDevice::deliver(io::TimePoint upto) {
     if (emu_.hung_up()) break;
     emu_.receive(a.bytes, a.at);
   }
-  if (emu_.hung_up()) input_.clear();
+  frame_ends_.erase(frame_ends_.begin(),
+                    std::upper_bound(frame_ends_.begin(), frame_ends_.end(), upto));
+  if (emu_.hung_up()) {
+    input_.clear();
+    frame_ends_.clear();
+  }
+  if (input_.empty()) last_arrival_.reset();
 }
 
 std::optional<io::TimePoint> XArmPtyDevice::next_output_at() const {
-  std::optional<io::TimePoint> next = emu_.next_output_at();
-  if (auto in = input_.next_delivery_at(); in && (!next || *in < *next)) next = in;
+  std::optional<io::TimePoint> next = emu_.next_message_end_at();
+  auto earliest = [&next](std::optional<io::TimePoint> t) {
+    if (t && (!next || *t < *next)) next = t;
+  };
+  if (!frame_ends_.empty()) earliest(frame_ends_.front());
+  earliest(last_arrival_);
   return next;
 }
 

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/serial_line.hpp"
@@ -37,9 +38,16 @@ class PtyDevice {
 // only once its last byte has arrived, as on a real UART. Every byte is handed to the
 // emulator stamped with its own delivery time, however late the server wakes, so the
 // emulated timeline depends only on when the host wrote.
+//
+// Wake-ups (next_output_at) are kept to the moments that matter, not one per byte: when a
+// queued byte completes a frame (found by cutting the queued bytes with a RequestFramer of
+// the device's own, exactly as the controller will), when the last queued byte arrives, and
+// when the last byte of the next reply is due. Output is handed over in whole messages: no
+// byte earlier than its due time, the message when its last byte is due (as a UART's receive
+// FIFO or a USB adapter hands a short reply to the host in one piece).
 class XArmPtyDevice final : public PtyDevice {
  public:
-  explicit XArmPtyDevice(XArmEmulator& emu) : emu_(emu), input_(emu.config().baud) {}
+  explicit XArmPtyDevice(XArmEmulator& emu);
   void receive(ByteView bytes, io::TimePoint at) override;
   std::optional<io::TimePoint> next_output_at() const override;
   Bytes take_output(io::TimePoint upto) override;
@@ -53,6 +61,9 @@ class XArmPtyDevice final : public PtyDevice {
 
   XArmEmulator& emu_;
   InputLine input_;
+  RequestFramer framer_;                  // the controller's cut of the queued bytes
+  std::vector<io::TimePoint> frame_ends_;  // arrival of queued bytes that complete a frame
+  std::optional<io::TimePoint> last_arrival_;  // of the last byte queued
 };
 
 // Prints each new timeline entry (describe_change) on `log`, if given, as it happens.

@@ -120,6 +120,11 @@ std::optional<io::TimePoint> OutputLine::next_byte_at() const {
   return start_of_front() + byte_time_ * static_cast<std::int64_t>(front_sent_ + 1);
 }
 
+std::optional<io::TimePoint> OutputLine::front_last_byte_at() const {
+  if (queue_.empty()) return std::nullopt;
+  return start_of_front() + byte_time_ * static_cast<std::int64_t>(queue_.front().bytes.size());
+}
+
 Bytes OutputLine::take(io::TimePoint upto) {
   Bytes out;
   while (!queue_.empty()) {

@@ -89,6 +89,8 @@ class OutputLine {
 
   void send(Bytes bytes, io::TimePoint ready);
   std::optional<io::TimePoint> next_byte_at() const;
+  // When the last byte of the message at the front (going out now or next) is due.
+  std::optional<io::TimePoint> front_last_byte_at() const;
   // The bytes due at or before `upto`, removed from the line. Callers never send() a message
   // ready before a time they have already taken output up to.
   Bytes take(io::TimePoint upto);

@@ -224,6 +224,16 @@ std::optional<io::TimePoint> XArmEmulator::next_output_at() const {
   return next;
 }
 
+std::optional<io::TimePoint> XArmEmulator::next_message_end_at() const {
+  if (hung_up_) return std::nullopt;
+  std::optional<io::TimePoint> next = line_.front_last_byte_at();
+  if (auto n = player_.next_notification_at(); n && !faults_.silent()) {
+    const io::TimePoint first_byte = std::max(*n, now_) + line_.byte_time();
+    if (!next || first_byte < *next) next = first_byte;
+  }
+  return next;
+}
+
 Bytes XArmEmulator::take_output(io::TimePoint upto) {
   advance_to(upto);
   if (hung_up_) return {};

@@ -82,6 +82,9 @@ class XArmEmulator {
   // When the next output byte is due (a lower bound while a group notification is pending:
   // the caller advances to it and asks again). nullopt when nothing will come.
   std::optional<io::TimePoint> next_output_at() const;
+  // When the last byte of the next message out is due (for a caller that hands output over
+  // in whole messages); the same lower bound as next_output_at() for a pending notification.
+  std::optional<io::TimePoint> next_message_end_at() const;
   // Advances to `upto` and returns the output bytes due at or before it.
   Bytes take_output(io::TimePoint upto);
 

@@ -12,11 +12,12 @@
 //           reach the controller one byte time apart (a frame is processed when its last
 //           byte has arrived) and replies leave one byte time apart, so the ratio cannot go
 //           below 1; what is above 1 is time the line stands idle.
-//   idle    where the line stands idle, from the server's side: for each reply, the time
-//           between its last byte being due and the host's next bytes being read, split into
-//           the server writing that byte late (its wake-up after the due time) and the rest
-//           (the pty carrying the byte, the host waking, the uploader deciding, the host's
-//           write, the server waking to read it).
+//   idle    where the line stands idle: for each reply, the time from its last byte being
+//           due to the host's next bytes being read by the server, split into the server
+//           writing that byte late (its wake-up after the due time), the uploader (from the
+//           host's read that returned data to its next write, timed around the transport),
+//           and the rest: the pty carrying the reply to the host and the request to the
+//           server, and both sides waking up.
 //
 // Usage: upload_bench [--baud N]... [--actions N]   (default: --baud 9600 --baud 115200)
 #include <algorithm>
@@ -44,6 +45,12 @@ namespace {
 
 double ms(io::Duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
+std::int64_t wall_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 // Forwards to the xArm device and times the idle line between a reply and the next request.
 // It takes output one due byte at a time so it knows each byte's due time; the emulator's
 // timeline does not change (it only depends on the times bytes are handed over).
@@ -53,8 +60,9 @@ class TimedDevice final : public emu::PtyDevice {
 
   void receive(ByteView bytes, io::TimePoint at) override {
     if (last_due_) {
-      idle_ += at - *last_due_;
+      idle_ += io::Duration{wall_ns() - last_written_wall_};
       late_ += last_written_ - *last_due_;
+      lates_.push_back((last_written_ - *last_due_).count());
       ++gaps_;
       last_due_.reset();
     }
@@ -70,6 +78,7 @@ class TimedDevice final : public emu::PtyDevice {
       if (!got.empty()) {
         last_due_ = *next;
         last_written_ = upto;
+        last_written_wall_ = wall_ns();
       }
       out.insert(out.end(), got.begin(), got.end());
     }
@@ -79,17 +88,50 @@ class TimedDevice final : public emu::PtyDevice {
   }
   bool hung_up() const override { return inner_.hung_up(); }
 
-  io::Duration idle() const { return idle_; }
+  // Due time of each reply's last byte -> the server handing it to the pty.
   io::Duration late() const { return late_; }
+  // The server handing a reply's last byte to the pty -> reading the next request from it.
+  io::Duration after_write() const { return idle_; }
   std::size_t gaps() const { return gaps_; }
 
  private:
   emu::PtyDevice& inner_;
   std::optional<io::TimePoint> last_due_;
   io::TimePoint last_written_{0};
+  std::int64_t last_written_wall_ = 0;
   io::Duration idle_{0};
   io::Duration late_{0};
   std::size_t gaps_ = 0;
+ public:
+  std::vector<std::int64_t> lates_;
+};
+
+// Forwards to the host's transport and times the uploader itself: from a read that returned
+// data to the next write (deciding the reply was the ack, building and sending the next frame).
+class TimedTransport final : public io::Transport {
+ public:
+  explicit TimedTransport(io::Transport& inner) : inner_(inner) {}
+  Status write(ByteView bytes) override {
+    if (last_read_) {
+      host_ += io::Duration{wall_ns() - *last_read_};
+      last_read_.reset();
+    }
+    return inner_.write(bytes);
+  }
+  io::ReadResult read(std::span<std::uint8_t> buffer, io::TimePoint deadline) override {
+    io::ReadResult r = inner_.read(buffer, deadline);
+    if (r.status == io::ReadStatus::Data) last_read_ = wall_ns();
+    return r;
+  }
+  void discard_input() override { inner_.discard_input(); }
+  std::string describe() const override { return inner_.describe(); }
+  double seconds_per_byte() const override { return inner_.seconds_per_byte(); }
+  io::Duration host() const { return host_; }
+
+ private:
+  io::Transport& inner_;
+  std::optional<std::int64_t> last_read_;
+  io::Duration host_{0};
 };
 
 int bench(std::uint32_t baud, std::size_t count) {
@@ -128,7 +170,8 @@ int bench(std::uint32_t baud, std::size_t count) {
     }
   }
   const auto plan = lsc::plan_group_download(0, actions).value();
-  upload::ControllerLink link(**port, clock);
+  TimedTransport timed(**port);
+  upload::ControllerLink link(timed, clock);
   upload::Uploader uploader(link, {});
   const auto t0 = std::chrono::steady_clock::now();
   const upload::UploadResult r = uploader.upload(plan);
@@ -141,9 +184,11 @@ int bench(std::uint32_t baud, std::size_t count) {
   const double bound = static_cast<double>(sent + received) * 10.0 / baud;
   const bool stored = emulator.stored_group(0) == std::optional(actions);
   const bool counted = emulator.received_bytes().size() == sent;
-  const io::Duration idle = device.idle();
   const io::Duration late = device.late();
-  const double per = device.gaps() ? 1.0 / static_cast<double>(device.gaps()) : 0.0;
+  const io::Duration after = device.after_write();
+  const io::Duration host = timed.host();
+  const double n = static_cast<double>(std::max<std::size_t>(device.gaps(), 1));
+  auto us_each = [&](io::Duration d) { return ms(d) * 1000.0 / n; };
   std::printf(
       "upload_bench: %zu actions x 6 servos at %u baud over a pty (SerialTransport -> PtyServer "
       "-> XArmEmulator, processing 0): %s, stored group %s\n"
@@ -152,14 +197,17 @@ int bench(std::uint32_t baud, std::size_t count) {
       "  bound   (%zu + %zu) bytes x 10 bits / %u baud = %.3f s\n"
       "  wall    %.3f s (steady_clock around Uploader::upload)\n"
       "  ratio   wall / bound = %.4f   (re-sends %d, restarts %d)\n"
-      "  idle    line idle after %zu replies: %.1f ms (%.1f us each) = server late writing the "
-      "last reply byte %.1f ms (%.1f us each) + pty, host and uploader until the next request "
-      "was read %.1f ms (%.1f us each)\n",
+      "  idle    line idle after %zu replies: %.1f ms = %.1f us each:\n"
+      "            server late writing a reply's last byte  %7.1f us\n"
+      "            pty to host + pty to server, wake-ups    %7.1f us\n"
+      "            uploader (last read -> next write)       %7.1f us\n",
       count, baud, upload::to_string(r.status), stored ? "= plan" : "!= plan", sent,
       r.link.frames_sent, counted ? "the same" : "A DIFFERENT COUNT", received,
       r.link.frames_received, sent, received, baud, bound, wall, wall / bound, r.retries,
-      r.restarts, device.gaps(), ms(idle), ms(idle) * 1000 * per, ms(late), ms(late) * 1000 * per,
-      ms(idle - late), ms(idle - late) * 1000 * per);
+      r.restarts, device.gaps(), ms(late + after), us_each(late + after), us_each(late),
+      us_each(after - host), us_each(host));
+  std::sort(device.lates_.begin(), device.lates_.end());
+  if (!device.lates_.empty()) { auto& v = device.lates_; std::printf("DEBUG late p50 %ld p90 %ld p99 %ld max %ld top: %ld %ld %ld\n", v[v.size()/2], v[v.size()*9/10], v[v.size()*99/100], v.back(), v[v.size()-2], v[v.size()-3], v[v.size()-4]); }
   return r.ok() && stored && counted ? 0 : 1;
 }
 

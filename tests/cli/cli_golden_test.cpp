@@ -218,4 +218,11 @@ TEST(Simulate, CsvAndDuration) {
   expect_golden(kCliGolden / "simulate-wave.csv", r.out);
 }
 
+TEST(Simulate, CarStateOverTime) {
+  SeqcRun r = seqc(kSource, "simulate --step 250 examples/car-dance.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("seqc: examples/car-dance.yaml: ", 0), 0u) << r.err;
+  expect_golden(kCliGolden / "simulate-car-dance.csv", r.out);
+}
+
 }  // namespace

@@ -65,7 +65,7 @@ TEST(XArmPtyDevice, AFrameIsProcessedOnlyAfterItsLastByteArrived) {
   // The whole GetBatteryVoltage frame is written at once at 0.
   device.receive(hex("55 55 02 0f"), at_ms(0));
   EXPECT_TRUE(emu.received_bytes().empty()) << "nothing has crossed the wire yet";
-  EXPECT_EQ(device.next_output_at(), at_ms(0) + kByte9600) << "wake for the first byte";
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 4 * kByte9600) << "wake when the frame is in";
   EXPECT_TRUE(device.take_output(at_ms(0) + 3 * kByte9600).empty());
   EXPECT_EQ(hex_of(emu.received_bytes()), "55 55 02");
   EXPECT_TRUE(emu.received().empty()) << "three bytes are not a frame";
@@ -77,8 +77,9 @@ TEST(XArmPtyDevice, AFrameIsProcessedOnlyAfterItsLastByteArrived) {
   EXPECT_FALSE(device.input_pending());
 
   // The reply 55 55 04 0f 4c 1d follows: its first byte is due one byte time after the
-  // frame was processed, its last after six.
-  EXPECT_EQ(device.next_output_at(), at_ms(0) + 5 * kByte9600);
+  // frame was processed, its last after six. The device wakes the server for the whole
+  // reply, but a server that wakes earlier gets the bytes already due, never more.
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 10 * kByte9600);
   EXPECT_EQ(hex_of(device.take_output(at_ms(0) + 9 * kByte9600)), "55 55 04 0f 4c");
   EXPECT_EQ(hex_of(device.take_output(at_ms(0) + 10 * kByte9600)), "1d");
   EXPECT_FALSE(device.next_output_at());
@@ -94,6 +95,34 @@ TEST(XArmPtyDevice, BackToBackWritesQueueOnTheLine) {
   ASSERT_EQ(emu.received().size(), 2u);
   EXPECT_EQ(emu.received()[0].at, at_ms(0) + 4 * kByte9600);
   EXPECT_EQ(emu.received()[1].at, at_ms(0) + 11 * kByte9600);
+}
+
+TEST(XArmPtyDevice, WakesWhenEachFrameIsInNotAtEveryByte) {
+  XArmEmulator emu(paced_9600());
+  XArmPtyDevice device(emu);
+  // Garbage, then two frames in one write: the first frame is in after 6 bytes.
+  device.receive(hex("00 01 55 55 02 0f 55 55 05 15 02 01 06"), at_ms(0));
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 6 * kByte9600);
+  EXPECT_TRUE(device.take_output(at_ms(0) + 6 * kByte9600).empty());
+  ASSERT_EQ(emu.received().size(), 2u);  // the garbage piece and GetBatteryVoltage
+  EXPECT_FALSE(emu.received()[0].frame);
+  // The battery reply ends at 12 byte times, before the second frame is in (13).
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 12 * kByte9600);
+  EXPECT_EQ(hex_of(device.take_output(at_ms(0) + 12 * kByte9600)), "55 55 04 0f 4c 1d");
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 13 * kByte9600);
+  EXPECT_TRUE(device.take_output(at_ms(0) + 13 * kByte9600).empty());
+  ASSERT_EQ(emu.received().size(), 3u);
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 24 * kByte9600) << "11 bytes of positions";
+}
+
+TEST(XArmPtyDevice, AnUnfinishedFrameStillReachesTheController) {
+  XArmEmulator emu(paced_9600());
+  XArmPtyDevice device(emu);
+  device.receive(hex("55 55 02"), at_ms(0));
+  EXPECT_EQ(device.next_output_at(), at_ms(0) + 3 * kByte9600) << "the last queued byte";
+  (void)device.take_output(at_ms(0) + 3 * kByte9600);
+  EXPECT_EQ(hex_of(emu.received_bytes()), "55 55 02");
+  EXPECT_FALSE(device.next_output_at());
 }
 
 TEST(XArmPtyDevice, UnpacedDeliversOnReceive) {
