@@ -30,11 +30,12 @@ void Reporter::unknown(Location at, std::string_view what, std::string_view word
 bool Reporter::check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
                           std::string_view where) {
   bool ok = true;
-  std::vector<std::string> candidates(allowed.begin(), allowed.end());
   for (const auto& [key, value] : map.entries) {
     bool known = false;
     for (std::string_view a : allowed) known = known || key.scalar == a;
     if (!known) {
+      // Built only for a mistake: this runs for every step of every file.
+      const std::vector<std::string> candidates(allowed.begin(), allowed.end());
       unknown(key.location, "key", key.scalar, candidates, where);
       ok = false;
     }

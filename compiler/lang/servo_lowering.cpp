@@ -197,11 +197,12 @@ class ServoLowering {
 
   std::vector<PoseEntry> parse_positions(const YamlNode& map, const std::string& where) {
     std::vector<PoseEntry> out;
-    const std::vector<std::string> names = robot_.name_list();
+    out.reserve(map.entries.size());
+    std::vector<bool> given(robot_.info.servos.size());
     for (const auto& [key, value] : map.entries) {
       auto it = robot_.names.find(key.scalar);
       if (it == robot_.names.end()) {
-        reporter_.unknown(key.location, "servo", key.scalar, names, where);
+        reporter_.unknown(key.location, "servo", key.scalar, robot_.name_list(), where);
         continue;
       }
       PoseEntry e;
@@ -221,13 +222,12 @@ class ServoLowering {
       } else {
         e.value = *p;
       }
-      bool duplicate = false;
-      for (const PoseEntry& other : out) duplicate = duplicate || other.servo == e.servo;
-      if (duplicate) {
+      if (given[e.servo]) {
         reporter_.error(key.location,
                         "servo '" + robot_.info.servos[e.servo].name + "' is given twice " + where);
         continue;
       }
+      given[e.servo] = true;
       out.push_back(std::move(e));
     }
     return out;
@@ -436,7 +436,11 @@ class ServoLowering {
     }
 
     // Resolve every target before checking time, so one run reports both kinds of mistake.
-    std::map<std::size_t, int> targets;
+    // targets[servo]: the position to reach; a later entry for the same servo (possible after
+    // mirroring) replaces an earlier one. Walked in servo order below.
+    std::vector<std::optional<int>>& targets = scratch_targets_;
+    targets.assign(pos_.size(), std::nullopt);
+    std::size_t target_count = 0;
     bool ok = true;
     for (const PoseEntry& e : *entries) {
       const bool reflect = mirrored_ && robot_.mirror.count(e.servo) != 0;
@@ -471,6 +475,7 @@ class ServoLowering {
         ok = false;
         continue;
       }
+      if (!targets[servo]) ++target_count;
       targets[servo] = static_cast<int>(std::llround(units));
     }
     if (!ok || !total) return;
@@ -506,8 +511,8 @@ class ServoLowering {
       return;
     }
     if (n > 1) {
-      for (const auto& [servo, p] : targets) {
-        if (pos_[servo]) continue;
+      for (std::size_t servo = 0; servo < targets.size(); ++servo) {
+        if (!targets[servo] || pos_[servo]) continue;
         reporter_.error(step.location, "'" + robot_.info.servos[servo].name +
                                            "' has no known position before this move, so it "
                                            "cannot be split into " +
@@ -517,10 +522,9 @@ class ServoLowering {
       }
     }
 
-    std::map<std::size_t, int> start;
-    for (const auto& [servo, p] : targets) {
-      if (pos_[servo]) start[servo] = *pos_[servo];
-    }
+    // Where each target servo starts (all are known when the move is split, checked above).
+    std::vector<std::optional<int>> start;
+    if (n > 1) start = pos_;
     struct Fastest {
       double speed = 0;
       int delta = 0;
@@ -533,10 +537,13 @@ class ServoLowering {
       const auto piece = static_cast<std::uint16_t>(until - done_ms);
       done_ms = until;
       std::vector<lsc::ServoTarget> out;
-      for (const auto& [servo, end] : targets) {
+      out.reserve(target_count);
+      for (std::size_t servo = 0; servo < targets.size(); ++servo) {
+        if (!targets[servo]) continue;
+        const int end = *targets[servo];
         int p = end;
         if (k < n) {
-          const double s = start.at(servo);
+          const double s = start[servo].value();
           const double f = ease_at(ease, static_cast<double>(k) / static_cast<double>(n));
           p = static_cast<int>(std::llround(s + (end - s) * f));
         }
@@ -685,6 +692,7 @@ class ServoLowering {
   std::map<std::string, std::unique_ptr<FileScope>> scopes_;
   std::vector<FileScope*> chain_;  // files whose steps are running, outermost first
   std::vector<std::optional<int>> pos_;
+  std::vector<std::optional<int>> scratch_targets_;  // move_step's, kept to reuse its memory
   std::unique_ptr<Pose> home_;
   bool mirrored_ = false;
   std::uint64_t actions_ = 0;

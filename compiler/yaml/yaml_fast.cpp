@@ -26,7 +26,9 @@ bool is_alnum(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
 // Characters a plain scalar of the subset may hold anywhere.
-bool is_safe(char c) { return is_alnum(c) || c == '_' || c == '-' || c == '.' || c == '+' || c == '/'; }
+bool is_safe(char c) {
+  return is_alnum(c) || c == '_' || c == '-' || c == '.' || c == '+' || c == '/';
+}
 
 class FastReader {
  public:

@@ -58,6 +58,7 @@ std::optional<ScanProblem> check_bytes(std::string_view text) {
   };
   for (std::size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7F) continue;  // printable ASCII: nearly every byte
     if (c == '\n') {
       ++line;
       line_start = i + 1;

@@ -207,8 +207,32 @@ class TreeBuilder final : public YAML::EventHandler {
     YamlNode node;
     std::optional<YamlNode> key;  // a map's key waiting for its value
     bool key_usable = false;
-    std::unordered_map<std::string, Location> seen;  // a map's keys so far
+    // Duplicate keys are found by hash: small maps scan key_hashes (parallel to node.entries),
+    // big ones (a hostile file) get key_index, so neither copies a key.
+    std::vector<std::size_t> key_hashes;
+    std::unordered_multimap<std::size_t, std::size_t> key_index;  // hash -> entry
   };
+
+  static constexpr std::size_t kScannedKeys = 32;
+
+  // The entry of `top` whose key is `key` (with hash `hash`), or nullptr.
+  static const YamlNode* find_key(Frame& top, std::size_t hash, const std::string& key) {
+    const auto& entries = top.node.entries;
+    if (top.key_index.empty() && entries.size() < kScannedKeys) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        if (top.key_hashes[i] == hash && entries[i].first.scalar == key) return &entries[i].first;
+      }
+      return nullptr;
+    }
+    if (top.key_index.empty()) {
+      for (std::size_t i = 0; i < entries.size(); ++i) top.key_index.emplace(top.key_hashes[i], i);
+    }
+    const auto [begin, end] = top.key_index.equal_range(hash);
+    for (auto it = begin; it != end; ++it) {
+      if (entries[it->second].first.scalar == key) return &entries[it->second].first;
+    }
+    return nullptr;
+  }
 
   static YAML::Mark to_mark(const yaml_detail::FastEvent& e) {
     YAML::Mark m;
@@ -299,12 +323,14 @@ class TreeBuilder final : public YAML::EventHandler {
     YamlNode key = std::move(*top.key);
     top.key.reset();
     if (!top.key_usable) return;
-    const auto [it, inserted] = top.seen.emplace(key.scalar, key.location);
-    if (!inserted) {
+    const std::size_t hash = std::hash<std::string_view>{}(key.scalar);
+    if (const YamlNode* first = find_key(top, hash, key.scalar)) {
       diags_.error(key.location, "duplicate key '" + shorten(key.scalar) + "'");
-      diags_.note(it->second, "first defined here");
+      diags_.note(first->location, "first defined here");
       return;
     }
+    if (!top.key_index.empty()) top.key_index.emplace(hash, top.node.entries.size());
+    top.key_hashes.push_back(hash);
     top.node.entries.emplace_back(std::move(key), std::move(node));
   }
 
@@ -347,18 +373,21 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
   }
   const std::size_t bom = std::string_view(text).substr(0, kBom.size()) == kBom ? kBom.size() : 0;
   const std::string_view body = std::string_view(text).substr(bom);
-  if (auto problem = yaml_detail::check_flow_depth(body, limits.max_depth)) {
-    const std::uint32_t shift = problem->line == 1 ? static_cast<std::uint32_t>(bom) : 0u;
-    diags.error(Location{file, problem->line, problem->column + shift},
-                std::move(problem->message));
-    return std::nullopt;
-  }
 
   TreeBuilder builder(text, bom, file, diags, limits);
   try {
     if (auto events = yaml_detail::fast_events(body, limits.max_depth)) {
-      builder.replay(*events);  // the common case; see yaml_fast.hpp
+      // The common case; see yaml_fast.hpp. check_flow_depth has nothing to find here: the fast
+      // reader's own depth limit covers flow nesting, and its subset has no brackets that are
+      // text rather than structure.
+      builder.replay(*events);
     } else {
+      if (auto problem = yaml_detail::check_flow_depth(body, limits.max_depth)) {
+        const std::uint32_t shift = problem->line == 1 ? static_cast<std::uint32_t>(bom) : 0u;
+        diags.error(Location{file, problem->line, problem->column + shift},
+                    std::move(problem->message));
+        return std::nullopt;
+      }
       std::istringstream in{std::string(body)};
       YAML::Parser parser(in);
       // Finding 1: the second document aborts, so this runs at most twice.

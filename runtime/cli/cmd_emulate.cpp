@@ -176,9 +176,9 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("device", opts->device, "xarm (servo controller) or raspblock (car board)")
       ->required()
       ->check(CLI::IsMember({"xarm", "raspblock"}));
-  opts->baud_opt = cmd->add_option(
-      "--baud", opts->baud,
-      "xarm: line rate both ways (10 bits per byte), 0 = unpaced\n(default 9600)");
+  opts->baud_opt =
+      cmd->add_option("--baud", opts->baud,
+                      "xarm: line rate both ways (10 bits per byte), 0 = unpaced\n(default 9600)");
   opts->faults_opt =
       cmd->add_option("--faults", opts->faults,
                       "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
@@ -190,10 +190,10 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   opts->record_opt = cmd->add_option(
       "--record", opts->record,
       "On exit, write what was received as CSV\n(xarm: every frame; raspblock: state timeline)");
-  opts->dump_groups_opt = cmd->add_option(
-      "--dump-groups", opts->dump_groups,
-      "xarm: on exit, write every valid stored group, one action\n"
-      "per line: GROUP INDEX TIME_MS ID=POSITION ...");
+  opts->dump_groups_opt =
+      cmd->add_option("--dump-groups", opts->dump_groups,
+                      "xarm: on exit, write every valid stored group, one action\n"
+                      "per line: GROUP INDEX TIME_MS ID=POSITION ...");
   cmd->callback([opts, &ctx, &result] { result.code = run_emulate(*opts, ctx); });
 }
 

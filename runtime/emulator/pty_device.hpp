@@ -61,8 +61,8 @@ class XArmPtyDevice final : public PtyDevice {
 
   XArmEmulator& emu_;
   InputLine input_;
-  RequestFramer framer_;                  // the controller's cut of the queued bytes
-  std::vector<io::TimePoint> frame_ends_;  // arrival of queued bytes that complete a frame
+  RequestFramer framer_;                       // the controller's cut of the queued bytes
+  std::vector<io::TimePoint> frame_ends_;      // arrival of queued bytes that complete a frame
   std::optional<io::TimePoint> last_arrival_;  // of the last byte queued
 };
 

@@ -40,7 +40,8 @@ Result<XArmFaults> parse_faults(std::string_view spec);
 std::string describe_faults(const XArmFaults& faults);
 
 struct XArmConfig {
-  std::uint32_t baud = 0;        // 0 = unpaced; else replies take 10 bits per byte on the wire
+  std::uint32_t baud = 0;        // 0 = unpaced; else every byte, either way, takes 10 bits on
+                                 // the wire (requests: InputLine in front of the emulator)
   io::Duration command_time{0};  // processing time of an ordinary frame (busy meanwhile)
   io::Duration flash_erase_time = std::chrono::milliseconds(60);  // GroupDownload step 1 and
                                                                   // GroupErase busy time

@@ -26,10 +26,13 @@
 // While playing, the controller sends GroupFinished 55 55 05 08 G tLo tHi when a run of
 // `times` loops ends (times = 0 loops forever).
 //
-// Timing: a frame is processed when it arrives and keeps the controller busy for
-// command_time (flash_erase_time for step 1 and GroupErase, flash_write_time for step 4);
-// a frame arriving while busy is dropped silently (ReceivedFrame::dropped_busy). The reply
-// is ready when processing ends and then takes 10 bits per byte at `baud` (0 = at once).
+// Timing: receive() is the moment bytes reach the controller; their wire time from the host
+// is modelled in front of it by an InputLine (serial_line.hpp), in XArmPtyDevice and
+// EmulatorTransport alike. A frame is processed when its last byte arrives and keeps the
+// controller busy for command_time (flash_erase_time for step 1 and GroupErase,
+// flash_write_time for step 4); a frame arriving while busy is dropped silently
+// (ReceivedFrame::dropped_busy). The reply is ready when processing ends and then takes
+// 10 bits per byte at `baud` (0 = at once).
 // Unknown commands and malformed frames are ignored (recorded with frame = nullopt when they
 // cannot be framed, or with their frame when they cannot be decoded).
 //

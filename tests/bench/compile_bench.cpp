@@ -6,9 +6,10 @@
 // (fork + exec) whose wall time is taken with CLOCK_MONOTONIC around fork..wait4 and whose
 // peak RSS is wait4's ru_maxrss, so neither process's memory is mixed with the other's.
 // seqc runs the whole pipeline (read, parse, validate, lower, plan, encode, print hex to
-// /dev/null). PyYAML runs /usr/bin/python3 with yaml.CSafeLoader when libyaml is available,
+// /dev/null; one untimed run first writes it to a file, whose size is reported, so the work is
+// seen to be done). PyYAML runs /usr/bin/python3 with yaml.CSafeLoader when libyaml is available,
 // yaml.SafeLoader otherwise (reported). Both include their process start-up. The median of
-// --runs runs (default 7) is reported.
+// --runs runs (default 7) is reported, with the fastest and slowest run.
 //
 // Usage: compile_bench [--runs N] [--dir DIR]
 #include <fcntl.h>
@@ -62,12 +63,18 @@ Sample measure(const std::vector<std::string>& args, const char* out_path = "/de
   return s;
 }
 
-Sample median(std::vector<Sample> v) {
+struct Summary {
+  Sample median;  // max_rss_kib: the largest of all runs
+  double min_ms = 0;
+  double max_ms = 0;
+};
+
+Summary summarize(std::vector<Sample> v) {
   std::sort(v.begin(), v.end(),
             [](const Sample& a, const Sample& b) { return a.wall_ms < b.wall_ms; });
-  Sample m = v[v.size() / 2];
-  for (const Sample& s : v) m.max_rss_kib = std::max(m.max_rss_kib, s.max_rss_kib);
-  return m;
+  Summary s{v[v.size() / 2], v.front().wall_ms, v.back().wall_ms};
+  for (const Sample& x : v) s.median.max_rss_kib = std::max(s.median.max_rss_kib, x.max_rss_kib);
+  return s;
 }
 
 // 1,020 moves of all 32 channels, 20 ms each, every position different from the last.
@@ -121,6 +128,21 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  const std::string out_file = dir + "/bench-out.hex";
+  if (measure({SEQC_BIN, "compile", file}, out_file.c_str()).status != 0) {
+    std::fprintf(stderr, "compile_bench: seqc compile failed\n");
+    return 1;
+  }
+  std::size_t out_bytes = 0;
+  std::size_t out_lines = 0;
+  {
+    std::ifstream in(out_file, std::ios::binary);
+    for (std::string line; std::getline(in, line);) {
+      out_bytes += line.size() + 1;
+      ++out_lines;
+    }
+  }
+
   std::vector<Sample> seqc_runs, py_runs;
   for (int r = 0; r < runs; ++r) {  // interleaved, so drift in machine load hits both
     seqc_runs.push_back(measure({SEQC_BIN, "compile", file}));
@@ -131,18 +153,24 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  const Sample s = median(seqc_runs);
-  const Sample p = median(py_runs);
+  const Summary ss = summarize(seqc_runs);
+  const Summary ps = summarize(py_runs);
+  const Sample& s = ss.median;
+  const Sample& p = ps.median;
   std::printf("input: %s (%zu bytes, 1020 actions x 32 servos, lsc-32)\n", file.c_str(),
               yaml.size());
   std::printf(
       "method: separate processes (fork+exec), wall = CLOCK_MONOTONIC around fork..wait4,\n"
       "        peak RSS = wait4 ru_maxrss; median wall of %d interleaved runs, max RSS\n",
       runs);
-  std::printf("seqc compile (parse+validate+plan+encode): %8.1f ms  %7.1f MiB\n", s.wall_ms,
-              static_cast<double>(s.max_rss_kib) / 1024.0);
-  std::printf("PyYAML load (/usr/bin/python3, %s): %8.1f ms  %7.1f MiB\n", loader.c_str(),
-              p.wall_ms, static_cast<double>(p.max_rss_kib) / 1024.0);
+  std::printf("seqc output: %zu lines of hex, %zu bytes (checked once in a file, then /dev/null)\n",
+              out_lines, out_bytes);
+  std::printf(
+      "seqc compile (parse+validate+plan+encode): %8.1f ms  %7.1f MiB  (runs %.1f..%.1f ms)\n",
+      s.wall_ms, static_cast<double>(s.max_rss_kib) / 1024.0, ss.min_ms, ss.max_ms);
+  std::printf("PyYAML load (/usr/bin/python3, %s): %8.1f ms  %7.1f MiB  (runs %.1f..%.1f ms)\n",
+              loader.c_str(), p.wall_ms, static_cast<double>(p.max_rss_kib) / 1024.0, ps.min_ms,
+              ps.max_ms);
   const double ratio = s.wall_ms / p.wall_ms;
   std::printf("time ratio seqc/PyYAML: %.3f (target <= 0.333: %s)\n", ratio,
               ratio <= 1.0 / 3.0 ? "met" : "NOT met");

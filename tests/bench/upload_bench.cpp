@@ -52,8 +52,9 @@ std::int64_t wall_ns() {
 }
 
 // Forwards to the xArm device and times the idle line between a reply and the next request.
-// It takes output one due byte at a time so it knows each byte's due time; the emulator's
-// timeline does not change (it only depends on the times bytes are handed over).
+// It takes output one wake-up time (next_output_at: a whole reply) at a time, so it knows
+// when the last byte handed over was due; the emulator's timeline does not change (it only
+// depends on the times the host's bytes were read).
 class TimedDevice final : public emu::PtyDevice {
  public:
   explicit TimedDevice(emu::PtyDevice& inner) : inner_(inner) {}
@@ -62,7 +63,7 @@ class TimedDevice final : public emu::PtyDevice {
     if (last_due_) {
       idle_ += io::Duration{wall_ns() - last_written_wall_};
       late_ += last_written_ - *last_due_;
-      lates_.push_back((last_written_ - *last_due_).count());
+      lates_.push_back(last_written_ - *last_due_);
       ++gaps_;
       last_due_.reset();
     }
@@ -93,6 +94,7 @@ class TimedDevice final : public emu::PtyDevice {
   // The server handing a reply's last byte to the pty -> reading the next request from it.
   io::Duration after_write() const { return idle_; }
   std::size_t gaps() const { return gaps_; }
+  const std::vector<io::Duration>& lates() const { return lates_; }
 
  private:
   emu::PtyDevice& inner_;
@@ -102,8 +104,7 @@ class TimedDevice final : public emu::PtyDevice {
   io::Duration idle_{0};
   io::Duration late_{0};
   std::size_t gaps_ = 0;
- public:
-  std::vector<std::int64_t> lates_;
+  std::vector<io::Duration> lates_;
 };
 
 // Forwards to the host's transport and times the uploader itself: from a read that returned
@@ -206,8 +207,15 @@ int bench(std::uint32_t baud, std::size_t count) {
       r.link.frames_received, sent, received, baud, bound, wall, wall / bound, r.retries,
       r.restarts, device.gaps(), ms(late + after), us_each(late + after), us_each(late),
       us_each(after - host), us_each(host));
-  std::sort(device.lates_.begin(), device.lates_.end());
-  if (!device.lates_.empty()) { auto& v = device.lates_; std::printf("DEBUG late p50 %ld p90 %ld p99 %ld max %ld top: %ld %ld %ld\n", v[v.size()/2], v[v.size()*9/10], v[v.size()*99/100], v.back(), v[v.size()-2], v[v.size()-3], v[v.size()-4]); }
+  std::vector<io::Duration> lates = device.lates();
+  std::sort(lates.begin(), lates.end());
+  if (!lates.empty()) {
+    auto pct = [&](std::size_t p) { return ms(lates[(lates.size() - 1) * p / 100]) * 1000.0; };
+    std::printf(
+        "  late    server's lateness per reply (its wake-up on this machine's load): p50 %.1f us, "
+        "p90 %.1f us, p99 %.1f us, max %.1f us\n",
+        pct(50), pct(90), pct(99), pct(100));
+  }
   return r.ok() && stored && counted ? 0 : 1;
 }
 

@@ -107,9 +107,9 @@ class UploadE2E : public ::testing::Test {
     link_ = dir_ + "/xarm";
     record_ = dir_ + "/record.csv";
     groups_ = dir_ + "/groups.txt";
-    emulator_ = spawn({kSeqc, "emulate", "xarm", "--link", link_, "--record", record_,
-                       "--dump-groups", groups_},
-                      dir_ + "/emu.out", dir_ + "/emu.err");
+    emulator_ = spawn(
+        {kSeqc, "emulate", "xarm", "--link", link_, "--record", record_, "--dump-groups", groups_},
+        dir_ + "/emu.out", dir_ + "/emu.err");
     ASSERT_GT(emulator_, 0);
     struct stat st {};
     for (int i = 0; i < 200 && lstat(link_.c_str(), &st) != 0; ++i) {

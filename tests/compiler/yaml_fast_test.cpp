@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "compiler/yaml/yaml_fast.hpp"
+#include "compiler/yaml/yaml_prescan.hpp"
 
 namespace seqc::compiler::yaml_detail {
 namespace {
@@ -32,13 +33,13 @@ struct Ev {
 };
 
 std::string describe(const std::vector<Ev>& events) {
-  static const char* const kNames[] = {"Null", "Scalar", "SeqStart", "SeqEnd", "MapStart",
-                                       "MapEnd"};
+  static const char* const kNames[] = {"Null",   "Scalar",   "SeqStart",
+                                       "SeqEnd", "MapStart", "MapEnd"};
   std::string out;
   for (const Ev& e : events) {
     out += kNames[static_cast<int>(e.kind)];
-    out += "@" + std::to_string(e.pos) + ":" + std::to_string(e.line) + ":" +
-           std::to_string(e.column);
+    out +=
+        "@" + std::to_string(e.pos) + ":" + std::to_string(e.line) + ":" + std::to_string(e.column);
     if (e.kind == FastEvent::Kind::Scalar) out += "'" + e.value + "'";
     out += " ";
   }
@@ -111,6 +112,8 @@ bool check(const std::string& text) {
   }
   const std::vector<Ev> got = from_fast(*fast);
   EXPECT_EQ(error, "") << "accepted by the fast reader:\n" << text;
+  // The loader skips this pre-scan for accepted texts: it must have nothing to report.
+  EXPECT_FALSE(check_flow_depth(text, 64).has_value()) << text;
   EXPECT_EQ(describe(got), describe(recorder.events)) << "text:\n" << text;
   return true;
 }
@@ -254,9 +257,9 @@ TEST(YamlFast, RandomShortTextsMatchYamlCpp) {
 // Random documents assembled from lines of the subset, with the occasional line broken.
 TEST(YamlFast, RandomDocumentsMatchYamlCpp) {
   const std::vector<std::string> pieces = {
-      "k: v",  "k: 1 2", "k:",   "- x",     "- k: v", "-",        "- - x", "k: {a: 1, b: [x, y]}",
-      "k: []", "[a, b]", "# c",  "",        "k: -1",  "k: null",  "- {}",  "k: v # c",
-      "k2: w", "- k:",   "a b:", "k: {a: 1", "k: ]",  "k: v:",    "- -",   "k: 'q'",
+      "k: v",  "k: 1 2", "k:",   "- x",      "- k: v", "-",       "- - x", "k: {a: 1, b: [x, y]}",
+      "k: []", "[a, b]", "# c",  "",         "k: -1",  "k: null", "- {}",  "k: v # c",
+      "k2: w", "- k:",   "a b:", "k: {a: 1", "k: ]",   "k: v:",   "- -",   "k: 'q'",
   };
   std::mt19937 rng(7);
   std::size_t accepted = 0;

@@ -104,14 +104,17 @@ TEST(XArmPtyDevice, WakesWhenEachFrameIsInNotAtEveryByte) {
   device.receive(hex("00 01 55 55 02 0f 55 55 05 15 02 01 06"), at_ms(0));
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 6 * kByte9600);
   EXPECT_TRUE(device.take_output(at_ms(0) + 6 * kByte9600).empty());
-  ASSERT_EQ(emu.received().size(), 2u);  // the garbage piece and GetBatteryVoltage
-  EXPECT_FALSE(emu.received()[0].frame);
+  // Each garbage byte is known to be garbage as it arrives: a piece each, then the frame.
+  ASSERT_EQ(emu.received().size(), 3u);
+  EXPECT_EQ(hex_of(emu.received()[1].raw), "01");
+  EXPECT_FALSE(emu.received()[1].frame);
+  EXPECT_EQ(emu.received()[1].at, at_ms(0) + 2 * kByte9600);
   // The battery reply ends at 12 byte times, before the second frame is in (13).
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 12 * kByte9600);
   EXPECT_EQ(hex_of(device.take_output(at_ms(0) + 12 * kByte9600)), "55 55 04 0f 4c 1d");
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 13 * kByte9600);
   EXPECT_TRUE(device.take_output(at_ms(0) + 13 * kByte9600).empty());
-  ASSERT_EQ(emu.received().size(), 3u);
+  ASSERT_EQ(emu.received().size(), 4u);
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 24 * kByte9600) << "11 bytes of positions";
 }
 
@@ -190,10 +193,9 @@ TEST(GroupDump, ListsEveryValidGroupActionByAction) {
             "# seqc emulate xarm: stored groups\n"
             "# group index time_ms id=position ...\n");
   ASSERT_TRUE(download(emu, 7, {lsc::GroupAction{250, {{1, 100}, {6, 1000}}}}, t));
-  ASSERT_TRUE(download(emu, 2,
-                       {lsc::GroupAction{1000, {{1, 500}, {2, 0}}},
-                        lsc::GroupAction{65535, {{3, 250}}}},
-                       t));
+  ASSERT_TRUE(download(
+      emu, 2, {lsc::GroupAction{1000, {{1, 500}, {2, 0}}}, lsc::GroupAction{65535, {{3, 250}}}},
+      t));
   // A download that never reaches step 5 leaves its group out.
   (void)exchange(emu, hex("55 55 05 05 01 09 01"), t);
   EXPECT_EQ(dump_groups(emu),
