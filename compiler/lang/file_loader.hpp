@@ -2,6 +2,7 @@
 // SourceManager, parses each once, and remembers it by its normalised path.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -14,6 +15,9 @@
 #include "runtime/protocol/result.hpp"
 
 namespace seqc::compiler {
+
+// How deeply includes may nest before the chain is taken for a runaway.
+inline constexpr std::size_t kMaxIncludeDepth = 16;
 
 struct LoadedFile {
   std::string path;  // as shown in diagnostics

@@ -10,7 +10,11 @@
 #include <set>
 #include <tuple>
 
+#include "compiler/lang/positions.hpp"
 #include "compiler/lang/raspblock_link.hpp"
+#include "compiler/lang/raspblock_settings.hpp"
+#include "compiler/lang/scope_chain.hpp"
+#include "compiler/lang/step_parts.hpp"
 #include "compiler/lang/units.hpp"
 
 namespace seqc::compiler {
@@ -40,34 +44,6 @@ constexpr int kHome = 1500;
 constexpr double kDegreeZero = 500.0;
 constexpr double kUnitsPerDegree = 2000.0 / 180.0;
 
-struct Axis {
-  std::string_view name;
-  int limit;
-};
-// The rocker's ranges: X and Y -25..25 (document); Z -200..200 (protocol-notes.md B reading,
-// kept in runtime/protocol/raspblock.cpp).
-constexpr std::array<Axis, 3> kAxes = {{{"x", 25}, {"y", 25}, {"z", 200}}};
-
-constexpr std::array<std::string_view, 8> kGainNames = {"speed_kp",    "speed_ki",    "position_kp",
-                                                        "position_ki", "position_kd", "yaw_kp",
-                                                        "yaw_ki",      "yaw_kd"};
-
-enum class Ease { Linear, In, Out, InOut };
-
-double ease_at(Ease ease, double t) {
-  switch (ease) {
-    case Ease::Linear:
-      return t;
-    case Ease::In:
-      return t * t;
-    case Ease::Out:
-      return 1 - (1 - t) * (1 - t);
-    case Ease::InOut:
-      return t < 0.5 ? 2 * t * t : 1 - 2 * (1 - t) * (1 - t);
-  }
-  return t;
-}
-
 std::string grouped(std::uint64_t n) {
   std::string s = std::to_string(n);
   for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
@@ -75,40 +51,13 @@ std::string grouped(std::uint64_t n) {
   return s;
 }
 
-std::string ms_text(double ms) {
-  if (ms == std::floor(ms)) return std::to_string(static_cast<long long>(ms)) + "ms";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1fms", ms);
-  return buf;
-}
-
 using LocationKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>;
 LocationKey key_of(const Location& at) { return {at.file, at.line, at.column}; }
-
-struct Target {
-  std::size_t channel = 0;
-  std::string written;
-  bool home = false;
-  PositionValue value;
-  Location at;
-};
-
-struct Pose {
-  std::vector<Target> entries;
-  Location at;
-};
-
-struct FileScope {
-  const LoadedFile* file = nullptr;
-  std::map<std::string, Pose, std::less<>> poses;
-  std::optional<double> tempo;
-  std::optional<std::uint32_t> resolution_ms;
-};
 
 class RaspblockLowering {
  public:
   RaspblockLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
-      : robot_(robot), loader_(loader), reporter_(reporter) {}
+      : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {}
 
   RaspblockProgram run(const LoadedFile& main) {
     if (main.root && main.root->is_map()) {
@@ -139,25 +88,14 @@ class RaspblockLowering {
   // ---- files ---------------------------------------------------------------------------------
 
   void run_file(const LoadedFile& f, bool is_main) {
-    if (!f.root) return;
-    const YamlNode& root = *f.root;
-    if (!root.is_map()) {
-      reporter_.error(root.location,
-                      "a choreography file must be a map with 'robot' and 'sequence' keys");
-      return;
-    }
+    const YamlNode* map = file_root(f, reporter_);
+    if (map == nullptr) return;
+    const YamlNode& root = *map;
     reporter_.check_keys(
         root, {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name", "description"},
         "at the top level");
     if (!is_main) {
-      if (const YamlNode* r = root.find("robot")) {
-        auto name = included_robot_name(*r, reporter_);
-        if (name && *name != robot_.info.profile) {
-          reporter_.error(r->location, "this file is for robot '" + *name +
-                                           "' but is included by a file for '" +
-                                           robot_.info.profile + "'");
-        }
-      }
+      check_included_robot(root, robot_.info.profile, reporter_);
       if (const YamlNode* p = root.find("pid")) {
         reporter_.error(p->location,
                         "'pid' belongs in the main file: the settings are sent "
@@ -167,107 +105,34 @@ class RaspblockLowering {
     FileScope& scope = scope_for(f);
     if (is_main) {
       end_at_ = root.location;
-      if (const YamlNode* p = root.find("pid")) pid_section(*p);
+      if (const YamlNode* p = root.find("pid")) {
+        if (auto adjust = parse_pid_section(*p, reporter_)) emit(*adjust, p->location);
+      }
     }
-    const YamlNode* sequence = root.find("sequence");
-    if (sequence == nullptr) {
-      reporter_.error(root.location, "missing 'sequence': the list of steps to perform");
-      return;
-    }
+    const YamlNode* sequence = find_sequence(root, reporter_);
+    if (sequence == nullptr) return;
     if (is_main) end_at_ = sequence->location;
-    chain_.push_back(&scope);
+    scopes_.push(scope);
     run_steps(*sequence, "'sequence'");
-    chain_.pop_back();
+    scopes_.pop();
   }
 
   FileScope& scope_for(const LoadedFile& f) {
-    auto it = scopes_.find(f.path);
-    if (it != scopes_.end()) return *it->second;
-    auto scope = std::make_unique<FileScope>();
-    scope->file = &f;
+    auto [scope, fresh] = scopes_.open(f, reporter_);
+    if (!fresh) return scope;
     const YamlNode& root = *f.root;
-    if (const YamlNode* t = root.find("tempo")) scope->tempo = parse_tempo(*t);
-    if (const YamlNode* p = root.find("poses")) parse_poses(*p, *scope);
-    FileScope& ref = *scope;
-    scopes_.emplace(f.path, std::move(scope));
+    if (const YamlNode* p = root.find("poses")) parse_poses(*p, scope);
     if (const YamlNode* r = root.find("resolution")) {
-      chain_.push_back(&ref);  // so beats use this file's tempo
+      scopes_.push(scope);  // so beats use this file's tempo
       auto ms = time_ms(*r, "'resolution'");
-      chain_.pop_back();
+      scopes_.pop();
       if (ms && *ms == 0) {
         reporter_.error(r->location, "'resolution' must be at least 1ms");
       } else if (ms) {
-        ref.resolution_ms = *ms;
+        scope.resolution_ms = *ms;
       }
     }
-    return ref;
-  }
-
-  std::optional<double> parse_tempo(const YamlNode& node) {
-    std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
-    if (text.size() > 3 && text.substr(text.size() - 3) == "bpm") text.remove_suffix(3);
-    double bpm = 0;
-    if (!node.is_scalar() || !parse_decimal(text, bpm) || bpm < 1 || bpm > 1000) {
-      reporter_.error(node.location,
-                      "'tempo' must be beats per minute between 1 and 1000, e.g. 'tempo: 120'");
-      return std::nullopt;
-    }
-    return bpm;
-  }
-
-  // ---- pid -----------------------------------------------------------------------------------
-
-  void pid_section(const YamlNode& pid) {
-    if (!pid.is_map()) {
-      reporter_.error(pid.location,
-                      "'pid' must be a map: mode (speed or position) and the "
-                      "gains speed_kp ... yaw_kd, each 0-255");
-      return;
-    }
-    reporter_.check_keys(pid,
-                         {"mode", "speed_kp", "speed_ki", "position_kp", "position_ki",
-                          "position_kd", "yaw_kp", "yaw_ki", "yaw_kd"},
-                         "in 'pid'");
-    raspblock::PidAdjust p;
-    bool ok = true;
-    std::string missing;
-    if (const YamlNode* m = pid.find("mode")) {
-      if (m->is_scalar() && m->scalar == "speed") {
-        p.mode = raspblock::PidMode::Speed;
-      } else if (m->is_scalar() && m->scalar == "position") {
-        p.mode = raspblock::PidMode::Position;
-      } else {
-        reporter_.unknown(m->location, "pid mode", m->is_scalar() ? m->scalar : "",
-                          {"speed", "position"});
-        ok = false;
-      }
-    } else {
-      missing = "mode";
-    }
-    std::uint8_t* gains[] = {&p.speed_kp,    &p.speed_ki, &p.position_kp, &p.position_ki,
-                             &p.position_kd, &p.yaw_kp,   &p.yaw_ki,      &p.yaw_kd};
-    for (std::size_t i = 0; i < kGainNames.size(); ++i) {
-      const YamlNode* g = pid.find(kGainNames[i]);
-      if (g == nullptr) {
-        missing += std::string(missing.empty() ? "" : ", ") + std::string(kGainNames[i]);
-        continue;
-      }
-      auto v = parse_integer(*g, 0, 255, "'" + std::string(kGainNames[i]) + "'", reporter_);
-      if (v) {
-        *gains[i] = static_cast<std::uint8_t>(*v);
-      } else {
-        ok = false;
-      }
-    }
-    if (!missing.empty()) {
-      reporter_.error(pid.location,
-                      "'pid' sets every value at once, so it needs all of mode, "
-                      "speed_kp, speed_ki, position_kp, position_ki, "
-                      "position_kd, yaw_kp, yaw_ki, yaw_kd; missing: " +
-                          missing);
-      return;
-    }
-    if (ok) emit(p, pid.location);
+    return scope;
   }
 
   // ---- values --------------------------------------------------------------------------------
@@ -279,32 +144,23 @@ class RaspblockLowering {
   }
 
   void parse_poses(const YamlNode& poses, FileScope& scope) {
-    if (poses.kind == YamlNode::Kind::Null) return;
-    if (!poses.is_map()) {
-      reporter_.error(poses.location,
-                      "'poses' must be a map of pose names to positions, e.g. "
-                      "'look_left: {pan: 2000, tilt: 1500}'");
-      return;
-    }
-    for (const auto& [key, value] : poses.entries) {
-      Pose pose;
-      pose.at = key.location;
-      if (!value.is_map()) {
-        reporter_.error(value.location, "pose '" + key.scalar +
-                                            "' must be a map of output: position, e.g. "
-                                            "{pan: 2000, tilt: 1500}");
-      } else {
-        pose.entries = parse_targets(value, "in pose '" + key.scalar + "'");
-        for (const Target& t : pose.entries) {
-          if (!t.value.relative) check_limits(t, absolute_units(t), {});
-        }
-      }
-      scope.poses.emplace(key.scalar, std::move(pose));
-    }
+    compiler::parse_poses(
+        poses, scope,
+        "'poses' must be a map of pose names to positions, e.g. "
+        "'look_left: {pan: 2000, tilt: 1500}'",
+        "output: position, e.g. {pan: 2000, tilt: 1500}",
+        [this](const YamlNode& map, const std::string& where) {
+          std::vector<PositionEntry> entries = parse_targets(map, where);
+          for (const PositionEntry& t : entries) {
+            if (!t.value.relative) check_limits(t, absolute_units(t), {});
+          }
+          return entries;
+        },
+        reporter_);
   }
 
-  std::vector<Target> parse_targets(const YamlNode& map, const std::string& where) {
-    std::vector<Target> out;
+  std::vector<PositionEntry> parse_targets(const YamlNode& map, const std::string& where) {
+    std::vector<PositionEntry> out;
     for (const auto& [key, value] : map.entries) {
       std::optional<std::size_t> channel;
       for (std::size_t i = 0; i < kChannels.size(); ++i) {
@@ -314,124 +170,34 @@ class RaspblockLowering {
         reporter_.unknown(key.location, "output", key.scalar, channel_names(), where);
         continue;
       }
-      Target t;
-      t.channel = *channel;
-      t.at = value.location;
-      if (!value.is_scalar()) {
-        reporter_.error(value.location, "the position of '" + key.scalar +
-                                            "' must be a value such as 1500, 90deg, +100 or "
-                                            "home");
-        continue;
-      }
-      t.written = value.scalar;
-      if (value.scalar == "home") {
-        t.home = true;
-      } else if (auto p = parse_position(value.scalar); !p) {
-        reporter_.error(value.location, p.error().message);
-        continue;
-      } else {
-        t.value = *p;
-      }
-      out.push_back(std::move(t));
+      auto t = parse_position_entry(key, value, *channel, "1500, 90deg, +100", reporter_);
+      if (!t) continue;
+      out.push_back(std::move(*t));
     }
     return out;
   }
 
-  static double absolute_units(const Target& t) {
+  static double absolute_units(const PositionEntry& t) {
     if (t.home) return kHome;
     return t.value.degrees ? kDegreeZero + t.value.amount * kUnitsPerDegree : t.value.amount;
   }
 
-  bool check_limits(const Target& t, double units, std::string how,
+  bool check_limits(const PositionEntry& t, double units, std::string how,
                     std::optional<Reporter::Note> note = {}) {
-    const Channel& c = kChannels[t.channel];
-    const long long p = std::llround(units);
-    if (p >= c.min && p <= c.max) return true;
-    if (how.empty() && t.value.degrees) how = t.written;
-    std::string message = "'" + std::string(c.name) + "' would move to " + std::to_string(p);
-    if (!how.empty()) message += " (" + how + ")";
-    message += p > c.max ? ", above its max " + std::to_string(c.max)
-                         : ", below its min " + std::to_string(c.min);
-    reporter_.error(t.at, std::move(message), std::move(note));
-    return false;
+    const Channel& c = kChannels[t.output];
+    return check_position_limits(t, c.name, c.min, c.max, units, std::move(how), std::move(note),
+                                 reporter_);
   }
 
   std::optional<std::uint32_t> time_ms(const YamlNode& node, std::string_view what) {
-    if (!node.is_scalar()) {
-      reporter_.error(node.location,
-                      std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
-      return std::nullopt;
-    }
-    auto t = parse_time(node.scalar);
-    if (!t) {
-      reporter_.error(node.location, t.error().message);
-      return std::nullopt;
-    }
-    double ms = t->amount;
-    if (t->unit == TimeUnit::Seconds) ms *= 1000;
-    if (t->unit == TimeUnit::Beats) {
-      std::optional<double> tempo;
-      for (auto it = chain_.rbegin(); it != chain_.rend() && !tempo; ++it) tempo = (*it)->tempo;
-      if (!tempo) {
-        reporter_.error(node.location, "'" + node.scalar +
-                                           "' counts beats but no 'tempo' is set; add e.g. "
-                                           "'tempo: 120' at the top of the file");
-        return std::nullopt;
-      }
-      ms *= 60000.0 / *tempo;
-    }
-    if (ms > static_cast<double>(kRaspblockMaxStreamMs)) {
-      reporter_.error(node.location,
-                      "'" + node.scalar + "' is longer than a stream may last (24 hours)");
-      return std::nullopt;
-    }
-    return static_cast<std::uint32_t>(std::llround(ms));
-  }
-
-  // A whole number within [-limit, limit], written with an optional sign.
-  std::optional<int> parse_signed(const YamlNode& node, int limit, const std::string& what) {
-    const std::string range = std::to_string(-limit) + " to " + std::to_string(limit);
-    if (!node.is_scalar()) {
-      reporter_.error(node.location, what + " must be a whole number " + range);
-      return std::nullopt;
-    }
-    std::string_view s = node.scalar;
-    int sign = 1;
-    if (!s.empty() && (s[0] == '-' || s[0] == '+')) {
-      sign = s[0] == '-' ? -1 : 1;
-      s.remove_prefix(1);
-    }
-    long long v = 0;
-    bool ok = !s.empty() && s.size() <= 9;
-    for (char c : s) {
-      ok = ok && c >= '0' && c <= '9';
-      if (ok) v = v * 10 + (c - '0');
-    }
-    if (!ok) {
-      reporter_.error(node.location,
-                      "'" + node.scalar + "' is not a whole number; " + what + " is " + range);
-      return std::nullopt;
-    }
-    v *= sign;
-    if (v < -limit || v > limit) {
-      reporter_.error(node.location, what + " must be " + range + ", not " + node.scalar);
-      return std::nullopt;
-    }
-    return static_cast<int>(v);
+    return scopes_.time_ms(node, what, kRaspblockMaxStreamMs,
+                           "is longer than a stream may last (24 hours)", reporter_);
   }
 
   // ---- steps ---------------------------------------------------------------------------------
 
   void run_steps(const YamlNode& list, std::string_view what) {
-    if (list.kind == YamlNode::Kind::Null) return;
-    if (!list.is_sequence()) {
-      reporter_.error(list.location, std::string(what) +
-                                         " must be a list of steps (each line "
-                                         "starting with '- '), not " +
-                                         std::string(kind_name(list)));
-      return;
-    }
-    for (const YamlNode& step : list.items) {
+    for (const YamlNode& step : step_items(list, what, reporter_)) {
       if (full_) return;
       run_step(step);
     }
@@ -503,61 +269,11 @@ class RaspblockLowering {
     }
   }
 
-  const Pose* find_pose(const YamlNode& name) {
-    for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
-      auto p = (*it)->poses.find(name.scalar);
-      if (p != (*it)->poses.end()) return &p->second;
-    }
-    if (name.scalar == "home") {
-      if (!home_) {
-        home_ = std::make_unique<Pose>();
-        for (std::size_t c : {kPan, kTilt}) {
-          Target t;
-          t.channel = c;
-          t.home = true;
-          t.written = "home";
-          home_->entries.push_back(t);
-        }
-      }
-      return home_.get();
-    }
-    std::vector<std::string> names{"home"};
-    for (const FileScope* s : chain_) {
-      for (const auto& [n, pose] : s->poses) names.push_back(n);
-    }
-    reporter_.unknown(name.location, "pose", name.scalar, names);
-    return nullptr;
-  }
-
-  std::optional<raspblock::Rocker> parse_drive(const YamlNode& drive) {
-    if (!drive.is_map()) {
-      reporter_.error(drive.location,
-                      "'drive' takes a map of speeds, e.g. {x: 10, y: 0, z: 0} "
-                      "(x, y -25 to 25; z -200 to 200)");
-      return std::nullopt;
-    }
-    reporter_.check_keys(drive, {"x", "y", "z"}, "in 'drive'");
-    int values[3] = {0, 0, 0};
-    bool ok = true;
-    for (std::size_t i = 0; i < kAxes.size(); ++i) {
-      if (const YamlNode* n = drive.find(kAxes[i].name)) {
-        auto v = parse_signed(*n, kAxes[i].limit, "'" + std::string(kAxes[i].name) + "'");
-        if (v) {
-          values[i] = *v;
-        } else {
-          ok = false;
-        }
-      }
-    }
-    if (!ok) return std::nullopt;
-    return raspblock::Rocker{values[0], values[1], values[2]};
-  }
-
   void motion_step(const YamlNode& step, const YamlNode* drive_node, const YamlNode* move_node) {
     std::optional<raspblock::Rocker> drive;
     bool ok = true;
     if (drive_node != nullptr) {
-      drive = parse_drive(*drive_node);
+      drive = parse_drive(*drive_node, reporter_);
       ok = drive.has_value();
     }
 
@@ -582,20 +298,9 @@ class RaspblockLowering {
     if (move_node != nullptr) {
       ok = resolve_move(*move_node, targets) && ok;
       if (ease_node != nullptr) {
-        static const std::map<std::string, Ease, std::less<>> kEases = {
-            {"linear", Ease::Linear},     {"in", Ease::In},      {"out", Ease::Out},
-            {"in-out", Ease::InOut},      {"ease-in", Ease::In}, {"ease-out", Ease::Out},
-            {"ease-in-out", Ease::InOut},
-        };
-        auto it = ease_node->is_scalar() ? kEases.find(ease_node->scalar) : kEases.end();
-        if (it == kEases.end()) {
-          reporter_.unknown(ease_node->location, "easing",
-                            ease_node->is_scalar() ? ease_node->scalar : "",
-                            {"linear", "in", "out", "in-out"});
-          ok = false;
-        } else {
-          ease = it->second;
-        }
+        auto parsed = parse_ease(*ease_node, reporter_);
+        ok = ok && parsed.has_value();
+        ease = parsed.value_or(Ease::Linear);
       }
       if (steps_node != nullptr) {
         steps = parse_integer(*steps_node, 1, 100000, "'steps'", reporter_);
@@ -624,19 +329,13 @@ class RaspblockLowering {
       if (n > t) {
         reporter_.error(steps_node->location,
                         std::to_string(n) + " steps of " +
-                            ms_text(static_cast<double>(t) / static_cast<double>(n)) +
+                            format_ms(static_cast<double>(t) / static_cast<double>(n)) +
                             " are finer than the stream's 1ms clock; use at most " +
                             std::to_string(t) + " steps");
         return;
       }
     } else if (move_node != nullptr) {
-      std::uint32_t res = kRaspblockDefaultResolutionMs;
-      for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
-        if ((*it)->resolution_ms) {
-          res = *(*it)->resolution_ms;
-          break;
-        }
-      }
+      const std::uint32_t res = scopes_.resolution_ms().value_or(kRaspblockDefaultResolutionMs);
       n = std::max<std::uint64_t>(1, (t + res / 2) / res);
     }
 
@@ -652,52 +351,33 @@ class RaspblockLowering {
 
   // Resolves a move's targets into device units; false after reporting a mistake.
   bool resolve_move(const YamlNode& target, std::map<std::size_t, int>& out) {
-    std::vector<Target> inline_entries;
-    const std::vector<Target>* entries = nullptr;
+    std::vector<PositionEntry> inline_entries;
     std::optional<Reporter::Note> note;
-    if (target.is_scalar()) {
-      const Pose* pose = find_pose(target);
-      if (pose == nullptr) return false;
-      entries = &pose->entries;
-      if (pose != home_.get()) {
-        note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
-      }
-    } else if (target.is_map()) {
-      inline_entries = parse_targets(target, "in this move");
-      entries = &inline_entries;
-    } else {
-      reporter_.error(target.location,
-                      "'move' takes a pose name or a map of output: position, "
-                      "not " +
-                          std::string(kind_name(target)));
-      return false;
-    }
+    const std::vector<PositionEntry>* entries = scopes_.move_entries(
+        target, "output",
+        [this](const YamlNode& map, const std::string& where) { return parse_targets(map, where); },
+        inline_entries, note, reporter_);
+    if (entries == nullptr) return false;
     // An entry parse_targets rejected is already reported; check the others all the same.
     bool ok = !target.is_map() || inline_entries.size() == target.entries.size();
-    for (const Target& e : *entries) {
+    for (const PositionEntry& e : *entries) {
       double units = 0;
       std::string how;
       if (e.value.relative) {
         const double delta = e.value.degrees ? e.value.amount * kUnitsPerDegree : e.value.amount;
-        const std::optional<int>& base = pos_[e.channel];
-        if (!base) {
-          reporter_.error(e.at,
-                          "'" + std::string(kChannels[e.channel].name) +
-                              "' has no known position yet, so the relative move '" + e.written +
-                              "' has nothing to add to; move it to an absolute position first",
-                          note);
+        auto reached = relative_units(e, kChannels[e.output].name, pos_[e.output], delta, how, note,
+                                      reporter_);
+        if (!reached) {
           ok = false;
           continue;
         }
-        const long long d = std::llround(delta);
-        units = static_cast<double>(*base + d);
-        how = std::to_string(*base) + (d < 0 ? " " : " +") + std::to_string(d);
+        units = *reached;
       } else {
         units = absolute_units(e);
       }
-      if (out.count(e.channel) != 0) {
+      if (out.count(e.output) != 0) {
         reporter_.error(
-            e.at, "'" + std::string(kChannels[e.channel].name) + "' is given twice in this move");
+            e.at, "'" + std::string(kChannels[e.output].name) + "' is given twice in this move");
         ok = false;
         continue;
       }
@@ -705,7 +385,7 @@ class RaspblockLowering {
         ok = false;
         continue;
       }
-      out[e.channel] = static_cast<int>(std::llround(units));
+      out[e.output] = static_cast<int>(std::llround(units));
     }
     // One packet sets both gimbal servos, so the one not moving must have a known position.
     const bool pan = out.count(kPan) != 0;
@@ -771,44 +451,21 @@ class RaspblockLowering {
   }
 
   void repeat_step(const YamlNode& step, const YamlNode& value) {
-    auto times = parse_integer(value, 1, 65535, "the repeat count", reporter_);
-    const YamlNode* body = step.find("do");
-    if (body == nullptr) {
-      reporter_.error(step.location, "'repeat' needs a 'do' list of the steps to repeat");
-      return;
-    }
-    if (!times) return;
-    for (long long i = 0; i < *times && !full_; ++i) run_steps(*body, "'do'");
+    const auto repeat = parse_repeat(step, value, reporter_);
+    if (!repeat) return;
+    for (long long i = 0; i < repeat->times && !full_; ++i) run_steps(*repeat->body, "'do'");
   }
 
   void include_step(const YamlNode& value) {
-    if (!value.is_scalar() || value.scalar.empty()) {
-      reporter_.error(value.location, "'include' takes a file path, e.g. 'include: spin.yaml'");
-      return;
-    }
-    const LoadedFile& current = *chain_.back()->file;
-    const std::string path = resolve_include(current.path, value.scalar);
-    for (std::size_t i = 0; i < chain_.size(); ++i) {
-      if (chain_[i]->file->path != path) continue;
-      std::string cycle;
-      for (std::size_t j = i; j < chain_.size(); ++j) cycle += chain_[j]->file->path + " -> ";
-      reporter_.error(value.location, "include cycle: " + cycle + path);
-      return;
-    }
-    if (reporter_.include_depth() >= 16) {
-      reporter_.error(value.location,
-                      "includes nest more than 16 files deep; is there a "
-                      "runaway include chain?");
-      return;
-    }
-    auto loaded = loader_.load(path);
-    if (!loaded) {
-      reporter_.error(value.location,
-                      "cannot read included file '" + path + "': " + loaded.error().message);
-      return;
-    }
+    const LoadedFile* loaded = scopes_.load_include(
+        value, "spin.yaml",
+        [](const std::string& path, const std::string& reason) {
+          return "cannot read included file '" + path + "': " + reason;
+        },
+        loader_, reporter_);
+    if (loaded == nullptr) return;
     reporter_.push_include(value.location);
-    run_file(**loaded, false);
+    run_file(*loaded, false);
     reporter_.pop_include();
   }
 
@@ -863,10 +520,8 @@ class RaspblockLowering {
   const Robot& robot_;
   FileLoader& loader_;
   Reporter& reporter_;
-  std::map<std::string, std::unique_ptr<FileScope>> scopes_;
-  std::vector<FileScope*> chain_;
+  ScopeChain scopes_;
   std::array<std::optional<int>, kChannels.size()> pos_;
-  std::unique_ptr<Pose> home_;
   std::uint64_t now_ms_ = 0;
   bool stop_due_ = false;
   bool full_ = false;

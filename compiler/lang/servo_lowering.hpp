@@ -10,7 +10,6 @@
 
 namespace seqc::compiler {
 
-inline constexpr std::size_t kMaxIncludeDepth = 16;
 inline constexpr std::uint32_t kDefaultResolutionMs = 100;
 
 // The program is returned even when errors were reported (the caller decides); keyframes stop

@@ -12,6 +12,7 @@
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/lang/units.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/io/realtime.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/servo_play.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
@@ -27,6 +28,7 @@ struct PlayOptions {
   std::string file;
   std::string port;
   bool strict = false;
+  bool realtime = false;
 };
 
 // `--port emu:raspblock`: the board emulator in this process, stamped with the play's clock,
@@ -181,10 +183,17 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "`seqc emulate raspblock`) or emu:raspblock. Servo controller: as for `seqc "
                   "upload` (default: the one connected; emu:xarm)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->add_flag("--realtime", opts->realtime,
+                "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
     if (!c.output.program) return;
+    if (opts->realtime) {
+      if (auto rt = io::request_realtime_scheduling(); !rt) {
+        ctx.err << "seqc: warning: " << rt.error().message << "; playing at normal priority\n";
+      }
+    }
     // Each robot kind streams its own way.
     if (const auto* car = std::get_if<compiler::RaspblockProgram>(&*c.output.program)) {
       result.code = play_raspblock(*car, *opts, ctx);

@@ -7,7 +7,9 @@
 // 10 minutes of stream play in 60 s real time with 10x the packet density). --scale 1 plays it
 // at its real speed. Both players run on the real monotonic clock (io::SteadyClock) through
 // SerialTransport at 115200 baud; the emulator runs behind PtyServer on another thread and
-// stamps each packet when it reads it from the pty master.
+// stamps each packet when it reads it from the pty master. The deadline player runs twice: at
+// normal priority, and as `seqc play --realtime` does (SCHED_FIFO, for it and the emulator's
+// thread, which stands in for the board's own CPU).
 //
 // Reported, per player:
 //   host lateness   when write() began minus the frame's deadline (start + t_i)
@@ -29,6 +31,7 @@
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/io/disk.hpp"
+#include "runtime/io/realtime.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/transport/serial_transport.hpp"
 
@@ -60,7 +63,7 @@ std::vector<io::Duration> play_naive(const std::vector<player::ScheduledFrame>& 
   return lateness;
 }
 
-Result run(const std::vector<player::ScheduledFrame>& frames, bool naive) {
+Result run(const std::vector<player::ScheduledFrame>& frames, bool naive, bool realtime) {
   Result r;
   auto server = emu::PtyServer::open(emu::PtyOptions{115200, std::nullopt});
   if (!server) {
@@ -71,7 +74,11 @@ Result run(const std::vector<player::ScheduledFrame>& frames, bool naive) {
   emu::RaspblockPtyDevice device(board, nullptr);
   Clock clock;
   std::atomic<bool> stop{false};
-  std::thread serving([&] { (void)server->serve(device, clock, stop); });
+  std::thread serving([&] {
+    // The emulator stands in for the board, which has a CPU of its own.
+    if (realtime) (void)io::request_realtime_scheduling();
+    (void)server->serve(device, clock, stop);
+  });
   {
     transport::SerialOptions options;
     options.baud = 115200;
@@ -79,6 +86,12 @@ Result run(const std::vector<player::ScheduledFrame>& frames, bool naive) {
     if (!link) {
       std::fprintf(stderr, "play_bench: %s\n", link.error().message.c_str());
       std::exit(1);
+    }
+    if (realtime) {
+      if (auto rt = io::request_realtime_scheduling(); !rt) {
+        std::fprintf(stderr, "play_bench: %s\n", rt.error().message.c_str());
+        std::exit(1);
+      }
     }
     if (naive) {
       r.host_lateness = play_naive(frames, **link, clock);
@@ -115,7 +128,7 @@ void report(const char* name, const Result& r, std::size_t frames) {
   const auto board = player::summarize(r.board_lateness);
   const double drift = ms(r.drift);
   std::printf(
-      "%-9s host lateness p50 %8.3f  p99 %8.3f  max %8.3f ms | board lateness p50 %8.3f  p99 "
+      "%-11s host lateness p50 %8.3f  p99 %8.3f  max %8.3f ms | board lateness p50 %8.3f  p99 "
       "%8.3f  max %8.3f ms | drift %9.3f ms | %zu/%zu packets, bytes %s\n",
       name, ms(host.p50), ms(host.p99), ms(host.max), ms(board.p50), ms(board.p99), ms(board.max),
       drift, r.received, frames, r.bytes_equal ? "identical" : "DIFFER");
@@ -138,7 +151,7 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: play_bench [--stream-minutes M] [--scale S] "
-                   "[--player deadline|naive|both]\n");
+                   "[--player deadline|naive|realtime|both]\n");
       return 2;
     }
   }
@@ -172,8 +185,15 @@ int main(int argc, char** argv) {
       "SteadyClock, SerialTransport 115200 baud over a pty, emulator on a thread\n",
       minutes, frames.size(), bytes, scale, real_s, static_cast<double>(bytes) / real_s);
   std::fflush(stdout);
-  if (which == "deadline" || which == "both") report("deadline", run(frames, false), frames.size());
+  if (which == "deadline" || which == "both")
+    report("deadline", run(frames, false, false), frames.size());
   std::fflush(stdout);
-  if (which == "naive" || which == "both") report("naive", run(frames, true), frames.size());
+  if (which == "naive" || which == "both") report("naive", run(frames, true, false), frames.size());
+  std::fflush(stdout);
+  // `seqc play --realtime`: the same deadline player under SCHED_FIFO (board emulator too),
+  // run last because it leaves the main thread real-time.
+  if (which == "realtime" || which == "both") {
+    report("deadline+rt", run(frames, false, true), frames.size());
+  }
   return 0;
 }

@@ -126,11 +126,11 @@ TEST(Examples, ListingsAndHexMatchGoldens) {
   }
 }
 
-TEST(Help, GoldenForSeqcAndOfflineSubcommands) {
+TEST(Help, GoldenForSeqcAndItsSubcommands) {
   SeqcRun top = seqc(kSource, "--help");
   EXPECT_EQ(top.status, 0);
   expect_golden(kCliGolden / "help.txt", top.out);
-  for (const char* sub : {"check", "compile", "decode", "simulate"}) {
+  for (const char* sub : {"check", "compile", "decode", "simulate", "upload", "play", "ports"}) {
     SCOPED_TRACE(sub);
     SeqcRun r = seqc(kSource, std::string(sub) + " --help");
     EXPECT_EQ(r.status, 0);

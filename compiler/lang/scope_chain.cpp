@@ -1,0 +1,198 @@
+#include "compiler/lang/scope_chain.hpp"
+
+#include <cmath>
+
+#include "compiler/lang/robot_section.hpp"
+#include "compiler/lang/units.hpp"
+
+namespace seqc::compiler {
+
+std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& reporter) {
+  auto it = scopes_.find(f.path);
+  if (it != scopes_.end()) return {*it->second, false};
+  auto scope = std::make_unique<FileScope>();
+  scope->file = &f;
+  if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+  FileScope& ref = *scope;
+  scopes_.emplace(f.path, std::move(scope));
+  return {ref, true};
+}
+
+std::optional<std::uint32_t> ScopeChain::resolution_ms() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->resolution_ms) return (*it)->resolution_ms;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::string_view what,
+                                                 std::uint64_t max_ms, std::string_view too_long,
+                                                 Reporter& reporter) const {
+  if (!node.is_scalar()) {
+    reporter.error(node.location, std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
+    return std::nullopt;
+  }
+  auto t = parse_time(node.scalar);
+  if (!t) {
+    reporter.error(node.location, t.error().message);
+    return std::nullopt;
+  }
+  double ms = t->amount;
+  if (t->unit == TimeUnit::Seconds) ms *= 1000;
+  if (t->unit == TimeUnit::Beats) {
+    std::optional<double> tempo;
+    for (auto it = chain_.rbegin(); it != chain_.rend() && !tempo; ++it) tempo = (*it)->tempo;
+    if (!tempo) {
+      reporter.error(node.location, "'" + node.scalar +
+                                        "' counts beats but no 'tempo' is set; add e.g. "
+                                        "'tempo: 120' at the top of the file");
+      return std::nullopt;
+    }
+    ms *= 60000.0 / *tempo;
+  }
+  if (ms > static_cast<double>(max_ms)) {
+    reporter.error(node.location, "'" + node.scalar + "' " + std::string(too_long));
+    return std::nullopt;
+  }
+  return static_cast<std::uint32_t>(std::llround(ms));
+}
+
+const Pose* ScopeChain::find_pose(const YamlNode& name, Reporter& reporter) {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    auto p = (*it)->poses.find(name.scalar);
+    if (p != (*it)->poses.end()) return &p->second;
+  }
+  if (name.scalar == "home") {
+    if (!home_) {
+      home_ = std::make_unique<Pose>();
+      for (std::size_t i : home_outputs_) {
+        PositionEntry e;
+        e.output = i;
+        e.home = true;
+        e.written = "home";
+        home_->entries.push_back(e);
+      }
+    }
+    return home_.get();
+  }
+  std::vector<std::string> names{"home"};
+  for (const FileScope* s : chain_) {
+    for (const auto& [n, pose] : s->poses) names.push_back(n);
+  }
+  reporter.unknown(name.location, "pose", name.scalar, names);
+  return nullptr;
+}
+
+const std::vector<PositionEntry>* ScopeChain::move_entries(
+    const YamlNode& target, std::string_view noun, const ParseEntries& parse,
+    std::vector<PositionEntry>& inline_entries, std::optional<Reporter::Note>& note,
+    Reporter& reporter) {
+  if (target.is_scalar()) {
+    const Pose* pose = find_pose(target, reporter);
+    if (pose == nullptr) return nullptr;
+    if (!is_builtin_home(pose)) {
+      note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
+    }
+    return &pose->entries;
+  }
+  if (target.is_map()) {
+    inline_entries = parse(target, "in this move");
+    return &inline_entries;
+  }
+  reporter.error(target.location, "'move' takes a pose name or a map of " + std::string(noun) +
+                                      ": position, not " + std::string(kind_name(target)));
+  return nullptr;
+}
+
+const LoadedFile* ScopeChain::load_include(const YamlNode& value, std::string_view example,
+                                           CannotLoad cannot_load, FileLoader& loader,
+                                           Reporter& reporter) {
+  if (!value.is_scalar() || value.scalar.empty()) {
+    reporter.error(value.location,
+                   "'include' takes a file path, e.g. 'include: " + std::string(example) + "'");
+    return nullptr;
+  }
+  const LoadedFile& current = *chain_.back()->file;
+  const std::string path = resolve_include(current.path, value.scalar);
+  for (std::size_t i = 0; i < chain_.size(); ++i) {
+    if (chain_[i]->file->path != path) continue;
+    std::string cycle;
+    for (std::size_t j = i; j < chain_.size(); ++j) cycle += chain_[j]->file->path + " -> ";
+    reporter.error(value.location, "include cycle: " + cycle + path);
+    return nullptr;
+  }
+  if (reporter.include_depth() >= kMaxIncludeDepth) {
+    reporter.error(value.location, "includes nest more than " + std::to_string(kMaxIncludeDepth) +
+                                       " files deep; is there a runaway include chain?");
+    return nullptr;
+  }
+  auto loaded = loader.load(path);
+  if (!loaded) {
+    reporter.error(value.location, cannot_load(path, loaded.error().message));
+    return nullptr;
+  }
+  return *loaded;
+}
+
+void parse_poses(const YamlNode& poses, FileScope& scope, std::string_view not_a_map,
+                 std::string_view pose_shape, const ScopeChain::ParseEntries& parse,
+                 Reporter& reporter) {
+  if (poses.kind == YamlNode::Kind::Null) return;
+  if (!poses.is_map()) {
+    reporter.error(poses.location, std::string(not_a_map));
+    return;
+  }
+  for (const auto& [key, value] : poses.entries) {
+    Pose pose;
+    pose.at = key.location;
+    if (!value.is_map()) {
+      reporter.error(value.location,
+                     "pose '" + key.scalar + "' must be a map of " + std::string(pose_shape));
+    } else {
+      pose.entries = parse(value, "in pose '" + key.scalar + "'");
+    }
+    scope.poses.emplace(key.scalar, std::move(pose));
+  }
+}
+
+const YamlNode* file_root(const LoadedFile& f, Reporter& reporter) {
+  if (!f.root) return nullptr;
+  if (!f.root->is_map()) {
+    reporter.error(f.root->location,
+                   "a choreography file must be a map with 'robot' and 'sequence' keys");
+    return nullptr;
+  }
+  return &*f.root;
+}
+
+bool check_included_robot(const YamlNode& root, const std::string& profile, Reporter& reporter) {
+  const YamlNode* r = root.find("robot");
+  if (r == nullptr) return true;
+  auto name = included_robot_name(*r, reporter);
+  if (!name || *name == profile) return true;
+  reporter.error(r->location, "this file is for robot '" + *name +
+                                  "' but is included by a file for '" + profile + "'");
+  return false;
+}
+
+const YamlNode* find_sequence(const YamlNode& root, Reporter& reporter) {
+  const YamlNode* sequence = root.find("sequence");
+  if (sequence == nullptr) {
+    reporter.error(root.location, "missing 'sequence': the list of steps to perform");
+  }
+  return sequence;
+}
+
+std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter) {
+  std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
+  if (text.size() > 3 && text.substr(text.size() - 3) == "bpm") text.remove_suffix(3);
+  double bpm = 0;
+  if (!node.is_scalar() || !parse_decimal(text, bpm) || bpm < 1 || bpm > 1000) {
+    reporter.error(node.location,
+                   "'tempo' must be beats per minute between 1 and 1000, e.g. 'tempo: 120'");
+    return std::nullopt;
+  }
+  return bpm;
+}
+
+}  // namespace seqc::compiler
