@@ -122,12 +122,9 @@ ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
   auto percent = lsc::checked_u16(o.percent, "percent");
   if (!percent) return usage_error(ctx, percent.error().message);
   if (*percent == 0) return usage_error(ctx, "percent must be 1..65535 (100 = as stored), got 0");
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::GroupSpeed{target->group, *percent})) return ExitCode::DeviceFailure;
-    ctx.out << target->text() << " speed " << *percent
-            << "% (volatile: back to 100% at power-off)\n";
-    return ExitCode::Ok;
-  });
+  return tell_on_controller(ctx, o.device, lsc::GroupSpeed{target->group, *percent},
+                            target->text() + " speed " + std::to_string(*percent) +
+                                "% (volatile: back to 100% at power-off)\n");
 }
 
 }  // namespace

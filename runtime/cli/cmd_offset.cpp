@@ -1,7 +1,6 @@
 // `seqc offset read|adjust|write`: servo position offsets (ServoOffsetRead, ServoOffsetAdjust,
 // ServoOffsetWrite). Adjusting is volatile; writing keeps the current offset over power-off
 // (the bus-servo convention; protocol-notes.md A, "Offsets").
-#include <algorithm>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -12,7 +11,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
-#include "runtime/cli/device_table.hpp"
+#include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -23,49 +22,25 @@ namespace {
 constexpr long long kOffsetMin = -128;
 constexpr long long kOffsetMax = 127;
 
-struct Options {
+struct AdjustOptions {
   DeviceOptions device;
-  std::vector<std::string> servos;
   std::string servo;
   std::string offset;
   std::string robot;
 };
 
-ExitCode read_offsets(Context& ctx, const Options& o) {
-  auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage_error(ctx, robot.error().message);
-  auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage_error(ctx, ids.error().message);
+ExitCode read_offsets(Context& ctx, const ServoListOptions& o) {
+  auto sel = select_servos(o.robot, o.servos);
+  if (!sel) return usage_error(ctx, sel.error().message);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    auto reply = s.ask<lsc::ServoOffsets>(lsc::ServoOffsetRead{*ids}, "the offsets");
+    auto reply = s.ask<lsc::ServoOffsets>(lsc::ServoOffsetRead{sel->ids}, "the offsets");
     if (!reply) return ExitCode::DeviceFailure;
-    Table table(*robot ? std::vector<std::string>{"servo", "name", "offset"}
-                       : std::vector<std::string>{"servo", "offset"});
-    std::vector<std::uint8_t> missing;
-    for (std::uint8_t id : *ids) {
-      auto it = std::find_if(reply->servos.begin(), reply->servos.end(),
-                             [id](const lsc::ServoOffsets::Entry& e) { return e.id == id; });
-      std::vector<std::string> row{std::to_string(id)};
-      if (*robot) row.push_back((*robot)->find_id(id)->name);
-      if (it == reply->servos.end()) {
-        missing.push_back(id);
-        row.push_back("no answer");
-      } else {
-        row.push_back(std::to_string(it->offset));
-      }
-      table.add(std::move(row));
-    }
-    ctx.out << table.render();
-    if (!missing.empty()) {
-      ctx.err << "seqc: error: the controller reported no offset for "
-              << servo_labels(missing, *robot) << " (not on the bus, or not answering)\n";
-      return ExitCode::DeviceFailure;
-    }
-    return ExitCode::Ok;
+    return print_servo_readings(ctx, sel->ids, sel->robot, "offset", reply->servos,
+                                &lsc::ServoOffsets::Entry::offset);
   });
 }
 
-ExitCode adjust_offset(Context& ctx, const Options& o) {
+ExitCode adjust_offset(Context& ctx, const AdjustOptions& o) {
   auto robot = robot_for_profile(o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
   auto id = parse_servo(o.servo, *robot);
@@ -79,25 +54,19 @@ ExitCode adjust_offset(Context& ctx, const Options& o) {
                                 std::to_string(kOffsetMax) + ", got " + std::to_string(*number) +
                                 " (ServoOffsetRead reports offsets as a signed byte)");
   }
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::ServoOffsetAdjust{*id, *offset})) return ExitCode::DeviceFailure;
-    ctx.out << servo_label(*id, *robot) << ": offset set to " << *offset
-            << " (volatile: lost at power-off unless written with `seqc offset write " << int{*id}
-            << "`)\n";
-    return ExitCode::Ok;
-  });
+  return tell_on_controller(
+      ctx, o.device, lsc::ServoOffsetAdjust{*id, *offset},
+      servo_label(*id, *robot) + ": offset set to " + std::to_string(*offset) +
+          " (volatile: lost at power-off unless written with `seqc offset write " +
+          std::to_string(int{*id}) + "`)\n");
 }
 
-ExitCode write_offsets(Context& ctx, const Options& o) {
-  auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage_error(ctx, robot.error().message);
-  auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage_error(ctx, ids.error().message);
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::ServoOffsetWrite{*ids})) return ExitCode::DeviceFailure;
-    ctx.out << servo_labels(*ids, *robot) << ": offset written (kept over power-off)\n";
-    return ExitCode::Ok;
-  });
+ExitCode write_offsets(Context& ctx, const ServoListOptions& o) {
+  auto sel = select_servos(o.robot, o.servos);
+  if (!sel) return usage_error(ctx, sel.error().message);
+  return tell_on_controller(
+      ctx, o.device, lsc::ServoOffsetWrite{sel->ids},
+      servo_labels(sel->ids, sel->robot) + ": offset written (kept over power-off)\n");
 }
 
 }  // namespace
@@ -107,15 +76,13 @@ void add_offset_command(CLI::App& app, Context& ctx, Outcome& result) {
       "offset", "Read, adjust (volatile) or write (kept over power-off) servo offsets");
   offset->require_subcommand(1);
 
-  auto read = std::make_shared<Options>();
+  auto read = std::make_shared<ServoListOptions>();
   CLI::App* read_cmd =
       offset->add_subcommand("read", "Print servo offsets as a table (ServoOffsetRead)");
-  read_cmd->add_option("SERVO", read->servos, "Servo ids (or names with --robot)")->required();
-  add_robot_option(*read_cmd, read->robot);
-  add_device_options(*read_cmd, read->device);
+  add_servo_list_options(*read_cmd, *read);
   read_cmd->callback([read, &ctx, &result] { result.code = read_offsets(ctx, *read); });
 
-  auto adjust = std::make_shared<Options>();
+  auto adjust = std::make_shared<AdjustOptions>();
   CLI::App* adjust_cmd = offset->add_subcommand(
       "adjust",
       "Set a servo's offset (ServoOffsetAdjust). Volatile: lost at power-off unless written\n"
@@ -127,12 +94,10 @@ void add_offset_command(CLI::App& app, Context& ctx, Outcome& result) {
   add_device_options(*adjust_cmd, adjust->device);
   adjust_cmd->callback([adjust, &ctx, &result] { result.code = adjust_offset(ctx, *adjust); });
 
-  auto write = std::make_shared<Options>();
+  auto write = std::make_shared<ServoListOptions>();
   CLI::App* write_cmd = offset->add_subcommand(
       "write", "Keep servos' current offsets over power-off (ServoOffsetWrite)");
-  write_cmd->add_option("SERVO", write->servos, "Servo ids (or names with --robot)")->required();
-  add_robot_option(*write_cmd, write->robot);
-  add_device_options(*write_cmd, write->device);
+  add_servo_list_options(*write_cmd, *write);
   write_cmd->callback([write, &ctx, &result] { result.code = write_offsets(ctx, *write); });
 }
 

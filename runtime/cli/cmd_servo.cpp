@@ -1,7 +1,6 @@
 // `seqc servo read|off|move|mode`: single servos on the servo controller (ServoPositionRead,
 // MultiServoOff, MultiServoMove, ServoSpeed). With --robot PROFILE, servos may be named
 // (claw=200) and positions are checked against the profile's range.
-#include <algorithm>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -13,20 +12,14 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
-#include "runtime/cli/device_table.hpp"
+#include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
 namespace {
 
 // ---- read ----------------------------------------------------------------------------------
 
-struct ReadOptions {
-  DeviceOptions device;
-  std::vector<std::string> servos;
-  std::string robot;
-};
-
-ExitCode read_positions(Context& ctx, const ReadOptions& o) {
+ExitCode read_positions(Context& ctx, const ServoListOptions& o) {
   auto robot = robot_for_profile(o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
   std::vector<std::string> names = o.servos;
@@ -41,50 +34,18 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{*ids}, "the positions");
     if (!reply) return ExitCode::DeviceFailure;
-    Table table(*robot ? std::vector<std::string>{"servo", "name", "position"}
-                       : std::vector<std::string>{"servo", "position"});
-    std::vector<std::uint8_t> missing;
-    for (std::uint8_t id : *ids) {
-      auto it = std::find_if(reply->servos.begin(), reply->servos.end(),
-                             [id](const lsc::ServoTarget& t) { return t.id == id; });
-      std::vector<std::string> row{std::to_string(id)};
-      if (*robot) row.push_back((*robot)->find_id(id)->name);
-      if (it == reply->servos.end()) {
-        missing.push_back(id);
-        row.push_back("no answer");
-      } else {
-        row.push_back(std::to_string(it->position));
-      }
-      table.add(std::move(row));
-    }
-    ctx.out << table.render();
-    if (!missing.empty()) {
-      ctx.err << "seqc: error: the controller reported no position for "
-              << servo_labels(missing, *robot) << " (not on the bus, or not answering)\n";
-      return ExitCode::DeviceFailure;
-    }
-    return ExitCode::Ok;
+    return print_servo_readings(ctx, *ids, *robot, "position", reply->servos,
+                                &lsc::ServoTarget::position);
   });
 }
 
 // ---- off -----------------------------------------------------------------------------------
 
-struct OffOptions {
-  DeviceOptions device;
-  std::vector<std::string> servos;
-  std::string robot;
-};
-
-ExitCode servos_off(Context& ctx, const OffOptions& o) {
-  auto robot = robot_for_profile(o.robot);
-  if (!robot) return usage_error(ctx, robot.error().message);
-  auto ids = parse_servo_list(o.servos, *robot);
-  if (!ids) return usage_error(ctx, ids.error().message);
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::MultiServoOff{*ids})) return ExitCode::DeviceFailure;
-    ctx.out << servo_labels(*ids, *robot) << ": off (no torque)\n";
-    return ExitCode::Ok;
-  });
+ExitCode servos_off(Context& ctx, const ServoListOptions& o) {
+  auto sel = select_servos(o.robot, o.servos);
+  if (!sel) return usage_error(ctx, sel.error().message);
+  return tell_on_controller(ctx, o.device, lsc::MultiServoOff{sel->ids},
+                            servo_labels(sel->ids, sel->robot) + ": off (no torque)\n");
 }
 
 // ---- move ----------------------------------------------------------------------------------
@@ -116,11 +77,8 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
     summary += (summary.empty() ? "" : ", ") + servo_label(t->id, *robot) + " to " +
                std::to_string(t->position);
   }
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(move)) return ExitCode::DeviceFailure;
-    ctx.out << "moving " << summary << " over " << compiler::format_seconds(*ms) << "\n";
-    return ExitCode::Ok;
-  });
+  return tell_on_controller(ctx, o.device, move,
+                            "moving " + summary + " over " + compiler::format_seconds(*ms) + "\n");
 }
 
 // ---- mode ----------------------------------------------------------------------------------
@@ -141,11 +99,9 @@ ExitCode set_mode(Context& ctx, const ModeOptions& o) {
   auto ms = parse_milliseconds(o.time, "--time");
   if (!ms) return usage_error(ctx, ms.error().message);
   const lsc::ServoMode mode = o.mode == "motor" ? lsc::ServoMode::Motor : lsc::ServoMode::Servo;
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::ServoSpeed{*id, mode, *ms})) return ExitCode::DeviceFailure;
-    ctx.out << servo_label(*id, *robot) << ": " << o.mode << " mode, " << *ms << " ms\n";
-    return ExitCode::Ok;
-  });
+  return tell_on_controller(
+      ctx, o.device, lsc::ServoSpeed{*id, mode, *ms},
+      servo_label(*id, *robot) + ": " + o.mode + " mode, " + std::to_string(*ms) + " ms\n");
 }
 
 }  // namespace
@@ -155,7 +111,7 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
       app.add_subcommand("servo", "Read, move or release single servos on the servo controller");
   servo->require_subcommand(1);
 
-  auto read = std::make_shared<ReadOptions>();
+  auto read = std::make_shared<ServoListOptions>();
   CLI::App* read_cmd =
       servo->add_subcommand("read", "Print the positions of servos as a table (ServoPositionRead)");
   read_cmd->add_option("SERVO", read->servos,
@@ -164,12 +120,10 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
   add_device_options(*read_cmd, read->device);
   read_cmd->callback([read, &ctx, &result] { result.code = read_positions(ctx, *read); });
 
-  auto off = std::make_shared<OffOptions>();
+  auto off = std::make_shared<ServoListOptions>();
   CLI::App* off_cmd = servo->add_subcommand(
       "off", "Turn servos off: they stop where they are and go limp (MultiServoOff)");
-  off_cmd->add_option("SERVO", off->servos, "Servo ids (or names with --robot)")->required();
-  add_robot_option(*off_cmd, off->robot);
-  add_device_options(*off_cmd, off->device);
+  add_servo_list_options(*off_cmd, *off);
   off_cmd->callback([off, &ctx, &result] { result.code = servos_off(ctx, *off); });
 
   auto move = std::make_shared<MoveOptions>();

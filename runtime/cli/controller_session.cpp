@@ -28,6 +28,12 @@ void add_robot_option(CLI::App& cmd, std::string& profile) {
   cmd.add_option("--robot", profile, "Robot profile (xarm, lsc-16, lsc-32): allows servo names");
 }
 
+void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {
+  cmd.add_option("SERVO", options.servos, "Servo ids (or names with --robot)")->required();
+  add_robot_option(cmd, options.robot);
+  add_device_options(cmd, options.device);
+}
+
 ExitCode usage_error(Context& ctx, const std::string& message) {
   ctx.err << "seqc: error: " << message << "\n";
   return ExitCode::Usage;
@@ -146,10 +152,7 @@ bool ControllerSession::tell(const lsc::Request& request) {
 
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body) {
   auto timeout = parse_timeout(options.timeout);
-  if (!timeout) {
-    ctx.err << "seqc: error: " << timeout.error().message << "\n";
-    return ExitCode::Usage;
-  }
+  if (!timeout) return usage_error(ctx, timeout.error().message);
   PortOpenResult opened = open_controller_port(options.port, ctx);
   if (!opened.port) {
     ctx.err << "seqc: error: " << opened.failure.message << "\n";
@@ -164,6 +167,15 @@ ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const Ses
     return session.error()->code;
   }
   return code;
+}
+
+ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const lsc::Request& request,
+                            const std::string& done) {
+  return run_on_controller(ctx, options, [&](ControllerSession& s) {
+    if (!s.tell(request)) return ExitCode::DeviceFailure;
+    ctx.out << done;
+    return ExitCode::Ok;
+  });
 }
 
 }  // namespace seqc::cli

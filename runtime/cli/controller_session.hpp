@@ -36,6 +36,15 @@ struct DeviceOptions {
 void add_device_options(CLI::App& cmd, DeviceOptions& options);
 // --robot PROFILE, for commands that accept servo names.
 void add_robot_option(CLI::App& cmd, std::string& profile);
+// The options of a command that acts on several servos: SERVO... (ids, or names with --robot),
+// --robot and the device options.
+struct ServoListOptions {
+  DeviceOptions device;
+  std::vector<std::string> servos;
+  std::string robot;
+};
+// Adds them in that order, SERVO required.
+void add_servo_list_options(CLI::App& cmd, ServoListOptions& options);
 // Prints "seqc: error: MESSAGE" and returns ExitCode::Usage.
 ExitCode usage_error(Context& ctx, const std::string& message);
 
@@ -98,6 +107,10 @@ class ControllerSession final : private upload::LinkObserver {
 // The --timeout text is checked first (usage error).
 using SessionBody = std::function<ExitCode(ControllerSession&)>;
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body);
+// run_on_controller for one request the controller does not answer: tells it and, once it is
+// confirmed, prints `done` on ctx.out.
+ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const lsc::Request& request,
+                            const std::string& done);
 
 // "1 s", "250 ms".
 std::string describe_duration(io::Duration d);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "compiler/lang/profiles.hpp"
 #include "compiler/lang/units.hpp"
@@ -91,6 +92,15 @@ Result<std::vector<std::uint8_t>> parse_servo_list(
     ids.push_back(*id);
   }
   return ids;
+}
+
+Result<ServoSelection> select_servos(const std::string& profile,
+                                     const std::vector<std::string>& texts) {
+  auto robot = robot_for_profile(profile);
+  if (!robot) return robot.error();
+  auto ids = parse_servo_list(texts, *robot);
+  if (!ids) return ids.error();
+  return ServoSelection{std::move(*robot), std::move(*ids)};
 }
 
 Result<lsc::ServoTarget> parse_target(std::string_view text,

@@ -33,6 +33,14 @@ Result<std::uint8_t> parse_servo(std::string_view text,
 Result<std::vector<std::uint8_t>> parse_servo_list(const std::vector<std::string>& texts,
                                                    const std::optional<compiler::RobotInfo>& robot);
 
+// The servos a command names (as parse_servo_list), with the --robot profile that names them.
+struct ServoSelection {
+  std::optional<compiler::RobotInfo> robot;
+  std::vector<std::uint8_t> ids;
+};
+Result<ServoSelection> select_servos(const std::string& profile,
+                                     const std::vector<std::string>& texts);
+
 // "ID=POSITION" or "NAME=POSITION"; with a profile the position must lie within its range.
 Result<lsc::ServoTarget> parse_target(std::string_view text,
                                       const std::optional<compiler::RobotInfo>& robot);
