@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "compiler/compile.hpp"
 #include "compiler/source/diagnostics.hpp"
@@ -37,6 +38,19 @@ inline const ServoProgram& program_of(const CompileOutput& out) {
   const ServoProgram* p = out.servo_program();
   EXPECT_NE(p, nullptr) << diagnostics_of(out);
   return p != nullptr ? *p : empty;
+}
+
+// Each diagnostic as "line:col severity: message", for tests that check the wording.
+inline std::vector<std::string> messages(const CompileOutput& out) {
+  std::vector<std::string> m;
+  for (const Diagnostic& d : out.diagnostics.all()) {
+    const char* sev = d.severity == Severity::Error     ? "error"
+                      : d.severity == Severity::Warning ? "warning"
+                                                        : "note";
+    m.push_back(std::to_string(d.location.line) + ":" + std::to_string(d.location.column) + " " +
+                sev + ": " + d.message);
+  }
+  return m;
 }
 
 }  // namespace seqc::compiler::testing

@@ -9,18 +9,7 @@ namespace {
 using testing::compile_text;
 using testing::diagnostics_of;
 using testing::MemoryFiles;
-
-std::vector<std::string> messages(const CompileOutput& out) {
-  std::vector<std::string> m;
-  for (const Diagnostic& d : out.diagnostics.all()) {
-    const char* sev = d.severity == Severity::Error     ? "error"
-                      : d.severity == Severity::Warning ? "warning"
-                                                        : "note";
-    m.push_back(std::to_string(d.location.line) + ":" + std::to_string(d.location.column) + " " +
-                sev + ": " + d.message);
-  }
-  return m;
-}
+using testing::messages;
 
 std::string repeat_file(int times) {
   return "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n  - repeat: " +
