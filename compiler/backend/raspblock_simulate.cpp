@@ -52,8 +52,8 @@ std::string to_csv(const CarSimulation& sim) {
   std::string out = "time_ms,x,y,z,pan,tilt,servo1,servo2,servo3,servo4\n";
   for (const CarSimulation::Sample& s : sim.samples) {
     const CarState& c = s.state;
-    out += std::to_string(s.time_ms) + "," + std::to_string(c.x) + "," + std::to_string(c.y) +
-           "," + std::to_string(c.z) + "," + cell(c.pan) + "," + cell(c.tilt);
+    out += std::to_string(s.time_ms) + "," + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
+           std::to_string(c.z) + "," + cell(c.pan) + "," + cell(c.tilt);
     for (const auto& servo : c.servos) out += "," + cell(servo);
     out += "\n";
   }

@@ -16,11 +16,11 @@ namespace seqc::compiler {
 struct YamlNode {
   enum class Kind { Null, Scalar, Sequence, Map };
   Kind kind = Kind::Null;
-  Location location;        // where the node starts
-  std::string scalar;       // Scalar: the value as written (unquoted)
-  bool quoted = false;      // Scalar: written in quotes (so "500" is a string, not a number)
-  std::vector<YamlNode> items;                          // Sequence
-  std::vector<std::pair<YamlNode, YamlNode>> entries;   // Map, in file order, keys unique
+  Location location;            // where the node starts
+  std::string scalar;           // Scalar: the value as written (unquoted)
+  bool quoted = false;          // Scalar: written in quotes (so "500" is a string, not a number)
+  std::vector<YamlNode> items;  // Sequence
+  std::vector<std::pair<YamlNode, YamlNode>> entries;  // Map, in file order, keys unique
 
   bool is_map() const { return kind == Kind::Map; }
   bool is_sequence() const { return kind == Kind::Sequence; }
@@ -30,7 +30,7 @@ struct YamlNode {
 };
 
 struct YamlLimits {
-  std::size_t max_bytes = 1 << 20;     // 1 MiB per file
+  std::size_t max_bytes = 1 << 20;  // 1 MiB per file
   std::size_t max_depth = 64;
   std::size_t max_nodes = 1 << 20;
 };

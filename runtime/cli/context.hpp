@@ -15,11 +15,11 @@ class XArmEmulator;
 namespace seqc::cli {
 
 struct Context {
-  std::ostream& out;              // data
-  std::ostream& err;              // diagnostics, progress, "seqc: error: ..."
+  std::ostream& out;  // data
+  std::ostream& err;  // diagnostics, progress, "seqc: error: ..."
   io::Clock& clock;
   compiler::FileReader& files;
-  bool err_is_terminal = false;   // progress bar vs plain lines
+  bool err_is_terminal = false;  // progress bar vs plain lines
   // Set by the SIGINT handler; long-running commands poll it and stop cleanly.
   const std::atomic<bool>* interrupted = nullptr;
   // Standard input, for commands that accept "-" as a file name (e.g. `seqc decode -`).

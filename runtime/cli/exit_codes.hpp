@@ -5,13 +5,13 @@ namespace seqc::cli {
 
 enum class ExitCode : int {
   Ok = 0,
-  InvalidInput = 1,    // the choreography file has errors (diagnostics on stderr)
-  Usage = 2,           // bad command line
-  PortUnavailable = 3, // no such port, busy, permission denied, no device or several found
-  DeviceFailure = 4,   // no answer, refusal, hang-up, protocol violation during a command
-  FileError = 5,       // an input or output file could not be read or written
-  Internal = 70,       // a bug in seqc (sysexits' EX_SOFTWARE)
-  Interrupted = 130,   // Ctrl-C (128 + SIGINT)
+  InvalidInput = 1,     // the choreography file has errors (diagnostics on stderr)
+  Usage = 2,            // bad command line
+  PortUnavailable = 3,  // no such port, busy, permission denied, no device or several found
+  DeviceFailure = 4,    // no answer, refusal, hang-up, protocol violation during a command
+  FileError = 5,        // an input or output file could not be read or written
+  Internal = 70,        // a bug in seqc (sysexits' EX_SOFTWARE)
+  Interrupted = 130,    // Ctrl-C (128 + SIGINT)
 };
 
 constexpr int to_int(ExitCode c) { return static_cast<int>(c); }

@@ -1,8 +1,8 @@
 // seqc's entry point: wires the real clock, disk and terminal into the CLI and runs it.
+#include <unistd.h>
 #include <atomic>
 #include <csignal>
 #include <iostream>
-#include <unistd.h>
 
 #include "runtime/cli/app.hpp"
 #include "runtime/io/clock.hpp"
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
 
   seqc::io::SteadyClock clock;
   seqc::io::DiskFileReader files;
-  seqc::cli::Context ctx{std::cout, std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
+  seqc::cli::Context ctx{std::cout,      std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
                          &g_interrupted, &std::cin};
   return seqc::cli::run(argc, argv, ctx);
 }

@@ -4,8 +4,8 @@
 // be tried without overwriting a stored group.
 //
 // The command returns when the sequence ends (its last move finished), not when the last
-// frame is sent. Before streaming, one GetBatteryVoltage makes sure a controller answers (a missing one is a
-// DeviceFailure, not a silent play into nothing). Nothing is stored on the controller.
+// frame is sent. Before streaming, one GetBatteryVoltage makes sure a controller answers (a missing
+// one is a DeviceFailure, not a silent play into nothing). Nothing is stored on the controller.
 // Ctrl-C stops sending at once (the servos finish the move they were given) and the message
 // says which step was the last one sent; exit status Interrupted.
 #pragma once

@@ -5,8 +5,7 @@
 namespace seqc::io {
 
 TimePoint SteadyClock::now() const {
-  return std::chrono::duration_cast<TimePoint>(
-      std::chrono::steady_clock::now().time_since_epoch());
+  return std::chrono::duration_cast<TimePoint>(std::chrono::steady_clock::now().time_since_epoch());
 }
 
 void SteadyClock::sleep_until(TimePoint deadline) {

@@ -1,11 +1,11 @@
 #include "runtime/io/disk.hpp"
 
+#include <sys/stat.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
-#include <sys/stat.h>
 
 namespace seqc::io {
 

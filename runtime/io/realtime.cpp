@@ -1,11 +1,11 @@
 #include "runtime/io/realtime.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <pthread.h>
 #include <sched.h>
-#include <string>
 #include <sys/prctl.h>
+#include <cerrno>
+#include <cstring>
+#include <string>
 
 namespace seqc::io {
 

@@ -26,7 +26,7 @@ inline constexpr std::size_t kActionsPerBlock = 255;
 inline constexpr std::size_t kMaxBlocks = 4;
 inline constexpr std::size_t kMaxActions = kActionsPerBlock * kMaxBlocks;  // 1,020
 inline constexpr std::uint8_t kActionMarker = 0x0b;  // reading: the table's constant "0B"
-inline constexpr std::uint16_t kMinActionMs = 20;     // vendor tools' bounds per action
+inline constexpr std::uint16_t kMinActionMs = 20;    // vendor tools' bounds per action
 inline constexpr std::uint16_t kMaxActionMs = 30000;
 
 struct GroupAction {

@@ -15,10 +15,10 @@
 namespace seqc::lsc {
 
 inline constexpr std::uint8_t kHeaderByte = 0x55;
-inline constexpr std::size_t kHeaderSize = 4;            // 55 55 LEN CMD
-inline constexpr std::size_t kMinLen = 2;                // LEN counts itself and CMD
-inline constexpr std::size_t kMaxData = 255 - kMinLen;   // LEN is one byte
-inline constexpr std::size_t kHidReportData = 64;        // bytes after the report id
+inline constexpr std::size_t kHeaderSize = 4;           // 55 55 LEN CMD
+inline constexpr std::size_t kMinLen = 2;               // LEN counts itself and CMD
+inline constexpr std::size_t kMaxData = 255 - kMinLen;  // LEN is one byte
+inline constexpr std::size_t kHidReportData = 64;       // bytes after the report id
 inline constexpr std::size_t kHidMaxData = kHidReportData - kHeaderSize;
 
 struct Frame {

@@ -158,12 +158,11 @@ struct BusServoInfoRead {
   friend bool operator==(const BusServoInfoRead&, const BusServoInfoRead&) = default;
 };
 
-using Request =
-    std::variant<MultiServoMove, GroupDownloadOpen, GroupDownloadSize, GroupDownloadBlocks,
-                 GroupDownloadAction, GroupDownloadClose, GroupRun, GroupStop, GroupErase,
-                 GroupSpeed, GetBatteryVoltage, MultiServoOff, ServoPositionRead,
-                 ServoOffsetWrite, ServoOffsetRead, ServoOffsetAdjust, ServoSpeed,
-                 BusServoInfoWrite, BusServoInfoRead>;
+using Request = std::variant<MultiServoMove, GroupDownloadOpen, GroupDownloadSize,
+                             GroupDownloadBlocks, GroupDownloadAction, GroupDownloadClose, GroupRun,
+                             GroupStop, GroupErase, GroupSpeed, GetBatteryVoltage, MultiServoOff,
+                             ServoPositionRead, ServoOffsetWrite, ServoOffsetRead,
+                             ServoOffsetAdjust, ServoSpeed, BusServoInfoWrite, BusServoInfoRead>;
 
 // ---- Replies and notifications (controller -> host) --------------------------------------
 
@@ -222,9 +221,8 @@ struct BusServoInfo {
   friend bool operator==(const BusServoInfo&, const BusServoInfo&) = default;
 };
 
-using Reply = std::variant<GroupDownloadAck, GroupStarted, GroupStopped, GroupFinished,
-                           GroupErased, BatteryVoltage, ServoPositions, ServoOffsets,
-                           BusServoInfo>;
+using Reply = std::variant<GroupDownloadAck, GroupStarted, GroupStopped, GroupFinished, GroupErased,
+                           BatteryVoltage, ServoPositions, ServoOffsets, BusServoInfo>;
 
 // ---- Codec ---------------------------------------------------------------------------------
 

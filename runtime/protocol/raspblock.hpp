@@ -30,20 +30,20 @@ struct PidAdjust {  // FUNC 01, LEN 9
   std::uint8_t yaw_kp = 0, yaw_ki = 0, yaw_kd = 0;
   friend bool operator==(const PidAdjust&, const PidAdjust&) = default;
 };
-struct GimbalServos {  // FUNC 02, LEN 4: Servo_control(angle_1, angle_2)
+struct GimbalServos {               // FUNC 02, LEN 4: Servo_control(angle_1, angle_2)
   std::uint16_t horizontal = 1500;  // 500..2500
   std::uint16_t vertical = 1500;    // 500..1950
   friend bool operator==(const GimbalServos&, const GimbalServos&) = default;
 };
-struct SingleServo {  // FUNC 02, LEN 3: Servo_control_single(index, angle)
-  std::uint8_t index = 1;           // 1..4
-  std::uint16_t position = 1500;    // 500..2500
+struct SingleServo {              // FUNC 02, LEN 3: Servo_control_single(index, angle)
+  std::uint8_t index = 1;         // 1..4
+  std::uint16_t position = 1500;  // 500..2500
   friend bool operator==(const SingleServo&, const SingleServo&) = default;
 };
 struct Rocker {  // FUNC 03, LEN 8, mode 01: magnitudes, signs in the direction byte 0b00000XYZ
-  int x = 0;  // -25..25, right positive
-  int y = 0;  // -25..25, up positive
-  int z = 0;  // reading: -200..200 (magnitude 0-200 as documented), clockwise positive
+  int x = 0;     // -25..25, right positive
+  int y = 0;     // -25..25, up positive
+  int z = 0;     // reading: -200..200 (magnitude 0-200 as documented), clockwise positive
   friend bool operator==(const Rocker&, const Rocker&) = default;
 };
 
