@@ -269,14 +269,7 @@ class FastReader {
         pos_ += 2;
         skip_spaces();
         flow_node();
-        skip_spaces();
-        if (peek() == ',') {
-          ++pos_;
-          skip_spaces();
-          continue;
-        }
-        if (peek() == '}') break;
-        fail();
+        if (!another_flow_item('}')) break;
       }
     }
     ++pos_;
@@ -292,19 +285,24 @@ class FastReader {
     if (peek() != ']') {
       for (;;) {
         flow_node();
-        skip_spaces();
-        if (peek() == ',') {
-          ++pos_;
-          skip_spaces();
-          continue;
-        }
-        if (peek() == ']') break;
-        fail();
+        if (!another_flow_item(']')) break;
       }
     }
     ++pos_;
     push(FastEvent::Kind::SeqEnd);
     --depth_;
+  }
+
+  // After a flow item: past a ',' (true: another item follows) or at `close` (false).
+  bool another_flow_item(char close) {
+    skip_spaces();
+    if (peek() == ',') {
+      ++pos_;
+      skip_spaces();
+      return true;
+    }
+    if (peek() != close) fail();
+    return false;
   }
 
   std::string_view s_;
