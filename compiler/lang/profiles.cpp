@@ -3,7 +3,7 @@
 namespace seqc::compiler {
 namespace {
 
-// Facts from protocol-notes.md ("Units and ranges seen on these devices").
+// Facts from docs/protocol/servo-controller.md ("Units and ranges").
 const std::vector<RobotProfile>& profiles() {
   // One row per profile reads better than one field per line.
   // clang-format off

@@ -8,7 +8,7 @@
 namespace seqc::compiler {
 namespace {
 
-// FF FE FUNC LEN + CHK around the data; LEN per layout as in seeds/raspblock-driver-board.md.
+// FF FE FUNC LEN + CHK around the data; LEN per layout as in docs/protocol/raspblock.md.
 constexpr std::size_t kOverhead = 5;
 
 }  // namespace

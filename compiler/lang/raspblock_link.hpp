@@ -12,7 +12,7 @@
 
 namespace seqc::compiler {
 
-// 115200 baud 8N1 (protocol-notes.md B): 10 bits per byte, so 11,520 bytes per second.
+// 115200 baud 8N1 (docs/protocol/raspblock.md): 10 bits per byte, so 11,520 bytes per second.
 inline constexpr std::uint32_t kRaspblockBytesPerSecond = raspblock::kBaud / 10;
 
 // Decision, not a fact from the documents: the link is judged over every window of this many

@@ -20,7 +20,7 @@
 namespace seqc::compiler {
 namespace {
 
-// The board's positional outputs (seeds/raspblock-driver-board.md, function 02): the two gimbal
+// The board's positional outputs (docs/protocol/raspblock.md, function 02): the two gimbal
 // servos travel together in one packet; servos 1-4 each have their own.
 struct Channel {
   std::string_view name;

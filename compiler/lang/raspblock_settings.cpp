@@ -13,7 +13,7 @@ struct Axis {
   std::string_view name;
   int limit;
 };
-// The rocker's ranges: X and Y -25..25 (document); Z -200..200 (protocol-notes.md B reading,
+// The rocker's ranges: X and Y -25..25 (document); Z -200..200 (docs/protocol/raspblock.md reading,
 // kept in runtime/protocol/raspblock.cpp).
 constexpr std::array<Axis, 3> kAxes = {{{"x", 25}, {"y", 25}, {"z", 200}}};
 

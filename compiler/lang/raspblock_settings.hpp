@@ -1,5 +1,5 @@
 // The Raspblock car's settings that are not positions: the 'pid' section of the main file and
-// the speeds of a 'drive' step (seeds/raspblock-driver-board.md). Each parser reports what is
+// the speeds of a 'drive' step (docs/protocol/raspblock.md). Each parser reports what is
 // wrong and returns nullopt.
 #pragma once
 

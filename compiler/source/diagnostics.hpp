@@ -1,4 +1,4 @@
-// Compiler-style diagnostics (DEVELOPERS.md rule 1): user mistakes are collected, not thrown,
+// Compiler-style diagnostics: user mistakes are collected, not thrown,
 // and rendered like clang:
 //
 //   walk.yaml:12:7: error: unknown key 'tme'; did you mean 'time'?

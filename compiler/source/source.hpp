@@ -23,7 +23,7 @@ struct Location {
 // A Location whose file is kNoFile belongs to no file at all: it renders as "seqc: error: ...".
 inline constexpr std::uint32_t kNoFile = 0xFFFFFFFFu;
 
-// The compiler's only access to the file system (DEVELOPERS.md rule 2). Paths are as the user
+// The compiler's only access to the file system (see docs/architecture.md). Paths are as the user
 // wrote them, resolved by the caller; the reader returns the whole file's bytes.
 class FileReader {
  public:

@@ -2,7 +2,8 @@
 // BusServoInfoWrite).
 //
 // BusServoInfoWrite is not addressed: every servo on the bus takes what it carries, at once
-// (protocol-notes.md A). `write` therefore refuses to run unless the user states, with
+// (docs/protocol/servo-controller.md). `write` therefore refuses to run unless the user states,
+// with
 // --i-have-one-servo-attached, that only the servo to configure is connected. Fields the user
 // does not give are read from that servo first, so a write changes only what was asked for.
 #include <memory>
@@ -24,7 +25,7 @@ namespace {
 
 constexpr const char* kConfirmFlag = "--i-have-one-servo-attached";
 
-// The led_warning bits, in bit order (seeds/robot-commands.md).
+// The led_warning bits, in bit order (docs/protocol/servo-controller.md).
 const char* const kWarningNames[] = {"overheat", "overvoltage", "overposition"};
 
 std::string warning_text(std::uint8_t bits) {

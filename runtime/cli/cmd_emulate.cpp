@@ -21,7 +21,7 @@
 namespace seqc::cli {
 namespace {
 
-// The servo controller's UART rate (protocol-notes.md A, Framing).
+// The servo controller's UART rate (docs/protocol/servo-controller.md, Framing).
 constexpr std::uint32_t kXArmBaud = 9600;
 
 struct EmulateOptions {

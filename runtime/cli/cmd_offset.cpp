@@ -1,6 +1,6 @@
 // `seqc offset read|adjust|write`: servo position offsets (ServoOffsetRead, ServoOffsetAdjust,
 // ServoOffsetWrite). Adjusting is volatile; writing keeps the current offset over power-off
-// (the bus-servo convention; protocol-notes.md A, "Offsets").
+// (the bus-servo convention; docs/protocol/servo-controller.md, "Offsets").
 #include <memory>
 #include <ostream>
 #include <string>

@@ -1,4 +1,4 @@
-// Everything a subcommand may touch outside itself, passed in (DEVELOPERS.md rule 2), so
+// Everything a subcommand may touch outside itself, passed in (see docs/architecture.md), so
 // tests run subcommands in-process with string streams, a manual clock and fake ports.
 #pragma once
 

@@ -11,7 +11,7 @@ namespace seqc::cli {
 namespace {
 
 // How many times the confirmation is sent before a command counts as unanswered: a controller
-// still busy with the command itself may drop the first one (protocol-notes.md A).
+// still busy with the command itself may drop the first one (docs/protocol/servo-controller.md).
 constexpr int kConfirmAttempts = 2;
 
 const char* kCheckHint = "check that the controller is powered and connected, and --port";

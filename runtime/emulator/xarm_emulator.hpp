@@ -1,6 +1,6 @@
-// An emulated xArm / LSC-family servo controller, behaving as protocol-notes.md reads
-// seeds/robot-commands.md, including its faults, in EMULATED time: it never reads a clock;
-// callers pass the time at which bytes arrive and up to which time runs.
+// An emulated xArm / LSC-family servo controller, behaving as
+// docs/protocol/servo-controller.md describes, including its faults, in EMULATED time: it
+// never reads a clock; callers pass the time at which bytes arrive and up to which time runs.
 //
 // Behaviour (request -> effect; reply, if any):
 //   MultiServoMove      servos move linearly to their targets over the time; 0xff00 = stay
@@ -62,7 +62,8 @@
 namespace seqc::emu {
 
 // Modelling choice: GroupStop is answered with the data-less CMD 7 frame (55 55 02 07) that
-// protocol-notes.md reports for some boards; the host must accept both forms anyway.
+// docs/protocol/servo-controller.md reports for some boards; the host must accept both forms
+// anyway.
 inline constexpr bool kGroupStoppedHasData = false;
 
 struct ReceivedFrame {

@@ -1,5 +1,5 @@
-// Typed messages for every command of the servo controller (seeds/robot-commands.md), both
-// directions, plus the unsolicited group notifications (protocol-notes.md).
+// Typed messages for every command of the servo controller (docs/protocol/servo-controller.md),
+// both directions, plus the unsolicited group notifications (docs/protocol/servo-controller.md).
 //
 // encode() checks every value against its field and fails rather than wrapping or clamping.
 // A Frame means different things per direction (CMD 5/6/7/8 are both requests and replies),

@@ -1,4 +1,4 @@
-// Yahboom Raspblock driver board packets (seeds/raspblock-driver-board.md).
+// Yahboom Raspblock driver board packets (docs/protocol/raspblock.md).
 //
 //   FF FE FUNC LEN DATA... CHK     LEN = len(DATA), CHK = (FUNC + LEN + sum(DATA)) & 0xFF
 // 16-bit fields are big-endian (unlike the servo controller). The board never replies.

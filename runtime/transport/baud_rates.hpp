@@ -10,7 +10,7 @@
 
 namespace seqc::transport {
 
-// The servo controller's UART speed (protocol-notes.md, "Framing").
+// The servo controller's UART speed (docs/protocol/servo-controller.md, "Framing").
 inline constexpr std::uint32_t kDefaultBaud = 9600;
 
 // Every rate accepted by `--port PATH@BAUD`, ascending.

@@ -15,9 +15,9 @@
 
 namespace seqc::transport {
 
-// USB identity of the xArm servo controller (protocol-notes.md, "Framing"). 0483:5750 is
-// STMicroelectronics' generic custom-HID id, shared with unrelated gadgets, so the product
-// string must match too.
+// USB identity of the xArm servo controller (docs/protocol/servo-controller.md, "Framing").
+// 0483:5750 is STMicroelectronics' generic custom-HID id, shared with unrelated gadgets, so the
+// product string must match too.
 inline constexpr std::uint16_t kLobotVendorId = 0x0483;
 inline constexpr std::uint16_t kLobotProductId = 0x5750;
 inline constexpr std::string_view kLobotProduct = "LOBOT";

@@ -19,13 +19,6 @@ namespace {
 
 bool is_hang_up_errno(int e) { return e == EIO || e == ENXIO || e == ENODEV || e == EPIPE; }
 
-// Milliseconds for poll(): rounded up, so poll never returns before the deadline.
-int poll_timeout_ms(io::Duration remaining) {
-  if (remaining <= io::Duration::zero()) return 0;
-  auto ms = std::chrono::ceil<std::chrono::milliseconds>(remaining).count();
-  return static_cast<int>(std::min<decltype(ms)>(ms, INT_MAX));
-}
-
 // Closes a half-opened port on every early return of open().
 struct FdGuard {
   int fd;
@@ -41,6 +34,20 @@ struct FdGuard {
 std::string errno_text(int e) { return std::strerror(e); }
 
 }  // namespace
+
+int poll_timeout_ms(io::Duration remaining) {
+  if (remaining <= io::Duration::zero()) return 0;
+  auto ms = std::chrono::ceil<std::chrono::milliseconds>(remaining).count();
+  return static_cast<int>(std::min<decltype(ms)>(ms, INT_MAX));
+}
+
+io::Duration write_budget(std::size_t bytes, const SerialOptions& options) {
+  // 10 bits a byte (8N1), in whole nanoseconds rounded up; exact integers, no float.
+  const std::uint64_t bits_ns = static_cast<std::uint64_t>(bytes) * 10u * 1'000'000'000u;
+  const std::uint64_t baud = options.baud == 0 ? 1 : options.baud;
+  return options.write_slack +
+         io::Duration{static_cast<io::Duration::rep>((bits_ns + baud - 1) / baud)};
+}
 
 Result<std::unique_ptr<SerialTransport>> SerialTransport::open(const std::string& path,
                                                                io::Clock& clock,
@@ -179,9 +186,7 @@ io::ReadResult SerialTransport::read(std::span<std::uint8_t> buffer, io::TimePoi
 }
 
 Status SerialTransport::write(ByteView bytes) {
-  auto wire = std::chrono::duration<double>(static_cast<double>(bytes.size()) * seconds_per_byte());
-  io::TimePoint deadline =
-      clock_.now() + options_.write_slack + std::chrono::duration_cast<io::Duration>(wire);
+  const io::TimePoint deadline = clock_.now() + write_budget(bytes.size(), options_);
   std::size_t done = 0;
   while (done < bytes.size()) {
     ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);

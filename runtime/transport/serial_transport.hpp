@@ -27,6 +27,14 @@ struct SerialOptions {
   io::Duration write_slack = std::chrono::seconds(2);
 };
 
+// The timeout for one poll() that must not return before `remaining` has passed: whole
+// milliseconds rounded up, 0 once the deadline has passed.
+int poll_timeout_ms(io::Duration remaining);
+
+// How long writing `bytes` may take before the device counts as not accepting data: the time
+// the bytes need on the wire at the port's rate plus the options' slack.
+io::Duration write_budget(std::size_t bytes, const SerialOptions& options);
+
 class SerialTransport final : public io::Transport {
  public:
   // Opens and configures `path`. Errors are complete sentences for the user: in use, permission

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/golden_update.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -49,14 +51,9 @@ SeqcRun seqc(const fs::path& dir, const std::string& args, const std::string& st
   return r;
 }
 
-bool updating() {
-  const char* u = std::getenv("SEQC_UPDATE_GOLDEN");
-  return u != nullptr && std::string(u) == "1";
-}
-
 // Compares `actual` with the golden file, or rewrites it under SEQC_UPDATE_GOLDEN=1.
 void expect_golden(const fs::path& golden, const std::string& actual) {
-  if (updating()) {
+  if (seqc::testing::updating_goldens()) {
     fs::create_directories(golden.parent_path());
     std::ofstream(golden, std::ios::binary) << actual;
     return;

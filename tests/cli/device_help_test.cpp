@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tests/cli/device_test_util.hpp"
+#include "tests/golden_update.hpp"
 
 namespace seqc::cli::test {
 namespace {
@@ -34,7 +35,7 @@ TEST_P(DeviceHelp, MatchesGolden) {
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.err, "");
   const std::string path = kGoldenDir + name + ".txt";
-  if (std::getenv("SEQC_UPDATE_GOLDEN") != nullptr) {
+  if (seqc::testing::updating_goldens()) {
     std::ofstream(path, std::ios::binary) << r.out;
     return;
   }

@@ -1,7 +1,7 @@
 // Runs seqc subcommands in-process, the way main() does, against one emulated servo
 // controller (`--port emu:xarm` bound to it through Context::xarm_emulator) on a ManualClock,
 // with string streams for stdout and stderr. Expected request bytes in these tests are written
-// by hand from seeds/robot-commands.md, never produced by the project's encoder.
+// by hand from docs/protocol/servo-controller.md, never produced by the project's encoder.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -68,7 +68,7 @@ class DeviceHarness {
   void mark() { mark_ = emu.received_bytes().size(); }
 
   // Stores group 3 = one action (1000 ms, servo 1 to 500) through the download handshake,
-  // frames written by hand from protocol-notes.md A, then mark()s.
+  // frames written by hand from docs/protocol/servo-controller.md, then mark()s.
   void store_group_3() {
     const char* frames[] = {"55 55 05 05 01 03 01", "55 55 07 05 02 03 00 01 00",
                             "55 55 06 05 03 03 00 00", "55 55 0c 05 04 03 00 00 0b e8 03 01 f4 01",

@@ -32,8 +32,8 @@ TEST(Backend, ActionsMirrorKeyframes) {
 }
 
 TEST(Backend, SmallPlanIsByteExact) {
-  // Written by hand from protocol-notes.md: group 2, one action of 700 ms moving servo 1 to
-  // 100 (64 00) and servo 6 to 900 (84 03).
+  // Written by hand from docs/protocol/servo-controller.md: group 2, one action of 700 ms moving
+  // servo 1 to 100 (64 00) and servo 6 to 900 (84 03).
   auto out = compile_text(
       "robot: xarm\nsequence:\n  - move: {claw: 100, base: 900}\n    time: "
       "700ms\n");

@@ -166,6 +166,19 @@ TEST(DidYouMean, FindsOneTypo) {
   EXPECT_EQ(did_you_mean("stpes", keys), "steps");
 }
 
+TEST(DidYouMean, CaseDifferencesCostNothing) {
+  const std::vector<std::string> keys = {"name", "time", "tempo", "steps"};
+  // Four letters differ in case: too many edits case-sensitively, none when folded.
+  EXPECT_EQ(did_you_mean("TIME", keys), "time");
+  EXPECT_EQ(did_you_mean("Steps", keys), "steps");
+  EXPECT_EQ(did_you_mean("TMIE", keys), "time");  // a case change and a transposition
+  // A closer match ignoring case wins over a closer match respecting it.
+  EXPECT_EQ(did_you_mean("TIME", {"tim", "time"}), "time");
+  EXPECT_EQ(did_you_mean("TIME", {"TIMER", "time"}), "time");
+  // Between two candidates equal when folded, the one matching the case wins.
+  EXPECT_EQ(did_you_mean("Pose", {"pose", "Pose2", "POSE"}), "pose");
+}
+
 TEST(DidYouMean, NothingCloseMeansNoSuggestion) {
   const std::vector<std::string> keys = {"name", "time", "servos"};
   EXPECT_EQ(did_you_mean("speed", keys), "");

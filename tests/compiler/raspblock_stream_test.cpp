@@ -1,5 +1,5 @@
 // The compiled Raspblock stream, byte for byte. Every expected frame below was written by hand
-// from seeds/raspblock-driver-board.md and protocol-notes.md B (FF FE FUNC LEN DATA CHK,
+// from docs/protocol/raspblock.md (FF FE FUNC LEN DATA CHK,
 // CHK = FUNC + LEN + sum(DATA), 16-bit values big-endian, rocker signs in 0b00000XYZ with the
 // Z bit set for Z >= 0); the arithmetic is in the comments.
 #include <gtest/gtest.h>

@@ -224,38 +224,6 @@ TEST(YamlHostile, NodeLimitStopsEarly) {
             "many.yaml:1000:3: error: the file has more than 1000 YAML nodes\n");
 }
 
-// Not an assertion: how long the worst inputs found take under the default limits.
-TEST(YamlHostile, MeasureWorstCases) {
-  struct Case {
-    const char* what;
-    std::string text;
-  };
-  std::string flow_list = "[";
-  while (flow_list.size() < (1u << 20) - 8) flow_list += "a, ";
-  flow_list += "a]";
-  std::string flow_unclosed = flow_list.substr(0, flow_list.size() - 1);
-  std::string flow_map = "{";
-  for (int i = 0; flow_map.size() < (1u << 20) - 32; ++i)
-    flow_map += "k" + std::to_string(i) + ": v, ";
-  flow_map += "z: v}";
-  std::string block_seq;
-  while (block_seq.size() < (1u << 20) - 8) block_seq += "- v\n";
-  const Case cases[] = {
-      {"1 MiB flow list of 'a, ' (valid)", flow_list},
-      {"1 MiB flow list, unclosed", flow_unclosed},
-      {"1 MiB flow map (valid)", flow_map},
-      {"1 MiB block list (valid)", block_seq},
-      {"1 MiB of '['", std::string((1u << 20) - 1, '[')},
-      {"1 MiB of ','", std::string((1u << 20) - 1, ',')},
-  };
-  for (const Case& c : cases) {
-    const auto r = load("worst.yaml", c.text);
-    std::string outcome = r.ok ? "loaded" : first_line(r.rendered);
-    if (!outcome.empty() && outcome.back() == '\n') outcome.pop_back();
-    std::printf("[ measured ] %-34s %8zu bytes: %8.1f ms, %s\n", c.what, c.text.size(),
-                r.milliseconds, outcome.c_str());
-  }
-}
-
+// How long the worst inputs take is measured by tests/bench/yaml_worst_bench.
 }  // namespace
 }  // namespace seqc::compiler

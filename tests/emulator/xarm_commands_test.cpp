@@ -1,4 +1,5 @@
-// Every other command of robot-commands.md: effects and exact reply bytes (hand-written).
+// Every other command of docs/protocol/servo-controller.md: effects and exact reply bytes
+// (hand-written).
 #include <gtest/gtest.h>
 
 #include "tests/emulator/emu_test_util.hpp"

@@ -1,4 +1,4 @@
-// Serial and HID framing of the servo controller (protocol-notes.md, "Framing").
+// Serial and HID framing of the servo controller (docs/protocol/servo-controller.md, "Framing").
 #include "runtime/protocol/lsc_frame.hpp"
 
 #include <gtest/gtest.h>

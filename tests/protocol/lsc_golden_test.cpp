@@ -1,5 +1,5 @@
 // Golden wire vectors for every servo controller request and reply, written by hand from
-// seeds/robot-commands.md and protocol-notes.md (little-endian ushort). Each is checked both
+// docs/protocol/servo-controller.md (little-endian ushort). Each is checked both
 // ways: value -> bytes and bytes -> value.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Raspblock packets: golden vectors written by hand from seeds/raspblock-driver-board.md and
-// protocol-notes.md section B (big-endian, CHK = (FUNC + LEN + sum(DATA)) & 0xFF), round
+// Raspblock packets: golden vectors written by hand from docs/protocol/raspblock.md
+// (big-endian, CHK = (FUNC + LEN + sum(DATA)) & 0xFF), round
 // trips, range checks and the stream decoder.
 #include "runtime/protocol/raspblock.hpp"
 

@@ -1,6 +1,6 @@
 // ControllerSession (runtime/cli/controller_session.hpp) over a scripted link: the
 // confirmation after unanswered commands, stale replies, notifications and failures.
-// Reply bytes are written by hand from seeds/robot-commands.md.
+// Reply bytes are written by hand from docs/protocol/servo-controller.md.
 #include <gtest/gtest.h>
 
 #include <deque>
