@@ -20,6 +20,7 @@
 #include "compiler/lang/raspblock_program.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/source.hpp"
+#include "compiler/timeline/timeline.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 
 namespace seqc::compiler {
@@ -41,6 +42,7 @@ struct ServoInfo {
   int max = 0;
   int home = 0;                     // centre for mirroring; simulator's starting position
   std::optional<double> max_speed;  // device units per second; nullopt = unchecked
+  std::optional<double> max_accel;  // device units per second squared; nullopt = unchecked
 };
 
 struct RobotInfo {
@@ -64,6 +66,12 @@ struct Keyframe {
 struct ServoProgram {
   RobotInfo robot;
   std::vector<Keyframe> keyframes;
+  // What the author meant, per servo (by index into robot.servos), before fitting.
+  Timeline timeline;
+  // The largest distance between the compiled motion and the intended curve, and where.
+  double fit_error = 0;
+  std::uint32_t fit_error_at_ms = 0;
+  std::string fit_error_servo;
   std::uint64_t duration_ms() const;
 };
 

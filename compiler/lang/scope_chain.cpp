@@ -13,6 +13,7 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
   auto scope = std::make_unique<FileScope>();
   scope->file = &f;
   if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+  if (const YamlNode* m = f.root->find("meter")) scope->beats_per_bar = parse_meter(*m, reporter);
   FileScope& ref = *scope;
   scopes_.emplace(f.path, std::move(scope));
   return {ref, true};
@@ -25,9 +26,45 @@ std::optional<std::uint32_t> ScopeChain::resolution_ms() const {
   return std::nullopt;
 }
 
-std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::string_view what,
-                                                 std::uint64_t max_ms, std::string_view too_long,
-                                                 Reporter& reporter) const {
+std::optional<double> ScopeChain::tempo() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->tempo) return (*it)->tempo;
+  }
+  return std::nullopt;
+}
+
+std::optional<int> ScopeChain::beats_per_bar() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->beats_per_bar) return (*it)->beats_per_bar;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> ScopeChain::tolerance() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->tolerance) return (*it)->tolerance;
+  }
+  return std::nullopt;
+}
+
+const YamlNode* ScopeChain::find_section(const YamlNode& name, Reporter& reporter) const {
+  if (!name.is_scalar()) {
+    reporter.error(name.location, "'section' names a section of this file, e.g. 'section: nod'");
+    return nullptr;
+  }
+  std::vector<std::string> known;
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    auto s = (*it)->sections.find(name.scalar);
+    if (s != (*it)->sections.end()) return s->second;
+    for (const auto& [n, list] : (*it)->sections) known.push_back(n);
+  }
+  reporter.unknown(name.location, "section", name.scalar, known);
+  return nullptr;
+}
+
+std::optional<ExactMs> ScopeChain::exact_ms(const YamlNode& node, std::string_view what,
+                                            std::optional<double> tempo_override,
+                                            Reporter& reporter) const {
   if (!node.is_scalar()) {
     reporter.error(node.location, std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
     return std::nullopt;
@@ -37,19 +74,41 @@ std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::stri
     reporter.error(node.location, t.error().message);
     return std::nullopt;
   }
-  double ms = t->amount;
-  if (t->unit == TimeUnit::Seconds) ms *= 1000;
-  if (t->unit == TimeUnit::Beats) {
-    std::optional<double> tempo;
-    for (auto it = chain_.rbegin(); it != chain_.rend() && !tempo; ++it) tempo = (*it)->tempo;
+  if (t->amount > 1e9) {
+    reporter.error(node.location, "'" + node.scalar + "' is far longer than any sequence");
+    return std::nullopt;
+  }
+  ExactMs ms = ExactMs::from_double(t->amount);
+  if (t->unit == TimeUnit::Seconds) ms = ms * ExactMs(1000);
+  if (t->unit == TimeUnit::Beats || t->unit == TimeUnit::Bars) {
+    const std::optional<double> tempo = tempo_override ? tempo_override : this->tempo();
     if (!tempo) {
       reporter.error(node.location, "'" + node.scalar +
                                         "' counts beats but no 'tempo' is set; add e.g. "
                                         "'tempo: 120' at the top of the file");
       return std::nullopt;
     }
-    ms *= 60000.0 / *tempo;
+    if (t->unit == TimeUnit::Bars) {
+      const std::optional<int> bar = beats_per_bar();
+      if (!bar) {
+        reporter.error(node.location, "'" + node.scalar +
+                                          "' counts bars but no 'meter' is set; add e.g. "
+                                          "'meter: 4/4' at the top of the file");
+        return std::nullopt;
+      }
+      ms = ms * ExactMs(*bar);
+    }
+    ms = ms * ExactMs(60000) / ExactMs::from_double(*tempo);
   }
+  return ms;
+}
+
+std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::string_view what,
+                                                 std::uint64_t max_ms, std::string_view too_long,
+                                                 Reporter& reporter) const {
+  auto exact = exact_ms(node, what, std::nullopt, reporter);
+  if (!exact) return std::nullopt;
+  const double ms = exact->value();
   if (ms > static_cast<double>(max_ms)) {
     reporter.error(node.location, "'" + node.scalar + "' " + std::string(too_long));
     return std::nullopt;
@@ -193,6 +252,24 @@ std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter) {
     return std::nullopt;
   }
   return bpm;
+}
+
+std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter) {
+  const std::string text = node.is_scalar() ? node.scalar : "";
+  const auto slash = text.find('/');
+  double beats = 0, unit = 0;
+  const bool ok = slash != std::string::npos &&
+                  parse_decimal(std::string_view(text).substr(0, slash), beats) &&
+                  parse_decimal(std::string_view(text).substr(slash + 1), unit) &&
+                  beats == std::floor(beats) && beats >= 1 && beats <= 32 &&
+                  (unit == 1 || unit == 2 || unit == 4 || unit == 8 || unit == 16 || unit == 32);
+  if (!ok) {
+    reporter.error(node.location,
+                   "'meter' must be beats per bar over the beat's note value, e.g. 'meter: 3/4' "
+                   "or 'meter: 6/8'");
+    return std::nullopt;
+  }
+  return static_cast<int>(beats);
 }
 
 }  // namespace seqc::compiler

@@ -17,6 +17,7 @@
 #include "compiler/lang/file_loader.hpp"
 #include "compiler/lang/positions.hpp"
 #include "compiler/lang/reporter.hpp"
+#include "compiler/timeline/exact_time.hpp"
 #include "compiler/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {
@@ -31,7 +32,10 @@ struct FileScope {
   const LoadedFile* file = nullptr;
   std::map<std::string, Pose, std::less<>> poses;
   std::optional<double> tempo;
+  std::optional<int> beats_per_bar;  // 'meter: 3/4' -> 3
   std::optional<std::uint32_t> resolution_ms;
+  std::optional<double> tolerance;                               // device units
+  std::map<std::string, const YamlNode*, std::less<>> sections;  // name -> its step list
 };
 
 class ScopeChain {
@@ -47,8 +51,20 @@ class ScopeChain {
   void push(FileScope& scope) { chain_.push_back(&scope); }
   void pop() { chain_.pop_back(); }
 
-  // The innermost resolution set by a running file, if any.
+  // The innermost resolution, tempo, meter and tolerance set by a running file, if any.
   std::optional<std::uint32_t> resolution_ms() const;
+  std::optional<double> tempo() const;
+  std::optional<int> beats_per_bar() const;
+  std::optional<double> tolerance() const;
+
+  // The section `name` from the innermost running file that defines it; nullptr after
+  // reporting an unknown name with "did you mean".
+  const YamlNode* find_section(const YamlNode& name, Reporter& reporter) const;
+
+  // `node` as exact milliseconds: 500ms, 1.5s, beats at `tempo_override` or else the innermost
+  // file's tempo, bars at the innermost meter. nullopt after reporting.
+  std::optional<ExactMs> exact_ms(const YamlNode& node, std::string_view what,
+                                  std::optional<double> tempo_override, Reporter& reporter) const;
 
   // `node` in milliseconds (500ms, 1.5s, or beats at the innermost tempo). Above `max_ms` the
   // message is "'<value>' " + `too_long`. nullopt after reporting.
@@ -108,5 +124,9 @@ const YamlNode* find_sequence(const YamlNode& root, Reporter& reporter);
 
 // Parses a file's 'tempo': beats per minute, 1-1000, optionally written with "bpm".
 std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter);
+
+// Parses 'meter: 3/4' into beats per bar (1-32; the lower number, the beat's note value, must
+// be 1, 2, 4, 8, 16 or 32 and does not change how long a beat lasts).
+std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter);
 
 }  // namespace seqc::compiler

@@ -1,13 +1,14 @@
+// The servo-controller front end: files, step lists and the structural steps. Motion steps
+// (move, wait, through) are in servo_motion.cpp; fitting the finished timeline into actions is
+// compiler/fitting/.
 #include "compiler/lang/servo_lowering.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <memory>
 
-#include "compiler/lang/positions.hpp"
-#include "compiler/lang/scope_chain.hpp"
+#include "compiler/fitting/fitter.hpp"
+#include "compiler/lang/servo_lowering_state.hpp"
 #include "compiler/lang/step_parts.hpp"
 #include "compiler/lang/units.hpp"
 #include "runtime/protocol/group_download.hpp"
@@ -15,480 +16,433 @@
 namespace seqc::compiler {
 namespace {
 
-constexpr std::uint64_t kMaxGroupMs = std::uint64_t{lsc::kMaxActionMs} * lsc::kMaxActions;
-
 std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
   return a > std::numeric_limits<std::uint64_t>::max() - b
              ? std::numeric_limits<std::uint64_t>::max()
              : a + b;
 }
-std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
-  if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a) {
-    return std::numeric_limits<std::uint64_t>::max();
-  }
-  return a * b;
+
+std::string format_exact_ms(ExactMs t) {
+  const double ms = t.value();
+  if (ms == std::floor(ms)) return std::to_string(static_cast<long long>(ms)) + "ms";
+  return format_ms(ms);
 }
 
-class ServoLowering {
- public:
-  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
-      : robot_(robot),
-        loader_(loader),
-        reporter_(reporter),
-        scopes_(robot.home_servos),
-        pos_(robot.info.servos.size()) {}
+}  // namespace
 
-  ServoProgram run(const LoadedFile& main) {
-    run_file(main, true);
-    if (actions_ > lsc::kMaxActions) {
-      const std::vector<Location> sites = reporter_.include_sites();
-      reporter_.set_include_sites(overflow_sites_);
-      reporter_.error(overflow_at_,
-                      "the sequence needs " + std::to_string(actions_) + "/" +
-                          std::to_string(lsc::kMaxActions) +
-                          " actions; a group holds at most 1,020 (4 blocks of 255), and this "
-                          "step makes action 1,021");
-      reporter_.set_include_sites(sites);
-    } else if (actions_ == 0 && sequence_at_ && reporter_.errors_reported() == 0) {
-      reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
-    }
-    ServoProgram program;
-    program.robot = robot_.info;
-    program.keyframes = std::move(keyframes_);
-    return program;
+ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
+    : robot_(robot),
+      loader_(loader),
+      reporter_(reporter),
+      scopes_(robot.home_servos),
+      pos_(robot.info.servos.size()) {
+  timeline_.servos.resize(robot.info.servos.size());
+}
+
+ServoProgram ServoLowering::run(const LoadedFile& main) {
+  run_file(main, true);
+  ServoProgram program;
+  program.robot = robot_.info;
+  finish(program);
+  return program;
+}
+
+void ServoLowering::finish(ServoProgram& program) {
+  timeline_.end = now_;
+  FitResult fit = fit_timeline(timeline_);
+  const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
+  if (needed > lsc::kMaxActions) {
+    const Location at = fit.actions.size() > lsc::kMaxActions ? fit.actions[lsc::kMaxActions].source
+                                                              : fit.actions.back().source;
+    reporter_.error(at, "the sequence needs " + std::string(truncated_ ? "at least " : "") +
+                            std::to_string(needed) + "/" + std::to_string(lsc::kMaxActions) +
+                            " actions; a group holds at most 1,020 (4 blocks of 255), and this "
+                            "step makes action 1,021");
+    fit.actions.resize(std::min<std::size_t>(fit.actions.size(), lsc::kMaxActions));
+  } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
+    reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
   }
-
- private:
-  // ---- files and scopes ---------------------------------------------------------------------
-
-  void run_file(const LoadedFile& f, bool is_main) {
-    const YamlNode* map = file_root(f, reporter_);
-    if (map == nullptr) return;
-    const YamlNode& root = *map;
-    reporter_.check_keys(
-        root, {"robot", "tempo", "resolution", "poses", "sequence", "name", "description"},
-        "at the top level");
-    if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {
-      return;  // its steps would only add errors about servos this robot lacks
-    }
-    FileScope& scope = scope_for(f);
-    const YamlNode* sequence = find_sequence(root, reporter_);
-    if (sequence == nullptr) return;
-    if (is_main) sequence_at_ = sequence->location;
-    scopes_.push(scope);
-    run_steps(*sequence, "'sequence'");
-    scopes_.pop();
+  for (const FitShortfall& s : fit.shortfalls) {
+    const ServoInfo& info = robot_.info.servos[s.servo];
+    reporter_.warning(s.where, "even 20ms actions cannot keep '" + info.name + "' within " +
+                                   format_units(s.tolerance) + " of this curve: it is " +
+                                   format_units(s.error) + " off at " + format_seconds(s.at_ms));
   }
-
-  FileScope& scope_for(const LoadedFile& f) {
-    auto [scope, fresh] = scopes_.open(f, reporter_);
-    if (!fresh) return scope;
-    const YamlNode& root = *f.root;
-    if (const YamlNode* p = root.find("poses")) parse_poses(*p, scope);
-    if (const YamlNode* r = root.find("resolution")) {
-      scopes_.push(scope);  // so beats use this file's tempo
-      auto ms = time_ms(*r, "'resolution'");
-      scopes_.pop();
-      if (ms && *ms < lsc::kMinActionMs) {
-        reporter_.error(r->location, "resolution " + std::to_string(*ms) +
-                                         "ms is below the controller's minimum of 20ms per "
-                                         "action");
-      } else if (ms) {
-        scope.resolution_ms = *ms;
-      }
+  for (const FittedAction& a : fit.actions) {
+    Keyframe k;
+    k.start_ms = a.start_ms;
+    k.time_ms = static_cast<std::uint16_t>(a.time_ms);
+    k.source = a.source;
+    for (const FittedTarget& t : a.targets) {
+      k.targets.push_back(
+          {robot_.info.servos[t.servo].id, static_cast<std::uint16_t>(std::max(0, t.position))});
     }
-    return scope;
+    std::sort(k.targets.begin(), k.targets.end(),
+              [](const lsc::ServoTarget& x, const lsc::ServoTarget& y) { return x.id < y.id; });
+    program.keyframes.push_back(std::move(k));
   }
+  program.fit_error = fit.max_error;
+  program.fit_error_at_ms = fit.max_error_at_ms;
+  program.fit_error_servo =
+      robot_.info.servos.empty() ? std::string() : robot_.info.servos[fit.max_error_servo].name;
+  program.timeline = std::move(timeline_);
+}
 
-  void parse_poses(const YamlNode& poses, FileScope& scope) {
+// ---- files and scopes -----------------------------------------------------------------------
+
+void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
+  const YamlNode* map = file_root(f, reporter_);
+  if (map == nullptr) return;
+  const YamlNode& root = *map;
+  reporter_.check_keys(root,
+                       {"robot", "tempo", "meter", "resolution", "tolerance", "poses", "sections",
+                        "sequence", "name", "description"},
+                       "at the top level");
+  if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {
+    return;  // its steps would only add errors about servos this robot lacks
+  }
+  FileScope& scope = scope_for(f);
+  const YamlNode* sequence = find_sequence(root, reporter_);
+  if (sequence == nullptr) return;
+  if (is_main) {
+    sequence_at_ = sequence->location;
+    timeline_.tempo = scope.tempo.value_or(0);
+    timeline_.beats_per_bar = scope.beats_per_bar.value_or(0);
+  }
+  scopes_.push(scope);
+  run_steps(*sequence, "'sequence'");
+  scopes_.pop();
+}
+
+FileScope& ServoLowering::scope_for(const LoadedFile& f) {
+  auto [scope, fresh] = scopes_.open(f, reporter_);
+  if (!fresh) return scope;
+  const YamlNode& root = *f.root;
+  scopes_.push(scope);  // so this file's tempo, meter and poses apply while it is read
+  if (const YamlNode* p = root.find("poses")) {
     compiler::parse_poses(
-        poses, scope, "'poses' must be a map of pose names to servo positions",
+        *p, scope, "'poses' must be a map of pose names to servo positions",
         "servo: position, e.g. {claw: 500}",
         [this](const YamlNode& map, const std::string& where) {
           std::vector<PositionEntry> entries = parse_positions(map, where);
           for (const PositionEntry& e : entries) {
-            if (!e.value.relative)
+            if (!e.value.relative) {
               check_limits(e, e.output, absolute_units(e, e.output, false), {});
+            }
           }
           return entries;
         },
         reporter_);
   }
-
-  // ---- values -------------------------------------------------------------------------------
-
-  ScopeChain::ParseEntries entries_parser() {
-    return [this](const YamlNode& map, const std::string& where) {
-      return parse_positions(map, where);
-    };
-  }
-
-  std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where) {
-    std::vector<PositionEntry> out;
-    out.reserve(map.entries.size());
-    std::vector<bool> given(robot_.info.servos.size());
-    for (const auto& [key, value] : map.entries) {
-      auto it = robot_.names.find(key.scalar);
-      if (it == robot_.names.end()) {
-        reporter_.unknown(key.location, "servo", key.scalar, robot_.name_list(), where);
-        continue;
-      }
-      auto e = parse_position_entry(key, value, it->second, "500, 90deg, +50", reporter_);
-      if (!e) continue;
-      if (given[e->output]) {
-        reporter_.error(key.location, "servo '" + robot_.info.servos[e->output].name +
-                                          "' is given twice " + where);
-        continue;
-      }
-      given[e->output] = true;
-      out.push_back(std::move(*e));
-    }
-    return out;
-  }
-
-  // The absolute position of an absolute entry, in device units, on servo `target`.
-  double absolute_units(const PositionEntry& e, std::size_t target, bool reflect) const {
-    const ServoInfo& dst = robot_.info.servos[target];
-    if (e.home) return dst.home;
-    double v = e.value.degrees ? robot_.degrees_to_units(e.value.amount, false) : e.value.amount;
-    if (reflect) v = dst.home - (v - robot_.info.servos[e.output].home);
-    return v;
-  }
-
-  // Reports a position outside the servo's limits; `how` explains where the value came from.
-  bool check_limits(const PositionEntry& e, std::size_t target, double units, std::string how,
-                    std::optional<Reporter::Note> note = {}) {
-    const ServoInfo& s = robot_.info.servos[target];
-    return check_position_limits(e, s.name, s.min, s.max, units, std::move(how), std::move(note),
-                                 reporter_);
-  }
-
-  std::optional<std::uint32_t> time_ms(const YamlNode& node, std::string_view what) {
-    return scopes_.time_ms(node, what, kMaxGroupMs,
-                           "is longer than a whole group can last (1,020 actions of 30s)",
-                           reporter_);
-  }
-
-  // ---- steps --------------------------------------------------------------------------------
-
-  void run_steps(const YamlNode& list, std::string_view what) {
-    for (const YamlNode& step : step_items(list, what, reporter_)) run_step(step);
-  }
-
-  void run_step(const YamlNode& step) {
-    static constexpr std::string_view kVerbs[] = {"move", "wait", "repeat", "include", "mirror"};
-    if (!step.is_map()) {
-      reporter_.error(step.location,
-                      "a step must be a map such as 'move: home' or 'wait: 1s', not " +
-                          std::string(kind_name(step)));
-      return;
-    }
-    const YamlNode* verb_key = nullptr;
-    const YamlNode* verb_value = nullptr;
-    for (const auto& [key, value] : step.entries) {
-      for (std::string_view v : kVerbs) {
-        if (key.scalar != v) continue;
-        if (verb_key != nullptr) {
-          reporter_.error(key.location, "a step does one thing: '" + key.scalar +
-                                            "' cannot be combined with '" + verb_key->scalar +
-                                            "'; make it a separate step");
-          return;
-        }
-        verb_key = &key;
-        verb_value = &value;
-      }
-    }
-    if (verb_key == nullptr) {
-      if (reporter_.check_keys(
-              step, {"move", "wait", "repeat", "include", "mirror", "time", "ease", "steps", "do"},
-              "in a step")) {
-        reporter_.error(step.location, "a step needs one of: move, wait, repeat, include, mirror");
-      }
-      return;
-    }
-    const std::string& verb = verb_key->scalar;
-    if (verb == "move") {
-      if (reporter_.check_keys(step, {"move", "time", "ease", "steps"}, "in a move step")) {
-        move_step(step, *verb_value);
-      }
-    } else if (verb == "wait") {
-      if (reporter_.check_keys(step, {"wait"}, "in a wait step")) wait_step(step, *verb_value);
-    } else if (verb == "repeat") {
-      if (reporter_.check_keys(step, {"repeat", "do"}, "in a repeat step")) {
-        repeat_step(step, *verb_value);
-      }
-    } else if (verb == "include") {
-      if (reporter_.check_keys(step, {"include"}, "in an include step")) {
-        include_step(step, *verb_value);
-      }
-    } else if (reporter_.check_keys(step, {"mirror"}, "in a mirror step")) {
-      mirror_step(step, *verb_value);
+  if (const YamlNode* r = root.find("resolution")) {
+    auto ms =
+        scopes_.time_ms(*r, "'resolution'", 30000, "is longer than an action can last", reporter_);
+    if (ms && *ms < lsc::kMinActionMs) {
+      reporter_.error(r->location, "resolution " + std::to_string(*ms) +
+                                       "ms is below the controller's minimum of 20ms per action");
+    } else if (ms) {
+      scope.resolution_ms = *ms;
     }
   }
-
-  void move_step(const YamlNode& step, const YamlNode& target) {
-    std::vector<PositionEntry> inline_entries;
-    std::optional<Reporter::Note> note;
-    const std::vector<PositionEntry>* entries =
-        scopes_.move_entries(target, "servo", entries_parser(), inline_entries, note, reporter_);
-    if (entries == nullptr) return;
-
-    const YamlNode* time_node = step.find("time");
-    std::optional<std::uint32_t> total;
-    if (time_node == nullptr) {
-      reporter_.error(step.location, "this move needs a 'time', e.g. 'time: 500ms'");
+  if (const YamlNode* t = root.find("tolerance")) scope.tolerance = parse_tolerance(*t);
+  if (const YamlNode* s = root.find("sections")) {
+    if (!s->is_map()) {
+      reporter_.error(s->location, "'sections' must be a map of section names to step lists");
     } else {
-      total = time_ms(*time_node, "'time'");
+      for (const auto& [name, list] : s->entries) scope.sections[name.scalar] = &list;
     }
+  }
+  scopes_.pop();
+  return scope;
+}
 
-    Ease ease = Ease::Linear;
-    bool eased = false;
-    if (const YamlNode* e = step.find("ease")) {
-      auto parsed = parse_ease(*e, reporter_);
-      if (!parsed) return;
-      ease = *parsed;
-      eased = ease != Ease::Linear;
-    }
-    std::optional<long long> steps;
-    const YamlNode* steps_node = step.find("steps");
-    if (steps_node != nullptr) {
-      steps = parse_integer(*steps_node, 1, lsc::kMaxActions, "'steps'", reporter_);
-      if (!steps) return;
-    }
+// ---- step lists and structural steps ----------------------------------------------------------
 
-    // Resolve every target before checking time, so one run reports both kinds of mistake.
-    // targets[servo]: the position to reach; a later entry for the same servo (possible after
-    // mirroring) replaces an earlier one. Walked in servo order below.
-    std::vector<std::optional<int>>& targets = scratch_targets_;
-    targets.assign(pos_.size(), std::nullopt);
-    std::size_t target_count = 0;
-    bool ok = true;
-    for (const PositionEntry& e : *entries) {
-      const bool reflect = mirrored_ && robot_.mirror.count(e.output) != 0;
-      const std::size_t servo = reflect ? robot_.mirror.at(e.output) : e.output;
-      std::string how;
-      double units = 0;
-      if (e.value.relative) {
-        double delta =
-            e.value.degrees ? robot_.degrees_to_units(e.value.amount, true) : e.value.amount;
-        if (reflect) delta = -delta;
-        auto reached = relative_units(e, robot_.info.servos[servo].name, pos_[servo], delta, how,
-                                      note, reporter_);
-        if (!reached) {
-          ok = false;
-          continue;
-        }
-        units = *reached;
-      } else {
-        units = absolute_units(e, servo, reflect);
-      }
-      if (reflect) {
-        how += std::string(how.empty() ? "" : ", ") + "mirrored from '" +
-               robot_.info.servos[e.output].name + "'";
-      }
-      if (!check_limits(e, servo, units, how, note)) {
-        ok = false;
-        continue;
-      }
-      if (!targets[servo]) ++target_count;
-      targets[servo] = static_cast<int>(std::llround(units));
-    }
-    if (!ok || !total) return;
+void ServoLowering::run_steps(const YamlNode& list, std::string_view what) {
+  lists_.push_back({now_, std::nullopt, std::nullopt});
+  for (const YamlNode& step : step_items(list, what, reporter_)) run_step(step);
+  lists_.pop_back();
+}
 
-    const std::uint32_t t = *total;
-    if (t < lsc::kMinActionMs) {
-      reporter_.error(time_node->location, "time " + std::to_string(t) +
-                                               "ms is below the controller's minimum of 20ms per "
-                                               "action");
-      return;
-    }
-    std::uint64_t n = 1;
-    if (steps) {
-      n = static_cast<std::uint64_t>(*steps);
-    } else if (eased) {
-      const std::uint32_t res = scopes_.resolution_ms().value_or(kDefaultResolutionMs);
-      n = std::max<std::uint64_t>(1, t / res);
-    }
-    n = std::max<std::uint64_t>(n, (t + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs);
-    if (t / n < lsc::kMinActionMs) {
-      reporter_.error(steps_node != nullptr ? steps_node->location : time_node->location,
-                      std::to_string(n) + " steps of " +
-                          format_ms(static_cast<double>(t) / static_cast<double>(n)) +
-                          " are shorter than the controller's 20ms minimum per action; use at "
-                          "most " +
-                          std::to_string(t / lsc::kMinActionMs) + " steps");
-      return;
-    }
-    if (n > 1) {
-      for (std::size_t servo = 0; servo < targets.size(); ++servo) {
-        if (!targets[servo] || pos_[servo]) continue;
-        reporter_.error(step.location, "'" + robot_.info.servos[servo].name +
-                                           "' has no known position before this move, so it "
-                                           "cannot be split into " +
-                                           std::to_string(n) +
-                                           " actions; move it to an absolute position first");
+void ServoLowering::run_step(const YamlNode& step) {
+  static constexpr std::string_view kVerbs[] = {"move",    "wait",     "through", "repeat",
+                                                "include", "mirror",   "section", "together",
+                                                "tempo",   "tolerance"};
+  if (!step.is_map()) {
+    reporter_.error(step.location, "a step must be a map such as 'move: home' or 'wait: 1s', not " +
+                                       std::string(kind_name(step)));
+    return;
+  }
+  const YamlNode* verb_key = nullptr;
+  const YamlNode* verb_value = nullptr;
+  for (const auto& [key, value] : step.entries) {
+    // 'tolerance' is a verb only on its own: on a move or through it is a setting.
+    if (key.scalar == "tolerance" && step.entries.size() > 1) continue;
+    for (std::string_view v : kVerbs) {
+      if (key.scalar != v) continue;
+      if (verb_key != nullptr) {
+        reporter_.error(key.location, "a step does one thing: '" + key.scalar +
+                                          "' cannot be combined with '" + verb_key->scalar +
+                                          "'; make it a separate step");
         return;
       }
-    }
-
-    // Where each target servo starts (all are known when the move is split, checked above).
-    std::vector<std::optional<int>> start;
-    if (n > 1) start = pos_;
-    struct Fastest {
-      double speed = 0;
-      int delta = 0;
-      std::uint32_t ms = 0;
-    };
-    std::map<std::size_t, Fastest> fastest;
-    std::uint64_t done_ms = 0;
-    for (std::uint64_t k = 1; k <= n; ++k) {
-      const std::uint64_t until = (t * k + n / 2) / n;
-      const auto piece = static_cast<std::uint16_t>(until - done_ms);
-      done_ms = until;
-      std::vector<lsc::ServoTarget> out;
-      out.reserve(target_count);
-      for (std::size_t servo = 0; servo < targets.size(); ++servo) {
-        if (!targets[servo]) continue;
-        const int end = *targets[servo];
-        int p = end;
-        if (k < n) {
-          const double s = start[servo].value();
-          const double f = ease_at(ease, static_cast<double>(k) / static_cast<double>(n));
-          p = static_cast<int>(std::llround(s + (end - s) * f));
-        }
-        const ServoInfo& info = robot_.info.servos[servo];
-        if (info.max_speed && pos_[servo]) {
-          const int delta = std::abs(p - *pos_[servo]);
-          const double speed = delta * 1000.0 / piece;
-          if (speed > *info.max_speed && speed > fastest[servo].speed) {
-            fastest[servo] = {speed, delta, piece};
-          }
-        }
-        pos_[servo] = p;
-        out.push_back({info.id, static_cast<std::uint16_t>(p)});
-      }
-      emit(step.location, piece, std::move(out));
-      if (actions_ > lsc::kMaxActions) {  // the rest only counts
-        actions_ = saturating_add(actions_, n - k);
-        break;
-      }
-    }
-    for (const auto& [servo, f] : fastest) {
-      const ServoInfo& info = robot_.info.servos[servo];
-      reporter_.warning(step.location,
-                        "'" + info.name + "' moves " + std::to_string(f.delta) + " in " +
-                            std::to_string(f.ms) + "ms (" + std::to_string(std::llround(f.speed)) +
-                            "/s), faster than its " + "max_speed " +
-                            std::to_string(std::llround(*info.max_speed)) + "/s",
-                        note);
+      verb_key = &key;
+      verb_value = &value;
     }
   }
-
-  void wait_step(const YamlNode& step, const YamlNode& value) {
-    auto total = time_ms(value, "'wait'");
-    if (!total) return;
-    const std::uint32_t t = *total;
-    if (t < lsc::kMinActionMs) {
-      reporter_.error(value.location, "wait of " + std::to_string(t) +
-                                          "ms is below the controller's minimum of 20ms per "
-                                          "action");
-      return;
-    }
-    std::vector<lsc::ServoTarget> held;
-    for (std::size_t i = 0; i < pos_.size(); ++i) {
-      if (pos_[i]) {
-        held.push_back({robot_.info.servos[i].id, static_cast<std::uint16_t>(*pos_[i])});
-      }
-    }
-    if (held.empty()) {
+  if (verb_key == nullptr) {
+    if (reporter_.check_keys(
+            step,
+            {"move", "wait", "through", "repeat", "include", "mirror", "section", "together",
+             "tempo", "tolerance", "time", "ease", "steps", "do", "at"},
+            "in a step")) {
       reporter_.error(step.location,
-                      "nothing to hold: no servo has a position yet (a controller action carries "
-                      "positions); move first, then wait");
-      return;
+                      "a step needs one of: move, wait, through, repeat, include, mirror, "
+                      "section, together, tempo, tolerance");
     }
-    const std::uint64_t n = (t + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs;
-    std::uint64_t done_ms = 0;
-    for (std::uint64_t k = 1; k <= n; ++k) {
-      const std::uint64_t until = (t * k + n / 2) / n;
-      emit(step.location, static_cast<std::uint16_t>(until - done_ms), held);
-      done_ms = until;
-      if (actions_ > lsc::kMaxActions) {
-        actions_ = saturating_add(actions_, n - k);
-        break;
-      }
-    }
+    return;
   }
-
-  void repeat_step(const YamlNode& step, const YamlNode& value) {
-    const auto repeat = parse_repeat(step, value, reporter_);
-    if (!repeat) return;
-    std::uint64_t per_pass = 0;
-    for (long long i = 0; i < repeat->times; ++i) {
-      if (i > 0 && actions_ > lsc::kMaxActions) {  // already too long: count, do not expand
-        actions_ = saturating_add(
-            actions_, saturating_mul(static_cast<std::uint64_t>(repeat->times - i), per_pass));
-        break;
-      }
-      const std::uint64_t before = actions_;
-      run_steps(*repeat->body, "'do'");
-      per_pass = actions_ - before;
+  const std::string& verb = verb_key->scalar;
+  if (verb == "move") {
+    // Every mistake of the step is reported, so unknown keys do not stop the checks.
+    const bool keys_ok = reporter_.check_keys(
+        step, {"move", "time", "ease", "steps", "tolerance", "at"}, "in a move step");
+    if (apply_at(step)) move_step(step, *verb_value, keys_ok);
+  } else if (verb == "wait") {
+    reporter_.check_keys(step, {"wait", "at"}, "in a wait step");
+    if (apply_at(step)) wait_step(step, *verb_value);
+  } else if (verb == "through") {
+    reporter_.check_keys(step, {"through", "tolerance", "at"}, "in a through step");
+    if (apply_at(step)) through_step(step, *verb_value);
+  } else if (verb == "repeat") {
+    if (reporter_.check_keys(step, {"repeat", "do", "at"}, "in a repeat step") && apply_at(step)) {
+      repeat_step(step, *verb_value);
     }
-  }
-
-  void mirror_step(const YamlNode& step, const YamlNode& body) {
-    if (!robot_.has_mirror_table) {
-      reporter_.error(step.location,
-                      "'mirror' needs a mirror table in the robot section, e.g. "
-                      "'mirror: {left_arm: right_arm}' under 'robot:'");
-      return;
+  } else if (verb == "include") {
+    if (reporter_.check_keys(step, {"include", "at"}, "in an include step") && apply_at(step)) {
+      include_step(*verb_value);
     }
-    mirrored_ = !mirrored_;
-    run_steps(body, "'mirror'");
-    mirrored_ = !mirrored_;
-  }
-
-  void include_step(const YamlNode& step, const YamlNode& value) {
-    (void)step;
-    const LoadedFile* loaded = scopes_.load_include(
-        value, "wave.yaml",
-        [](const std::string&, const std::string& reason) {
-          return "cannot include it: " + reason;
-        },
-        loader_, reporter_);
-    if (loaded == nullptr) return;
-    reporter_.push_include(value.location);
-    run_file(*loaded, false);
-    reporter_.pop_include();
-  }
-
-  void emit(Location at, std::uint16_t time, std::vector<lsc::ServoTarget> targets) {
-    ++actions_;
-    if (actions_ == lsc::kMaxActions + 1) {
-      overflow_at_ = at;
-      overflow_sites_ = reporter_.include_sites();
+  } else if (verb == "mirror") {
+    if (reporter_.check_keys(step, {"mirror", "at"}, "in a mirror step") && apply_at(step)) {
+      mirror_step(step, *verb_value);
     }
-    if (actions_ <= lsc::kMaxActions) {
-      keyframes_.push_back({static_cast<std::uint32_t>(now_ms_), time, std::move(targets), at});
-      now_ms_ += time;
+  } else if (verb == "section") {
+    if (reporter_.check_keys(step, {"section", "at"}, "in a section step") && apply_at(step)) {
+      section_step(*verb_value);
     }
+  } else if (verb == "together") {
+    if (reporter_.check_keys(step, {"together", "at"}, "in a together step") && apply_at(step)) {
+      together_step(step, *verb_value);
+    }
+  } else if (verb == "tempo") {
+    if (reporter_.check_keys(step, {"tempo"}, "in a tempo step")) tempo_step(*verb_value);
+  } else {
+    tolerance_step(*verb_value);
   }
+}
 
-  const Robot& robot_;
-  FileLoader& loader_;
-  Reporter& reporter_;
-  ScopeChain scopes_;
-  std::vector<std::optional<int>> pos_;
-  std::vector<std::optional<int>> scratch_targets_;  // move_step's, kept to reuse its memory
-  bool mirrored_ = false;
-  std::uint64_t actions_ = 0;
-  std::uint64_t now_ms_ = 0;
-  Location overflow_at_;
-  std::vector<Location> overflow_sites_;
-  std::optional<Location> sequence_at_;
-  std::vector<Keyframe> keyframes_;
-};
+bool ServoLowering::apply_at(const YamlNode& step) {
+  const YamlNode* at = step.find("at");
+  if (at == nullptr) return true;
+  const std::optional<double> tempo = lists_.back().tempo;
+  auto offset = scopes_.exact_ms(*at, "'at'", tempo, reporter_);
+  if (!offset) return false;
+  const ExactMs target = lists_.back().start + *offset;
+  if (target < now_) {
+    reporter_.error(
+        at->location,
+        "'at: " + at->scalar + "' is " + format_exact_ms(now_ - target) +
+            " in the past: the steps before it already run until " +
+            format_seconds(static_cast<std::uint64_t>((now_ - lists_.back().start).round())) +
+            " of this list");
+    return false;
+  }
+  if (target > now_) {
+    const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
+    if (!known) {
+      reporter_.error(at->location,
+                      "nothing to hold until 'at': no servo has a position yet; start with a "
+                      "move");
+      return false;
+    }
+    timeline_.markers.push_back({target, "at " + at->scalar, at->location});
+    count_actions((target - now_).value() > 30000 ? 2 : 1, at->location);
+    now_ = target;
+  }
+  return true;
+}
 
-}  // namespace
+void ServoLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
+  const auto repeat = parse_repeat(step, value, reporter_);
+  if (!repeat) return;
+  std::uint64_t per_pass = 0;
+  for (long long i = 0; i < repeat->times; ++i) {
+    if (i > 0 && min_actions_ > lsc::kMaxActions) {  // already too long: count, do not expand
+      const auto rest = static_cast<std::uint64_t>(repeat->times - i);
+      min_actions_ = saturating_add(min_actions_, per_pass > 0 && rest > UINT64_MAX / per_pass
+                                                      ? UINT64_MAX
+                                                      : rest * per_pass);
+      truncated_ = true;
+      break;
+    }
+    const std::uint64_t before = min_actions_;
+    run_steps(*repeat->body, "'do'");
+    per_pass = min_actions_ - before;
+  }
+}
+
+void ServoLowering::mirror_step(const YamlNode& step, const YamlNode& body) {
+  if (!robot_.has_mirror_table) {
+    reporter_.error(step.location,
+                    "'mirror' needs a mirror table in the robot section, e.g. "
+                    "'mirror: {left_arm: right_arm}' under 'robot:'");
+    return;
+  }
+  mirrored_ = !mirrored_;
+  run_steps(body, "'mirror'");
+  mirrored_ = !mirrored_;
+}
+
+void ServoLowering::include_step(const YamlNode& value) {
+  const LoadedFile* loaded = scopes_.load_include(
+      value, "wave.yaml",
+      [](const std::string&, const std::string& reason) { return "cannot include it: " + reason; },
+      loader_, reporter_);
+  if (loaded == nullptr) return;
+  reporter_.push_include(value.location);
+  run_file(*loaded, false);
+  reporter_.pop_include();
+}
+
+void ServoLowering::section_step(const YamlNode& value) {
+  const YamlNode* list = scopes_.find_section(value, reporter_);
+  if (list == nullptr) return;
+  if (std::find(sections_running_.begin(), sections_running_.end(), list) !=
+      sections_running_.end()) {
+    reporter_.error(value.location, "section '" + value.scalar + "' performs itself");
+    return;
+  }
+  timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
+  sections_running_.push_back(list);
+  run_steps(*list, "section '" + value.scalar + "'");
+  sections_running_.pop_back();
+}
+
+void ServoLowering::together_step(const YamlNode& step, const YamlNode& tracks) {
+  if (!tracks.is_map() || tracks.entries.empty()) {
+    reporter_.error(tracks.location,
+                    "'together' takes named tracks, each a list of steps, e.g. "
+                    "'together: {arm: [...], claw: [...]}'");
+    return;
+  }
+  if (track_ != nullptr) {
+    reporter_.error(step.location, "'together' cannot be used inside a track of another");
+    return;
+  }
+  const ExactMs start = now_;
+  ExactMs longest = start;
+  std::uint64_t most_actions = 0;
+  const std::uint64_t before = min_actions_;
+  claimed_.clear();
+  for (const auto& [name, list] : tracks.entries) {
+    Track track{name.scalar, name.location, {}};
+    track_ = &track;
+    now_ = start;
+    min_actions_ = before;
+    run_steps(list, "track '" + name.scalar + "'");
+    longest = std::max(longest, now_);
+    most_actions = std::max(most_actions, min_actions_ - before);
+  }
+  track_ = nullptr;
+  claimed_.clear();
+  min_actions_ = before + most_actions;
+  now_ = longest;
+}
+
+void ServoLowering::tempo_step(const YamlNode& value) {
+  if (auto bpm = parse_tempo(value, reporter_)) {
+    lists_.back().tempo = bpm;
+    timeline_.markers.push_back({now_, "tempo " + value.scalar, value.location});
+  }
+}
+
+void ServoLowering::tolerance_step(const YamlNode& value) {
+  if (auto t = parse_tolerance(value)) lists_.back().tolerance = t;
+}
+
+// ---- values -----------------------------------------------------------------------------------
+
+ScopeChain::ParseEntries ServoLowering::entries_parser() {
+  return
+      [this](const YamlNode& map, const std::string& where) { return parse_positions(map, where); };
+}
+
+std::vector<PositionEntry> ServoLowering::parse_positions(const YamlNode& map,
+                                                          const std::string& where) {
+  std::vector<PositionEntry> out;
+  out.reserve(map.entries.size());
+  std::vector<bool> given(robot_.info.servos.size());
+  for (const auto& [key, value] : map.entries) {
+    auto it = robot_.names.find(key.scalar);
+    if (it == robot_.names.end()) {
+      reporter_.unknown(key.location, "servo", key.scalar, robot_.name_list(), where);
+      continue;
+    }
+    auto e = parse_position_entry(key, value, it->second, "500, 90deg, +50", reporter_);
+    if (!e) continue;
+    if (given[e->output]) {
+      reporter_.error(key.location,
+                      "servo '" + robot_.info.servos[e->output].name + "' is given twice " + where);
+      continue;
+    }
+    given[e->output] = true;
+    out.push_back(std::move(*e));
+  }
+  return out;
+}
+
+double ServoLowering::absolute_units(const PositionEntry& e, std::size_t target,
+                                     bool reflect) const {
+  const ServoInfo& dst = robot_.info.servos[target];
+  if (e.home) return dst.home;
+  double v = e.value.degrees ? robot_.degrees_to_units(e.value.amount, false) : e.value.amount;
+  if (reflect) v = dst.home - (v - robot_.info.servos[e.output].home);
+  return v;
+}
+
+bool ServoLowering::check_limits(const PositionEntry& e, std::size_t target, double units,
+                                 std::string how, std::optional<Reporter::Note> note) {
+  const ServoInfo& s = robot_.info.servos[target];
+  return check_position_limits(e, s.name, s.min, s.max, units, std::move(how), std::move(note),
+                               reporter_);
+}
+
+std::optional<ExactMs> ServoLowering::exact_time(const YamlNode& node, std::string_view what) {
+  std::optional<double> tempo;
+  for (auto it = lists_.rbegin(); it != lists_.rend() && !tempo; ++it) tempo = it->tempo;
+  return scopes_.exact_ms(node, what, tempo, reporter_);
+}
+
+std::optional<double> ServoLowering::parse_tolerance(const YamlNode& node) {
+  std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
+  const bool degrees = text.size() > 3 && text.substr(text.size() - 3) == "deg";
+  if (degrees) text.remove_suffix(3);
+  double amount = 0;
+  if (!node.is_scalar() || !parse_decimal(text, amount) || amount <= 0) {
+    reporter_.error(node.location,
+                    "'tolerance' must be a positive distance in device units or degrees, e.g. "
+                    "'tolerance: 1' or 'tolerance: 0.5deg'");
+    return std::nullopt;
+  }
+  return degrees ? robot_.degrees_to_units(amount, true) : amount;
+}
+
+double ServoLowering::tolerance() const {
+  for (auto it = lists_.rbegin(); it != lists_.rend(); ++it) {
+    if (it->tolerance) return *it->tolerance;
+  }
+  return scopes_.tolerance().value_or(1.0);
+}
 
 ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
                                  Reporter& reporter) {

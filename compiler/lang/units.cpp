@@ -1,6 +1,7 @@
 #include "compiler/lang/units.hpp"
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 namespace seqc::compiler {
@@ -49,8 +50,9 @@ Result<TimeValue> parse_time(std::string_view text) {
   if (unit == "ms") return TimeValue{amount, TimeUnit::Milliseconds};
   if (unit == "s") return TimeValue{amount, TimeUnit::Seconds};
   if (unit == "b") return TimeValue{amount, TimeUnit::Beats};
+  if (unit == "bar" || unit == "bars") return TimeValue{amount, TimeUnit::Bars};
   return make_error("unknown time unit '" + std::string(unit) + "' in '" + std::string(text) +
-                    "'; use ms, s or b (beats)");
+                    "'; use ms, s, b (beats) or bar");
 }
 
 Result<PositionValue> parse_position(std::string_view text) {
@@ -112,6 +114,15 @@ std::string format_seconds(std::uint64_t ms) {
     s += "." + f;
   }
   return s + " s";
+}
+
+std::string format_units(double units) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", units);
+  std::string out = buf;
+  while (!out.empty() && out.back() == '0') out.pop_back();
+  if (!out.empty() && out.back() == '.') out.pop_back();
+  return out == "-0" ? "0" : out;
 }
 
 }  // namespace seqc::compiler

@@ -11,14 +11,14 @@
 
 namespace seqc::compiler {
 
-enum class TimeUnit { Milliseconds, Seconds, Beats };
+enum class TimeUnit { Milliseconds, Seconds, Beats, Bars };
 
 struct TimeValue {
   double amount = 0;
   TimeUnit unit = TimeUnit::Milliseconds;
 };
 
-// "500ms", "1.5s", "2b". A bare number is an error whose message suggests the unit.
+// "500ms", "1.5s", "2b", "2bar". A bare number is an error whose message suggests the unit.
 Result<TimeValue> parse_time(std::string_view text);
 
 struct PositionValue {
@@ -40,6 +40,9 @@ Result<SpeedValue> parse_speed(std::string_view text);
 
 // A non-negative decimal number ("12", "1.5"); false if `text` is not one.
 bool parse_decimal(std::string_view text, double& out);
+
+// A distance in device units for messages: "1", "0.5", "12.25" (at most two decimals).
+std::string format_units(double units);
 
 // "1.5 s", "750 ms", "12.5 s" style for summaries: seconds with up to 3 decimals, no trailing 0.
 std::string format_seconds(std::uint64_t ms);

@@ -134,7 +134,7 @@ Result<lsc::ServoTarget> parse_target(std::string_view text,
 Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field) {
   auto time = compiler::parse_time(text);
   if (!time) return make_error(std::string(field) + ": " + time.error().message);
-  if (time->unit == compiler::TimeUnit::Beats) {
+  if (time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
     return make_error(std::string(field) + ": beats need a tempo; give ms or s");
   }
   const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
@@ -149,7 +149,9 @@ Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* fiel
 Result<io::Duration> parse_timeout(std::string_view text) {
   auto time = compiler::parse_time(text);
   if (!time) return make_error("--timeout: " + time.error().message);
-  if (time->unit == compiler::TimeUnit::Beats) return make_error("--timeout: give ms or s");
+  if (time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
+    return make_error("--timeout: give ms or s");
+  }
   const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   if (ms <= 0 || ms > 3600.0 * 1000) {
     return make_error("--timeout must be more than 0 and at most 1 hour, got " + quoted(text));

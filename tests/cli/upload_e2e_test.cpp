@@ -145,7 +145,7 @@ class UploadE2E : public ::testing::Test {
 TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   std::string out, err;
   ASSERT_EQ(run({kSeqc, "upload", kWalk, "--port", link_, "--run"}, &out, &err), 0) << err;
-  EXPECT_NE(out.find("the controller acknowledged 26 actions into group 0"), std::string::npos)
+  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
       << out;
   EXPECT_NE(out.find("group 0 started"), std::string::npos) << out;
   EXPECT_EQ(out.find("verified"), std::string::npos);
@@ -161,7 +161,7 @@ TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
     if (!l.empty() && l[0] != '#') stored.push_back(l);
   }
   const std::vector<std::string> compiled = compiled_actions(json, 0);
-  ASSERT_EQ(compiled.size(), 26u) << json;
+  ASSERT_EQ(compiled.size(), 29u) << json;
   EXPECT_EQ(stored, compiled);
 
   // CSV: time_s,status,bytes,message. Keep the GroupDownload frames (CMD 05).
@@ -281,7 +281,7 @@ TEST(UploadCli, EmulatorInProcessWithFaultsCompletes) {
   std::string out;
   while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
   EXPECT_EQ(WEXITSTATUS(pclose(p)), 0);
-  EXPECT_NE(out.find("the controller acknowledged 26 actions into group 0"), std::string::npos)
+  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
       << out;
 }
 

@@ -126,9 +126,10 @@ sequence:
   - move: {elbow: 0}
     time: 300ms
     ease: in
+    steps: 3
 )");
   const ServoProgram& p = program_of(out);
-  ASSERT_EQ(p.keyframes.size(), 1u + 4u + 3u);  // default resolution 100ms: 3 steps
+  ASSERT_EQ(p.keyframes.size(), 1u + 4u + 3u);
   // in-out (quadratic): 0.125, 0.5, 0.875, 1 of the way.
   EXPECT_EQ(p.keyframes[1].targets, T({{4, 125}}));
   EXPECT_EQ(p.keyframes[2].targets, T({{4, 500}}));

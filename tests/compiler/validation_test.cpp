@@ -117,8 +117,7 @@ sequence:
   auto lenient = compile_text(text);
   ASSERT_TRUE(lenient.program);
   EXPECT_EQ(messages(lenient),
-            std::vector<std::string>{"8:5 warning: 'arm' moves 1000 in 500ms (2000/s), faster "
-                                     "than its max_speed 1000/s"});
+            std::vector<std::string>{"8:5 warning: 1000 in 500ms is 2000/s, above arm's 1000/s"});
   auto strict = compile_text(text, true);
   EXPECT_FALSE(strict.program);
 }
@@ -136,10 +135,43 @@ sequence:
     ease: in-out
     steps: 4
 )");
-  // Linear would be 1250/s; in-out's middle steps move 375 in 200ms.
+  // Linear would be 1250/s; with `steps` the controller moves in straight pieces, and
+  // in-out's middle ones move 375 in 200ms.
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{"8:5 warning: 375 in 200ms is 1875/s, above elbow's 1500/s"});
+}
+
+TEST(Validation, FittedCurveSpeedIsItsPeak) {
+  auto out = compile_text(R"(robot:
+  profile: xarm
+  servos:
+    elbow: {max_speed: 1500/s}
+sequence:
+  - move: {elbow: 0}
+    time: 1s
+  - move: {elbow: 1000}
+    time: 800ms
+    ease: in-out
+)");
+  // Quadratic in-out peaks at twice the average speed, 2 x 1250/s, half way.
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{"8:5 warning: 1000 in 800ms peaks at 2500/s on this "
+                                     "quad-in-out curve, above elbow's 1500/s"});
+}
+
+TEST(Validation, SpeedIsReportedInTheUnitsOfTheMove) {
+  auto out = compile_text(R"(robot:
+  profile: xarm
+  servos:
+    base: {max_speed: 300deg/s}
+sequence:
+  - move: {base: 0deg}
+    time: 1s
+  - move: {base: +110deg}
+    time: 100ms
+)");
   EXPECT_EQ(messages(out), std::vector<std::string>{
-                               "8:5 warning: 'elbow' moves 375 in 200ms (1875/s), faster than "
-                               "its max_speed 1500/s"});
+                               "8:5 warning: 110deg in 100ms is 1100deg/s, above base's 300deg/s"});
 }
 
 TEST(Validation, IncludeErrorsCarryTheIncludeChain) {

@@ -1,0 +1,241 @@
+#include "compiler/fitting/fitter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace seqc::compiler {
+namespace {
+
+// One servo's segments with their boundaries rounded to whole milliseconds.
+struct RoundedTrack {
+  const std::vector<Segment>* segments = nullptr;
+  std::vector<std::int64_t> start, end;
+};
+
+class Fitter {
+ public:
+  Fitter(const Timeline& timeline, const FitOptions& options)
+      : tl_(timeline), opt_(options), tracks_(timeline.servos.size()) {
+    for (std::size_t s = 0; s < tracks_.size(); ++s) {
+      tracks_[s].segments = &tl_.servos[s];
+      for (const Segment& seg : tl_.servos[s]) {
+        tracks_[s].start.push_back(seg.start.round());
+        tracks_[s].end.push_back(seg.end.round());
+      }
+    }
+  }
+
+  FitResult run() {
+    const std::vector<std::int64_t> knots = collect_knots();
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) fit_between(knots[k], knots[k + 1]);
+    return std::move(result_);
+  }
+
+ private:
+  // [first, last) of servo s's segments that overlap the open interval (a, b).
+  std::pair<std::size_t, std::size_t> overlapping(std::size_t s, std::int64_t a,
+                                                  std::int64_t b) const {
+    const RoundedTrack& t = tracks_[s];
+    // Segments are in order and do not overlap, so both ends are sorted.
+    const std::size_t first =
+        static_cast<std::size_t>(std::upper_bound(t.end.begin(), t.end.end(), a) - t.end.begin());
+    std::size_t last = first;
+    while (last < t.start.size() && t.start[last] < b) ++last;
+    return {first, last};
+  }
+
+  std::vector<std::int64_t> collect_knots() const {
+    std::vector<std::int64_t> all = {0, tl_.end.round()};
+    for (const RoundedTrack& t : tracks_) {
+      all.insert(all.end(), t.start.begin(), t.start.end());
+      all.insert(all.end(), t.end.begin(), t.end.end());
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    const std::int64_t end = tl_.end.round();
+    std::vector<std::int64_t> kept;
+    for (std::int64_t k : all) {
+      if (k < 0 || k > end) continue;
+      if (kept.empty() || k - kept.back() >= opt_.min_action_ms) {
+        kept.push_back(k);
+      } else if (k == end && kept.size() > 1) {
+        kept.back() = end;  // the end is a boundary; drop the knot just before it instead
+      }
+    }
+    return kept;
+  }
+
+  // The intended position of servo s at ms t (nullopt: not known yet).
+  std::optional<double> intended(std::size_t s, double t) const { return tl_.value(s, t); }
+
+  // The segment of servo s in force at ms t (the last starting at or before it).
+  const Segment* segment_at(std::size_t s, double t) const {
+    const auto& segs = tl_.servos[s];
+    auto it = std::upper_bound(segs.begin(), segs.end(), t,
+                               [](double x, const Segment& g) { return x < g.start.value(); });
+    return it == segs.begin() ? nullptr : &*(it - 1);
+  }
+
+  int target(std::size_t s, std::int64_t t) const {
+    return static_cast<int>(std::lround(intended(s, static_cast<double>(t)).value_or(0)));
+  }
+
+  // How far servo s's straight line from a to b (rounded ends) strays from its curve beyond
+  // the tolerance, at its worst millisecond (<= 0: within). `worst_at` gets that instant and
+  // `worst_error` the distance there.
+  double excess(std::size_t s, std::int64_t a, std::int64_t b, std::int64_t* worst_at = nullptr,
+                double* worst_error = nullptr, double* worst_tol = nullptr) const {
+    const auto from = intended(s, static_cast<double>(a));
+    if (!from) return 0;
+    const double p0 = std::round(*from);
+    const double p1 = target(s, b);
+    double most = -1e300;
+    for (std::int64_t t = a; t <= b; ++t) {
+      const double td = static_cast<double>(t);
+      const double line =
+          p0 + (p1 - p0) * (td - static_cast<double>(a)) / static_cast<double>(b - a);
+      const double want = intended(s, td).value_or(line);
+      const Segment* seg = segment_at(s, td);
+      const double tol = seg != nullptr ? seg->tolerance : 1.0;
+      const double err = std::abs(line - want);
+      if (err - tol > most) {
+        most = err - tol;
+        if (worst_at != nullptr) *worst_at = t;
+        if (worst_error != nullptr) *worst_error = err;
+        if (worst_tol != nullptr) *worst_tol = tol;
+      }
+    }
+    return most;
+  }
+
+  bool feasible(const std::vector<std::size_t>& curved, std::int64_t a, std::int64_t b) const {
+    for (std::size_t s : curved) {
+      if (excess(s, a, b) > 1e-9) return false;
+    }
+    return true;
+  }
+
+  void fit_between(std::int64_t a, std::int64_t b) {
+    std::vector<std::size_t> curved;
+    for (std::size_t s = 0; s < tracks_.size(); ++s) {
+      // Exact as a straight action only when one straight segment spans the whole interval;
+      // anything else (a curve, or a boundary inside after knots were merged) is sampled.
+      const auto [first, last] = overlapping(s, a, b);
+      if (first == last) continue;
+      const RoundedTrack& t = tracks_[s];
+      const bool straight = last - first == 1 && (*t.segments)[first].is_straight() &&
+                            t.start[first] <= a && t.end[first] >= b;
+      if (!straight) curved.push_back(s);
+    }
+    const std::int64_t min = opt_.min_action_ms;
+    const std::int64_t max = opt_.max_action_ms;
+    if (curved.empty()) {
+      // Straight lines: exact as one action, or equal parts of at most max_action_ms.
+      const std::int64_t n = (b - a + max - 1) / max;
+      std::int64_t done = a;
+      for (std::int64_t k = 1; k <= n; ++k) {
+        const std::int64_t until = a + ((b - a) * k + n / 2) / n;
+        emit(done, until);
+        done = until;
+      }
+      return;
+    }
+    std::int64_t cur = a;
+    while (cur < b) {
+      std::int64_t e = 0;
+      if (b - cur <= max && feasible(curved, cur, b)) {
+        e = b;
+      } else {
+        const std::int64_t hi = std::min(cur + max, b - min);
+        if (hi < cur + min) {
+          e = b;  // what is left is shorter than two actions: one, however far off
+        } else if (!feasible(curved, cur, cur + min)) {
+          e = cur + min;
+        } else {
+          std::int64_t lo = cur + min;  // feasible
+          std::int64_t top = hi + 1;    // not known feasible
+          while (top - lo > 1) {
+            const std::int64_t mid = lo + (top - lo) / 2;
+            (feasible(curved, cur, mid) ? lo : top) = mid;
+          }
+          e = lo;
+        }
+      }
+      emit(cur, e, &curved);
+      cur = e;
+    }
+  }
+
+  void emit(std::int64_t s, std::int64_t e, const std::vector<std::size_t>* curved = nullptr) {
+    FittedAction action;
+    action.start_ms = static_cast<std::uint32_t>(s);
+    action.time_ms = static_cast<std::uint32_t>(e - s);
+    ExactMs newest{-1};
+    for (std::size_t servo = 0; servo < tracks_.size(); ++servo) {
+      const auto [first, last] = overlapping(servo, s, e);
+      if (first == last) continue;
+      const Segment& seg = (*tracks_[servo].segments)[last - 1];
+      if (seg.start > newest || newest == ExactMs{-1}) {
+        newest = seg.start;
+        action.source = seg.at;
+      }
+      action.targets.push_back({servo, target(servo, e)});
+      const bool is_curved =
+          curved != nullptr && std::find(curved->begin(), curved->end(), servo) != curved->end();
+      account(servo, s, e, is_curved);
+    }
+    if (action.targets.empty()) {
+      for (std::size_t servo = 0; servo < tracks_.size(); ++servo) {
+        if (intended(servo, static_cast<double>(s))) {
+          action.targets.push_back({servo, target(servo, e)});
+          if (action.source.file == kNoFile) action.source = tl_.servos[servo].back().at;
+        }
+      }
+    }
+    result_.actions.push_back(std::move(action));
+  }
+
+  // Records the action's error for servo s: sampled on curves, at the ends on straight lines
+  // (a line against a line is farthest at an end).
+  void account(std::size_t s, std::int64_t a, std::int64_t b, bool is_curved) {
+    if (!intended(s, static_cast<double>(a))) return;
+    std::int64_t at = a;
+    double err = 0, tol = 0;
+    if (is_curved) {
+      const double over = excess(s, a, b, &at, &err, &tol);
+      if (over > 1e-9) {
+        const Segment* seg = segment_at(s, static_cast<double>(at));
+        result_.shortfalls.push_back(
+            {s, static_cast<std::uint32_t>(at), err, tol, seg != nullptr ? seg->at : Location{}});
+      }
+    } else {
+      for (std::int64_t t : {a, b}) {
+        const double want = *intended(s, static_cast<double>(t));
+        const double e = std::abs(std::round(want) - want);
+        if (e > err) {
+          err = e;
+          at = t;
+        }
+      }
+    }
+    if (err > result_.max_error) {
+      result_.max_error = err;
+      result_.max_error_at_ms = static_cast<std::uint32_t>(at);
+      result_.max_error_servo = s;
+    }
+  }
+
+  const Timeline& tl_;
+  FitOptions opt_;
+  std::vector<RoundedTrack> tracks_;
+  FitResult result_;
+};
+
+}  // namespace
+
+FitResult fit_timeline(const Timeline& timeline, const FitOptions& options) {
+  return Fitter(timeline, options).run();
+}
+
+}  // namespace seqc::compiler

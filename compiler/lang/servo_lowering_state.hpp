@@ -1,0 +1,116 @@
+// The servo-controller front end's state while it walks a file's steps (private to
+// servo_lowering.cpp, which walks files, lists and the structural steps, and servo_motion.cpp,
+// which turns move, wait and through steps into timeline segments and checks them).
+//
+// Time is exact (ExactMs): each step list remembers when it started (for `at:`), its tempo and
+// tolerance overrides; a `together` block runs each track from the block's start, and a servo
+// may move in one track only.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "compiler/lang/file_loader.hpp"
+#include "compiler/lang/positions.hpp"
+#include "compiler/lang/reporter.hpp"
+#include "compiler/lang/robot_section.hpp"
+#include "compiler/lang/scope_chain.hpp"
+#include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/timeline.hpp"
+
+namespace seqc::compiler {
+
+class ServoLowering {
+ public:
+  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
+  ServoProgram run(const LoadedFile& main);
+
+ private:
+  // ---- files, lists and structural steps (servo_lowering.cpp) -------------------------------
+  void run_file(const LoadedFile& f, bool is_main);
+  FileScope& scope_for(const LoadedFile& f);
+  void run_steps(const YamlNode& list, std::string_view what);
+  void run_step(const YamlNode& step);
+  void repeat_step(const YamlNode& step, const YamlNode& value);
+  void mirror_step(const YamlNode& step, const YamlNode& body);
+  void include_step(const YamlNode& value);
+  void section_step(const YamlNode& value);
+  void together_step(const YamlNode& step, const YamlNode& tracks);
+  void tempo_step(const YamlNode& value);
+  void tolerance_step(const YamlNode& value);
+  // Moves the clock to the step's `at:` (holding until then); false after reporting.
+  bool apply_at(const YamlNode& step);
+  void finish(ServoProgram& program);
+
+  // ---- values (servo_lowering.cpp) ----------------------------------------------------------
+  std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);
+  ScopeChain::ParseEntries entries_parser();
+  double absolute_units(const PositionEntry& e, std::size_t target, bool reflect) const;
+  bool check_limits(const PositionEntry& e, std::size_t target, double units, std::string how,
+                    std::optional<Reporter::Note> note = {});
+  // A time value as exact milliseconds (ms, s, b at the tempo in force, bar with a meter).
+  std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
+  // Device units of a tolerance ("1", "0.5deg"); nullopt after reporting.
+  std::optional<double> parse_tolerance(const YamlNode& node);
+  double tolerance() const;
+
+  // ---- motion (servo_motion.cpp) ------------------------------------------------------------
+  // `keys_ok`: false when the step has an unknown key (then a missing 'time' is most likely
+  // that key misspelt, already reported).
+  void move_step(const YamlNode& step, const YamlNode& target, bool keys_ok);
+  void wait_step(const YamlNode& step, const YamlNode& value);
+  void through_step(const YamlNode& step, const YamlNode& waypoints);
+  // The positions a move's entries reach, by servo (nullopt: not named), from the positions in
+  // `targets` on entry; false if any entry was wrong (reported). `degrees` gets, for servos
+  // whose entry was written in degrees, the distance in degrees as written (NaN otherwise).
+  bool resolve_targets(const std::vector<PositionEntry>& entries,
+                       const std::optional<Reporter::Note>& note,
+                       std::vector<std::optional<int>>& targets, std::vector<double>& degrees);
+  void add_segment(std::size_t servo, Segment segment);
+  // Speed and acceleration along a curve from `from` to `to` over `ms`; warnings as written.
+  // `degrees`: the distance as written in degrees (NaN: written in device units).
+  void check_kinematics(std::size_t servo, const Segment& segment, double degrees,
+                        const std::optional<Reporter::Note>& note);
+  // Limits along a curve that may overshoot its ends.
+  bool check_overshoot(std::size_t servo, const Segment& segment, Location at,
+                       const std::optional<Reporter::Note>& note);
+  // Marks `servo` as moved by the running track; false after reporting a servo in two tracks.
+  bool claim(std::size_t servo, Location at);
+  void count_actions(std::uint64_t n, Location at);
+
+  struct ListFrame {
+    ExactMs start;                    // for `at:`
+    std::optional<double> tempo;      // a `tempo:` step in this list
+    std::optional<double> tolerance;  // a `tolerance:` step in this list
+  };
+  struct Track {
+    std::string name;
+    Location at;
+    std::vector<std::size_t> servos;  // moved so far, in order
+  };
+
+  const Robot& robot_;
+  FileLoader& loader_;
+  Reporter& reporter_;
+  ScopeChain scopes_;
+  Timeline timeline_;
+  ExactMs now_;
+  std::vector<std::optional<int>> pos_;
+  std::vector<ListFrame> lists_;
+  std::vector<const YamlNode*> sections_running_;  // for cycle detection
+  Track* track_ = nullptr;
+  std::map<std::size_t, std::pair<std::string, Location>> claimed_;  // in the running block
+  std::optional<double> file_tolerance_;
+  bool mirrored_ = false;
+  // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
+  std::uint64_t min_actions_ = 0;
+  bool truncated_ = false;
+  std::optional<Location> sequence_at_;
+};
+
+}  // namespace seqc::compiler

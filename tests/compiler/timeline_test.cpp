@@ -1,0 +1,121 @@
+// The timeline stage: exact time, the easing formulas at points worked out by hand, and the
+// curves segments describe.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "compiler/timeline/easing.hpp"
+#include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/timeline.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+TEST(ExactMs, BeatsAddUpWithoutDrift) {
+  // A beat at 110 bpm is 60000/110 = 6000/11 ms; 440 of them are exactly 240 s.
+  const ExactMs beat = ExactMs(60000) / ExactMs::from_double(110);
+  EXPECT_EQ(beat, ExactMs::ratio(6000, 11));
+  ExactMs t;
+  for (int i = 0; i < 440; ++i) t += beat;
+  EXPECT_EQ(t, ExactMs(240000));
+  EXPECT_EQ(t.round(), 240000);
+  // Rounding each beat on its own would have drifted: 545 ms x 440 = 239.8 s.
+  EXPECT_EQ(beat.round() * 440, 239800);
+}
+
+TEST(ExactMs, RoundsHalvesAwayFromZeroAndCompares) {
+  EXPECT_EQ(ExactMs::ratio(3, 2).round(), 2);
+  EXPECT_EQ(ExactMs::ratio(5, 4).round(), 1);
+  EXPECT_EQ(ExactMs::ratio(-3, 2).round(), -2);
+  EXPECT_LT(ExactMs::ratio(1, 3), ExactMs::ratio(1, 2));
+  EXPECT_EQ(ExactMs::from_double(1.5) * ExactMs(1000), ExactMs(1500));
+  EXPECT_EQ(ExactMs::from_double(0.1) * ExactMs(1000), ExactMs(100));
+}
+
+Easing ease(const char* name) {
+  auto p = parse_easing(name);
+  EXPECT_TRUE(p.easing.has_value()) << name;
+  return p.easing.value_or(Easing{});
+}
+
+TEST(Easing, EveryNamedCurveRunsFromZeroToOne) {
+  for (const std::string& name : easing_names()) {
+    const Easing e = ease(name.c_str());
+    EXPECT_EQ(e.at(0), 0) << name;
+    EXPECT_EQ(e.at(1), 1) << name;
+    EXPECT_EQ(e.name(), name == "in"       ? "quad-in"
+                        : name == "out"    ? "quad-out"
+                        : name == "in-out" ? "quad-in-out"
+                                           : name);
+  }
+}
+
+TEST(Easing, TextbookValues) {
+  // Hand-computed from the formulas in docs/language.md.
+  EXPECT_DOUBLE_EQ(ease("quad-in").at(0.5), 0.25);
+  EXPECT_DOUBLE_EQ(ease("in-out").at(0.25), 0.125);    // 2t^2
+  EXPECT_DOUBLE_EQ(ease("cubic-out").at(0.5), 0.875);  // 1 - 0.5^3
+  EXPECT_DOUBLE_EQ(ease("quart-in").at(0.5), 0.0625);
+  EXPECT_DOUBLE_EQ(ease("quint-in-out").at(0.25), 16 * std::pow(0.25, 5));
+  EXPECT_NEAR(ease("sine-in").at(0.5), 1 - std::cos(M_PI / 4), 1e-12);
+  EXPECT_NEAR(ease("sine-in-out").at(0.5), 0.5, 1e-12);
+  EXPECT_NEAR(ease("expo-in").at(0.5), std::pow(2, -5), 1e-12);
+  EXPECT_NEAR(ease("circ-in").at(0.6), 0.2, 1e-12);  // 1 - sqrt(1 - 0.36)
+  // back-in dips below 0 before rising: (c+1)t^3 - c t^2 with c = 1.70158.
+  EXPECT_NEAR(ease("back-in").at(0.5), 2.70158 * 0.125 - 1.70158 * 0.25, 1e-12);
+  EXPECT_LT(ease("back-in").at(0.3), 0);
+  EXPECT_GT(ease("back-out").at(0.7), 1);
+  EXPECT_NEAR(ease("bounce-out").at(1 / 2.75), 1, 1e-12);  // the first landing
+  EXPECT_NEAR(ease("elastic-out").at(0.1), std::pow(2, -1) * std::sin(0.25 * 2 * M_PI / 3) + 1,
+              1e-12);
+}
+
+TEST(Easing, CubicBezierFollowsCss) {
+  const Easing e = ease("cubic-bezier(0.42, 0, 0.58, 1)");  // CSS ease-in-out
+  EXPECT_EQ(e.family, EaseFamily::Bezier);
+  EXPECT_NEAR(e.at(0.5), 0.5, 1e-9);  // symmetric control points
+  EXPECT_LT(e.at(0.25), 0.25);
+  EXPECT_NEAR(e.at(0.25) + e.at(0.75), 1, 1e-9);
+  const Easing linear = ease("cubic-bezier(0, 0, 1, 1)");
+  for (double t : {0.1, 0.37, 0.8}) EXPECT_NEAR(linear.at(t), t, 1e-9);
+  EXPECT_EQ(e.name(), "cubic-bezier(0.42, 0, 0.58, 1)");
+}
+
+TEST(Easing, BadNamesSayWhatIsWrong) {
+  EXPECT_FALSE(parse_easing("wobbly").easing);
+  EXPECT_EQ(parse_easing("wobbly").message, "");  // unknown: the caller suggests a name
+  EXPECT_EQ(parse_easing("cubic-bezier(1.2, 0, 0.5, 1)").message,
+            "cubic-bezier's x1 is 1.2; x values must lie in [0, 1]");
+  EXPECT_EQ(parse_easing("cubic-bezier(0.1, a, 0.5, 1)").message,
+            "cubic-bezier's y1 'a' is not a number");
+  EXPECT_EQ(parse_easing("cubic-bezier(0.1, 0.5, 1)").message,
+            "cubic-bezier needs four numbers: cubic-bezier(x1, y1, x2, y2)");
+  EXPECT_EQ(parse_easing("cubic-bezier 0.1").message,
+            "write cubic-bezier as cubic-bezier(x1, y1, x2, y2)");
+}
+
+TEST(Timeline, SegmentsAndHolds) {
+  Timeline tl;
+  tl.servos.resize(1);
+  Segment a;
+  a.start = ExactMs(100);
+  a.end = ExactMs(300);
+  a.from = 0;
+  a.to = 200;
+  tl.servos[0].push_back(a);
+  EXPECT_FALSE(tl.value(0, 50));
+  EXPECT_DOUBLE_EQ(*tl.value(0, 200), 100);
+  EXPECT_DOUBLE_EQ(*tl.value(0, 1000), 200);  // holds after its last segment
+  Segment h;
+  h.kind = CurveKind::Hermite;
+  h.start = ExactMs(0);
+  h.end = ExactMs(100);
+  h.from = 0;
+  h.to = 100;
+  h.slope_from = h.slope_to = 0;  // zero-velocity ends: the smoothstep 3u^2 - 2u^3
+  EXPECT_DOUBLE_EQ(h.value(50), 50);
+  EXPECT_DOUBLE_EQ(h.value(25), 100 * (3 * 0.0625 - 2 * 0.015625));
+}
+
+}  // namespace
+}  // namespace seqc::compiler
