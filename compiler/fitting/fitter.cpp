@@ -109,13 +109,6 @@ class Fitter {
     return most;
   }
 
-  bool feasible(const std::vector<std::size_t>& curved, std::int64_t a, std::int64_t b) const {
-    for (std::size_t s : curved) {
-      if (excess(s, a, b) > 1e-9) return false;
-    }
-    return true;
-  }
-
   void fit_between(std::int64_t a, std::int64_t b) {
     std::vector<std::size_t> curved;
     for (std::size_t s = 0; s < tracks_.size(); ++s) {
@@ -142,29 +135,114 @@ class Fitter {
       return;
     }
     std::int64_t cur = a;
-    while (cur < b) {
-      std::int64_t e = 0;
-      if (b - cur <= max && feasible(curved, cur, b)) {
-        e = b;
-      } else {
-        const std::int64_t hi = std::min(cur + max, b - min);
-        if (hi < cur + min) {
-          e = b;  // what is left is shorter than two actions: one, however far off
-        } else if (!feasible(curved, cur, cur + min)) {
-          e = cur + min;
-        } else {
-          std::int64_t lo = cur + min;  // feasible
-          std::int64_t top = hi + 1;    // not known feasible
-          while (top - lo > 1) {
-            const std::int64_t mid = lo + (top - lo) / 2;
-            (feasible(curved, cur, mid) ? lo : top) = mid;
-          }
-          e = lo;
-        }
-      }
+    for (std::int64_t e : fewest(curved, a, b)) {
       emit(cur, e, &curved);
       cur = e;
     }
+    while (cur < b) {  // no way within tolerance: the farthest reach, then shortest actions
+      std::int64_t e = farthest(curved, cur, b);
+      if (e == 0) e = b - cur < 2 * min ? b : cur + min;  // even the shortest misses: say so
+      emit(cur, e, &curved);
+      cur = e;
+    }
+  }
+
+  // The fewest actions from a to b that keep every servo in `curved` within tolerance at every
+  // millisecond, as their end times (b last); empty if there is no such sequence. Dynamic
+  // programming over boundaries on the 1 ms grid: from each reachable start, lines to later
+  // ends are tried while the slope windows (see farthest()) stay open.
+  std::vector<std::int64_t> fewest(const std::vector<std::size_t>& curved, std::int64_t a,
+                                   std::int64_t b) const {
+    const std::size_t n = static_cast<std::size_t>(b - a);
+    const std::size_t k = curved.size();
+    // want/tol/end per servo and millisecond of the interval, computed once.
+    std::vector<double> want(k * (n + 1)), tol(k * (n + 1)), end(k * (n + 1));
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t t = 0; t <= n; ++t) {
+        const double at = static_cast<double>(a + static_cast<std::int64_t>(t));
+        const double w = intended(curved[i], at).value_or(0);
+        const Segment* seg = segment_at(curved[i], at);
+        want[i * (n + 1) + t] = w;
+        tol[i * (n + 1) + t] = (seg != nullptr ? seg->tolerance : 1.0) + 1e-9;
+        end[i * (n + 1) + t] = std::round(w);
+      }
+    }
+    constexpr int kNone = 1 << 30;
+    std::vector<int> best(n + 1, kNone);
+    std::vector<std::size_t> from(n + 1, 0);
+    best[0] = 0;
+    const std::size_t min = opt_.min_action_ms, max = opt_.max_action_ms;
+    std::vector<double> lo(k), hi(k);
+    for (std::size_t s = 0; s < n; ++s) {
+      if (best[s] == kNone || best[s] + 1 >= best[n]) continue;
+      std::fill(lo.begin(), lo.end(), -1e300);
+      std::fill(hi.begin(), hi.end(), 1e300);
+      for (std::size_t e = s + 1; e <= std::min(n, s + max); ++e) {
+        const double span = static_cast<double>(e - s);
+        if (e - s >= min && best[s] + 1 < best[e]) {
+          bool fits = true;
+          for (std::size_t i = 0; i < k && fits; ++i) {
+            const double slope = (end[i * (n + 1) + e] - end[i * (n + 1) + s]) / span;
+            fits = slope >= lo[i] - 1e-12 && slope <= hi[i] + 1e-12;
+          }
+          if (fits) {
+            best[e] = best[s] + 1;
+            from[e] = s;
+          }
+        }
+        bool open = true;
+        for (std::size_t i = 0; i < k; ++i) {
+          const double p0 = end[i * (n + 1) + s];
+          const double w = want[i * (n + 1) + e], u = tol[i * (n + 1) + e];
+          lo[i] = std::max(lo[i], (w - u - p0) / span);
+          hi[i] = std::min(hi[i], (w + u - p0) / span);
+          open = open && lo[i] <= hi[i];
+        }
+        if (!open) break;
+      }
+    }
+    if (best[n] == kNone) return {};
+    std::vector<std::int64_t> ends;
+    for (std::size_t t = n; t > 0; t = from[t]) ends.push_back(a + static_cast<std::int64_t>(t));
+    std::reverse(ends.begin(), ends.end());
+    return ends;
+  }
+
+  // The farthest end e of an action from `a` (within [a + min, min(a + max, b)], leaving 0 or
+  // at least min before b) whose straight lines keep every servo in `curved` within tolerance
+  // at every millisecond; 0 if there is none. For a fixed start the line to e stays within
+  // tolerance at instant t exactly when its slope lies in a window set by t; the windows of
+  // all instants so far are intersected as e advances, so each candidate costs O(servos).
+  std::int64_t farthest(const std::vector<std::size_t>& curved, std::int64_t a,
+                        std::int64_t b) const {
+    const std::int64_t min = opt_.min_action_ms;
+    const std::int64_t last = std::min<std::int64_t>(a + opt_.max_action_ms, b);
+    std::vector<double> p0(curved.size()), lo(curved.size(), -1e300), hi(curved.size(), 1e300);
+    for (std::size_t i = 0; i < curved.size(); ++i) {
+      p0[i] = std::round(intended(curved[i], static_cast<double>(a)).value_or(0));
+    }
+    std::int64_t best = 0;
+    for (std::int64_t e = a + 1; e <= last; ++e) {
+      const double span = static_cast<double>(e - a);
+      const bool allowed = e - a >= min && (e == b || b - e >= min);
+      bool fits = allowed;
+      for (std::size_t i = 0; i < curved.size() && fits; ++i) {
+        const double slope = (target(curved[i], e) - p0[i]) / span;
+        fits = slope >= lo[i] - 1e-12 && slope <= hi[i] + 1e-12;
+      }
+      if (fits) best = e;
+      bool open = true;  // the instant e bounds every later line
+      for (std::size_t i = 0; i < curved.size(); ++i) {
+        const double want = intended(curved[i], static_cast<double>(e)).value_or(p0[i]);
+        const Segment* seg = segment_at(curved[i], static_cast<double>(e));
+        const double tol = (seg != nullptr ? seg->tolerance : 1.0) + 1e-9;
+        lo[i] = std::max(lo[i], (want - tol - p0[i]) / span);
+        hi[i] = std::min(hi[i], (want + tol - p0[i]) / span);
+        open = open && lo[i] <= hi[i];
+      }
+      if (!open) break;
+    }
+    return best;
   }
 
   void emit(std::int64_t s, std::int64_t e, const std::vector<std::size_t>* curved = nullptr) {

@@ -1,6 +1,7 @@
 // Fitting, checked from the outside: the controller's motion is rebuilt here from the actions
 // alone (each named servo in a straight line to its target, others holding) and sampled every
-// quarter millisecond against the intended curve, independently of the fitter's own
+// quarter millisecond against the intended curve (the tolerance is a promise at every
+// millisecond), independently of the fitter's own
 // bookkeeping. Random curves of every easing family, bezier and Hermite, 0.5-5 s, small and
 // full-range.
 #include <gtest/gtest.h>
@@ -75,15 +76,19 @@ TEST(Fitting, RandomCurvesStayWithinToleranceAndBeatUniformSampling) {
         seg.easing = *parse_easing(name).easing;
       }
       const FitResult fit = fit_timeline(one_curve(seg));
-      double worst = 0;
+      // The contract holds at every millisecond; between them a curve with a cusp (bounce)
+      // can stray by what it moves in a fraction of a millisecond, allowed for separately.
+      double worst = 0, worst_between = 0;
       for (double t = 100; t <= static_cast<double>(100 + ms); t += 0.25) {
         const double err = std::abs(controller_at(fit.actions, seg.from, t) - seg.value(t));
-        worst = std::max(worst, err);
+        (t == std::floor(t) ? worst : worst_between) =
+            std::max(t == std::floor(t) ? worst : worst_between, err);
       }
       // A shortfall is allowed only where 20 ms actions cannot follow (bounce, elastic at a
       // tight tolerance): then it is reported, never silent.
       if (fit.shortfalls.empty()) {
-        EXPECT_LE(worst, seg.tolerance + 0.05) << name << " over " << ms << " ms";
+        EXPECT_LE(worst, seg.tolerance + 1e-6) << name << " over " << ms << " ms";
+        EXPECT_LE(worst_between, seg.tolerance + 0.25) << name << " over " << ms << " ms";
       }
       for (const FittedAction& a : fit.actions) {
         EXPECT_GE(a.time_ms, 20u) << name;
