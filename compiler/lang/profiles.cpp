@@ -3,7 +3,12 @@
 namespace seqc::compiler {
 namespace {
 
-// Facts from docs/protocol/servo-controller.md ("Units and ranges").
+// Facts from docs/protocol/servo-controller.md ("Units and ranges"). Rated speeds are the stock
+// servos' datasheet figures at 7.4 V: Hiwonder LX-15D bus servo (the xArm's), 0.16 s per 60
+// degrees; the LD-1501MG / LDX-218 class of PWM servos sold with LSC boards, 0.16 s per 60
+// degrees. 375 deg/s is 1562.5 units/s on the xArm (1000 units over 240 deg) and 4166.7 us/s on
+// a PWM servo (2000 us over 180 deg).
+constexpr double kRatedDegreesPerSecond = 60 / 0.16;
 const std::vector<RobotProfile>& profiles() {
   // One row per profile reads better than one field per line.
   // clang-format off
@@ -16,12 +21,12 @@ const std::vector<RobotProfile>& profiles() {
         {"elbow", 4},
         {"shoulder", 5},
         {"base", 6}},
-       "servo"},
+       "servo", kRatedDegreesPerSecond * 1000.0 / 240.0},
       // PWM boards: 500-2500 us, 1500 = neutral; 0-180 degrees is the usual hobby-servo travel.
       {"lsc-16", RobotKind::ServoController, 0, 15, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
-       "ch"},
+       "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
       {"lsc-32", RobotKind::ServoController, 0, 31, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
-       "ch"},
+       "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
       // Yahboom Raspblock car board: servos 1-4 at 500-2500 us; its gimbal and rocker are
       // outputs of the board itself (lang/raspblock_lowering.cpp).
       {"raspblock", RobotKind::Raspblock, 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
@@ -66,6 +71,7 @@ RobotInfo robot_from_profile(const RobotProfile& profile) {
     s.min = profile.min;
     s.max = profile.max;
     s.home = profile.home;
+    if (profile.rated_speed > 0) s.max_speed = profile.rated_speed;
     robot.servos.push_back(std::move(s));
   }
   return robot;

@@ -30,6 +30,9 @@ struct RobotProfile {
   // Names of the profile's servos; ids without a name here are called <default_prefix><id>.
   std::vector<std::pair<std::string_view, std::uint8_t>> names;
   std::string_view default_prefix;
+  // The stock servo's rated speed, device units per second: every servo's default max_speed
+  // (0: none).
+  double rated_speed = 0;
 };
 
 const RobotProfile* find_profile(std::string_view name);

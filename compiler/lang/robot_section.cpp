@@ -47,12 +47,13 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
   if (value.is_scalar()) {
     id_node = &value;
   } else if (value.is_map()) {
-    reporter.check_keys(value, {"id", "min", "max", "home", "max_speed"}, "in a servo definition");
+    reporter.check_keys(value, {"id", "min", "max", "home", "max_speed", "max_accel"},
+                        "in a servo definition");
     id_node = value.find("id");
   } else {
     reporter.error(value.location, "servo '" + name +
                                        "' must be an id (e.g. 3) or a map with id, min, max, "
-                                       "home, max_speed");
+                                       "home, max_speed, max_accel");
     return;
   }
 
@@ -125,6 +126,27 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
     } else {
       servo.max_speed =
           speed->degrees ? speed->per_second * profile.units_per_degree : speed->per_second;
+    }
+  }
+  if (const YamlNode* n = value.find("max_accel")) {
+    // "2000/s2", "2000/s^2", "500deg/s2": device units (or degrees) per second squared.
+    std::string_view text = n->is_scalar() ? std::string_view(n->scalar) : "";
+    bool ok = false;
+    for (std::string_view unit : {"/s^2", "/s2"}) {
+      if (text.size() > unit.size() && text.substr(text.size() - unit.size()) == unit) {
+        text.remove_suffix(unit.size());
+        ok = true;
+        break;
+      }
+    }
+    const bool degrees = ok && text.size() > 3 && text.substr(text.size() - 3) == "deg";
+    if (degrees) text.remove_suffix(3);
+    double amount = 0;
+    if (!ok || !parse_decimal(text, amount) || amount <= 0) {
+      reporter.error(n->location,
+                     "'max_accel' must be an acceleration such as 4000/s2 or 900deg/s2");
+    } else {
+      servo.max_accel = degrees ? amount * profile.units_per_degree : amount;
     }
   }
 }

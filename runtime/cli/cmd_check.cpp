@@ -1,4 +1,6 @@
-// seqc check FILE... [--strict]: diagnostics on stderr, one summary line per file on stdout.
+// seqc check FILE... [--strict]: diagnostics on stderr, one summary line per file on stdout:
+// for a stored group its budget ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units
+// (base at 4.411 s)"), for a streamed program its packets and duration, else its mistakes.
 #include <string>
 #include <vector>
 
@@ -43,9 +45,16 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
             compiler::format_seconds(car->duration_ms),
             d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
       } else if (const compiler::ServoProgram* p = c.output.servo_program()) {
+        // The group's budget: actions used, duration, and the largest distance between the
+        // compiled motion and the intended curve, with where it is.
+        const std::string where =
+            p->fit_error > 0
+                ? fmt::format(" ({} at {:.3f} s)", p->fit_error_servo, p->fit_error_at_ms / 1000.0)
+                : "";
         ctx.out << fmt::format(
-            "{}: ok ({}/{} actions, {}){}\n", path, p->keyframes.size(), lsc::kMaxActions,
-            compiler::format_seconds(p->duration_ms()),
+            "{}: {}/{} actions, {:.3f} s, fit within {} units{}{}\n", path, p->keyframes.size(),
+            lsc::kMaxActions, static_cast<double>(p->duration_ms()) / 1000.0,
+            compiler::format_units(p->fit_error), where,
             d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
       } else {
         invalid = true;

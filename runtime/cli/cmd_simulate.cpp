@@ -1,4 +1,6 @@
-// seqc simulate FILE [-o out.csv] [--step MS]: servo positions over time as CSV.
+// seqc simulate FILE [-o out.csv] [--step MS] [--compare]: servo positions over time as CSV;
+// --compare adds the intended curve beside each servo and prints, on stderr, each servo's
+// largest difference between the compiled motion and that curve.
 #include <string>
 
 #include "compiler/backend/raspblock_simulate.hpp"
@@ -16,6 +18,7 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string output;
     int step_ms = 20;
     bool strict = false;
+    bool compare = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -25,6 +28,9 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
       ->check(CLI::Range(1, 60000))
       ->default_val(20);
+  cmd->add_flag("--compare", opts->compare,
+                "Add each servo's intended curve to the CSV and print, per servo, the largest "
+                "difference from the compiled motion and when");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
@@ -35,7 +41,14 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string what;
     if (const compiler::ServoProgram* program = c.output.servo_program()) {
       const backend::Simulation sim =
-          backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms));
+          backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms), opts->compare);
+      if (opts->compare) {
+        for (const backend::Difference& d : backend::compare_with_intent(*program)) {
+          ctx.err << "seqc: " << d.servo << ": largest difference "
+                  << compiler::format_units(d.largest) << " units at "
+                  << compiler::format_seconds(d.at_ms) << "\n";
+        }
+      }
       csv = backend::to_csv(sim);
       duration_ms = sim.duration_ms;
       what = std::to_string(program->keyframes.size()) + " actions";
