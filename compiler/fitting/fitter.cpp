@@ -258,9 +258,23 @@ class Fitter {
         newest = seg.start;
         action.source = seg.at;
       }
-      action.targets.push_back({servo, target(servo, e)});
       const bool is_curved =
           curved != nullptr && std::find(curved->begin(), curved->end(), servo) != curved->end();
+      const RoundedTrack& t = tracks_[servo];
+      if (!is_curved && last - first == 1 && t.start[first] <= s && t.end[first] >= e) {
+        // One straight segment spans the action (the common case): no search needed, and the
+        // error is the rounding at its ends.
+        const double from = seg.value(static_cast<double>(s));
+        const double to = seg.value(static_cast<double>(e));
+        action.targets.push_back({servo, static_cast<int>(std::lround(to))});
+        record_error(servo, s, std::abs(std::round(from) - from));
+        record_error(servo, e, std::abs(std::round(to) - to));
+        continue;
+      }
+      // The target is where the segment in force during the action has the servo at its end
+      // (at a boundary rounded up past a segment's exact end, that segment's own end value).
+      action.targets.push_back(
+          {servo, static_cast<int>(std::lround(seg.value(static_cast<double>(e))))});
       account(servo, s, e, is_curved);
     }
     if (action.targets.empty()) {
@@ -297,10 +311,14 @@ class Fitter {
         }
       }
     }
+    record_error(s, at, err);
+  }
+
+  void record_error(std::size_t servo, std::int64_t at, double err) {
     if (err > result_.max_error) {
       result_.max_error = err;
       result_.max_error_at_ms = static_cast<std::uint32_t>(at);
-      result_.max_error_servo = s;
+      result_.max_error_servo = servo;
     }
   }
 

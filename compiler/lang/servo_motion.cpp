@@ -332,6 +332,9 @@ void ServoLowering::check_kinematics(std::size_t servo, const Segment& segment, 
       prev_v = v;
     }
   }
+  const bool too_fast = info.max_speed && speed > *info.max_speed + 1e-9;
+  const bool too_sudden = info.max_accel && accel > *info.max_accel + 1e-9;
+  if (!too_fast && !too_sudden) return;
   // In the author's units: degrees as written, else device units.
   const double distance = std::abs(segment.to - segment.from);
   const bool in_degrees = !std::isnan(degrees);
@@ -343,14 +346,14 @@ void ServoLowering::check_kinematics(std::size_t servo, const Segment& segment, 
   const bool curved = segment.kind != CurveKind::Linear;
   const std::string shape =
       segment.kind == CurveKind::Eased ? " on this " + segment.easing.name() + " curve" : "";
-  if (info.max_speed && speed > *info.max_speed + 1e-9) {
+  if (too_fast) {
     reporter_.warning(segment.at,
                       moved + (curved ? " peaks at " : " is ") + number(speed * per_unit, 0) + u +
                           "/s" + shape + ", above " + info.name + "'s " +
                           number(*info.max_speed * per_unit, 0) + u + "/s",
                       note);
   }
-  if (info.max_accel && accel > *info.max_accel + 1e-9) {
+  if (too_sudden) {
     reporter_.warning(segment.at,
                       moved + " accelerates at up to " + number(accel * per_unit, 0) + u + "/s^2" +
                           shape + ", above " + info.name + "'s " +

@@ -78,7 +78,8 @@ Summary summarize(std::vector<Sample> v) {
   return s;
 }
 
-// 1,020 moves of all 32 channels, 20 ms each, every position different from the last.
+// 1,020 moves of all 32 channels, 500 ms each (slow enough for the servos' rated speed, so the
+// run prints no warning), every position different from the last.
 std::string maximal_program() {
   std::string y =
       "# yaml-language-server: $schema=../../schemas/seqc.schema.json\n"
@@ -90,7 +91,7 @@ std::string maximal_program() {
       const int pos = 600 + (a * 37 + ch * 53) % 1800;
       y += (ch ? ", ch" : "ch") + std::to_string(ch) + ": " + std::to_string(pos);
     }
-    y += "}\n    time: 20ms\n";
+    y += "}\n    time: 500ms\n";
   }
   return y;
 }
@@ -173,9 +174,9 @@ int main(int argc, char** argv) {
               loader.c_str(), p.wall_ms, static_cast<double>(p.max_rss_kib) / 1024.0, ps.min_ms,
               ps.max_ms);
   const double ratio = s.wall_ms / p.wall_ms;
-  std::printf("time ratio seqc/PyYAML: %.3f (target <= 0.333: %s)\n", ratio,
-              ratio <= 1.0 / 3.0 ? "met" : "NOT met");
-  std::printf("seqc peak RSS target <= 50 MiB: %s\n",
-              s.max_rss_kib <= 50 * 1024 ? "met" : "NOT met");
+  std::printf("time ratio seqc/PyYAML: %.3f (target <= 0.1 with fitting on: %s)\n", ratio,
+              ratio <= 0.1 ? "met" : "NOT met");
+  std::printf("seqc peak RSS target <= 16 MiB: %s\n",
+              s.max_rss_kib <= 16 * 1024 ? "met" : "NOT met");
   return 0;
 }
