@@ -117,7 +117,7 @@ TEST(Examples, CheckCleanly) {
 }
 
 TEST(Examples, ListingsAndHexMatchGoldens) {
-  for (const char* name : {"walk", "wave", "dance"}) {
+  for (const char* name : {"walk", "wave", "dance", "waltz"}) {
     SCOPED_TRACE(name);
     const std::string rel = std::string("examples/") + name + ".yaml";
     SeqcRun listing = seqc(kSource, "compile --emit listing " + rel);
