@@ -33,23 +33,29 @@ using namespace seqc::compiler;
 
 namespace {
 
-// The exact minimum number of actions from 0 to D (ms, relative to the curve's start).
+// The exact minimum number of actions from 0 to D (ms, relative to the curve's start), by
+// dynamic programming over every pair of boundaries on the 1 ms grid. The line from a (at the
+// rounded curve) to b is within tolerance at every millisecond t between them exactly when its
+// slope lies in [(c(t) - tol - p0) / (t - a), (c(t) + tol - p0) / (t - a)] for each such t, so
+// for a fixed a the windows of t = a+1, a+2, ... are intersected as b grows; once empty, no
+// later b can work. Exact, not a heuristic: every pair is decided.
 int dp_minimum(const Segment& seg, double start_ms, int duration, double tol) {
-  auto curve = [&](int t) { return seg.value(start_ms + t); };
+  std::vector<double> c(duration + 1);
+  for (int t = 0; t <= duration; ++t) c[t] = seg.value(start_ms + t);
   std::vector<int> best(duration + 1, 1 << 30);
   best[0] = 0;
   for (int a = 0; a < duration; ++a) {
     if (best[a] >= (1 << 30)) continue;
-    const double p0 = std::round(curve(a));
-    for (int b = a + 20; b <= std::min(duration, a + 30000); ++b) {
-      if (best[a] + 1 >= best[b]) continue;
-      const double p1 = std::round(curve(b));
-      bool ok = true;
-      for (int t = a + 1; t < b && ok; ++t) {
-        const double line = p0 + (p1 - p0) * (t - a) / (b - a);
-        ok = std::abs(line - curve(t)) <= tol + 1e-9;
+    const double p0 = std::round(c[a]);
+    double lo = -1e300, hi = 1e300;
+    for (int b = a + 1; b <= std::min(duration, a + 30000); ++b) {
+      const double slope = (std::round(c[b]) - p0) / (b - a);
+      if (b - a >= 20 && slope >= lo - 1e-12 && slope <= hi + 1e-12 && best[a] + 1 < best[b]) {
+        best[b] = best[a] + 1;
       }
-      if (ok) best[b] = best[a] + 1;
+      lo = std::max(lo, (c[b] - tol - 1e-9 - p0) / (b - a));
+      hi = std::min(hi, (c[b] + tol + 1e-9 - p0) / (b - a));
+      if (lo > hi) break;
     }
   }
   return best[duration];
