@@ -96,14 +96,9 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
 
   Easing ease;
   if (const YamlNode* e = step.find("ease")) {
-    const EaseParse parsed = e->is_scalar() ? parse_easing(e->scalar) : EaseParse{};
-    if (!parsed.easing && parsed.message.empty()) {
-      reporter_.unknown(e->location, "easing", e->is_scalar() ? e->scalar : "", easing_names());
-    } else if (!parsed.easing) {
-      reporter_.error(e->location, parsed.message);
-    }
-    ok = ok && parsed.easing.has_value();
-    if (parsed.easing) ease = *parsed.easing;
+    const std::optional<Easing> parsed = parse_ease(*e, reporter_);
+    ok = ok && parsed.has_value();
+    if (parsed) ease = *parsed;
   }
   std::optional<long long> steps;
   const YamlNode* steps_node = step.find("steps");

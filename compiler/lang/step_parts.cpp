@@ -33,33 +33,14 @@ std::optional<RepeatStep> parse_repeat(const YamlNode& step, const YamlNode& cou
   return RepeatStep{*times, body};
 }
 
-double ease_at(Ease ease, double t) {
-  switch (ease) {
-    case Ease::Linear:
-      return t;
-    case Ease::In:
-      return t * t;
-    case Ease::Out:
-      return 1 - (1 - t) * (1 - t);
-    case Ease::InOut:
-      return t < 0.5 ? 2 * t * t : 1 - 2 * (1 - t) * (1 - t);
+std::optional<Easing> parse_ease(const YamlNode& node, Reporter& reporter) {
+  const EaseParse parsed = node.is_scalar() ? parse_easing(node.scalar) : EaseParse{};
+  if (!parsed.easing && parsed.message.empty()) {
+    reporter.unknown(node.location, "easing", node.is_scalar() ? node.scalar : "", easing_names());
+  } else if (!parsed.easing) {
+    reporter.error(node.location, parsed.message);
   }
-  return t;
-}
-
-std::optional<Ease> parse_ease(const YamlNode& node, Reporter& reporter) {
-  static const std::map<std::string, Ease, std::less<>> kEases = {
-      {"linear", Ease::Linear},     {"in", Ease::In},      {"out", Ease::Out},
-      {"in-out", Ease::InOut},      {"ease-in", Ease::In}, {"ease-out", Ease::Out},
-      {"ease-in-out", Ease::InOut},
-  };
-  auto it = node.is_scalar() ? kEases.find(node.scalar) : kEases.end();
-  if (it == kEases.end()) {
-    reporter.unknown(node.location, "easing", node.is_scalar() ? node.scalar : "",
-                     {"linear", "in", "out", "in-out"});
-    return std::nullopt;
-  }
-  return it->second;
+  return parsed.easing;
 }
 
 std::string format_ms(double ms) {

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "compiler/lang/reporter.hpp"
+#include "compiler/timeline/easing.hpp"
 #include "compiler/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {
@@ -26,13 +27,9 @@ struct RepeatStep {
 std::optional<RepeatStep> parse_repeat(const YamlNode& step, const YamlNode& count,
                                        Reporter& reporter);
 
-enum class Ease { Linear, In, Out, InOut };
-
-// Quadratic easing: gentle enough for servos, and simple to reason about in a listing.
-double ease_at(Ease ease, double t);
-
-// The value of 'ease'; nullopt after reporting an unknown one with "did you mean".
-std::optional<Ease> parse_ease(const YamlNode& node, Reporter& reporter);
+// The value of 'ease' (compiler/timeline/easing.hpp); nullopt after reporting an unknown name
+// with "did you mean", or what is wrong with a cubic-bezier.
+std::optional<Easing> parse_ease(const YamlNode& node, Reporter& reporter);
 
 // "25ms", "12.5ms": a step's share of a move, for messages.
 std::string format_ms(double ms);

@@ -1,0 +1,125 @@
+// The Raspblock front end's state while it walks a file's steps (private to
+// raspblock_lowering.cpp, which reads files, values and builds the packet stream, and
+// raspblock_steps.cpp, which lowers each step). The board's outputs and their ranges are here.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <vector>
+
+#include "compiler/lang/positions.hpp"
+#include "compiler/lang/raspblock_link.hpp"
+#include "compiler/lang/raspblock_lowering.hpp"
+#include "compiler/lang/raspblock_settings.hpp"
+#include "compiler/lang/scope_chain.hpp"
+#include "compiler/lang/step_parts.hpp"
+#include "compiler/lang/units.hpp"
+#include "compiler/timeline/easing.hpp"
+
+namespace seqc::compiler {
+
+// The board's positional outputs (docs/protocol/raspblock.md, function 02): the two gimbal
+// servos travel together in one packet; servos 1-4 each have their own.
+struct Channel {
+  std::string_view name;
+  int min;
+  int max;
+  bool gimbal;         // part of the two-servo gimbal packet
+  std::uint8_t index;  // gimbal: 0 horizontal, 1 vertical; single: servo number 1-4
+};
+inline constexpr std::array<Channel, 6> kChannels = {{
+    {"pan", 500, 2500, true, 0},
+    {"tilt", 500, 1950, true, 1},
+    {"servo1", 500, 2500, false, 1},
+    {"servo2", 500, 2500, false, 2},
+    {"servo3", 500, 2500, false, 3},
+    {"servo4", 500, 2500, false, 4},
+}};
+inline constexpr std::size_t kPan = 0;
+inline constexpr std::size_t kTilt = 1;
+// Pulse widths in microseconds: 1500 is the neutral position; 0-180 degrees spans 500-2500.
+inline constexpr int kHome = 1500;
+inline constexpr double kDegreeZero = 500.0;
+inline constexpr double kUnitsPerDegree = 2000.0 / 180.0;
+
+inline std::string grouped(std::uint64_t n) {
+  std::string s = std::to_string(n);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
+    s.insert(static_cast<std::size_t>(i), ",");
+  return s;
+}
+
+using LocationKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>;
+inline LocationKey key_of(const Location& at) { return {at.file, at.line, at.column}; }
+
+class RaspblockLowering {
+ public:
+  RaspblockLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
+      : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {}
+
+  RaspblockProgram run(const LoadedFile& main);
+
+ private:
+  // ---- files ---------------------------------------------------------------------------------
+
+  void run_file(const LoadedFile& f, bool is_main);
+  FileScope& scope_for(const LoadedFile& f);
+
+  // ---- values --------------------------------------------------------------------------------
+
+  std::vector<std::string> channel_names() const;
+  void parse_poses(const YamlNode& poses, FileScope& scope);
+  std::vector<PositionEntry> parse_targets(const YamlNode& map, const std::string& where);
+  static double absolute_units(const PositionEntry& t);
+  bool check_limits(const PositionEntry& t, double units, std::string how,
+                    std::optional<Reporter::Note> note = {});
+  std::optional<std::uint32_t> time_ms(const YamlNode& node, std::string_view what);
+
+  // ---- steps ---------------------------------------------------------------------------------
+
+  void run_steps(const YamlNode& list, std::string_view what);
+  void run_step(const YamlNode& step);
+  void motion_step(const YamlNode& step, const YamlNode* drive_node, const YamlNode* move_node);
+
+  // Resolves a move's targets into device units; false after reporting a mistake.
+  bool resolve_move(const YamlNode& target, std::map<std::size_t, int>& out);
+
+  // Splits a move into n packets per output: the k-th (1..n) carries the position at k/n of
+  // the way and is sent at (k-1)/n of the time, so the servo reaches the target as the step
+  // ends. An output without a known start goes straight to its target in the first packet.
+  // A packet that would repeat the previous value of its output is left out.
+  void interpolate(Location at, std::uint64_t start, std::uint32_t t, std::uint64_t n, Easing ease,
+                   const std::map<std::size_t, int>& targets);
+  void wait_step(const YamlNode& step, const YamlNode& value);
+  void repeat_step(const YamlNode& step, const YamlNode& value);
+  void include_step(const YamlNode& value);
+
+  // ---- the stream ----------------------------------------------------------------------------
+
+  // A drive lasts for its step: unless this step drives too (its speeds replace the old ones
+  // at the same instant), the car is stopped before the step starts.
+  void begin_step(bool drives);
+  void advance(std::uint32_t t, Location at);
+  void emit(raspblock::Packet packet, Location at) { emit_at(now_ms_, std::move(packet), at); }
+  void emit_at(std::uint64_t at_ms, raspblock::Packet packet, Location at);
+  void check_capacity();
+  const Robot& robot_;
+  FileLoader& loader_;
+  Reporter& reporter_;
+  ScopeChain scopes_;
+  std::array<std::optional<int>, kChannels.size()> pos_;
+  std::uint64_t now_ms_ = 0;
+  bool stop_due_ = false;
+  bool full_ = false;
+  Location last_drive_at_;
+  Location end_at_;
+  std::vector<TimedPacket> packets_;
+  std::map<LocationKey, std::vector<Location>> include_sites_;
+};
+
+}  // namespace seqc::compiler
