@@ -29,6 +29,8 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
   RaspblockProgram program;
   program.packets = std::move(packets_);
   program.duration_ms = static_cast<std::uint32_t>(std::min(now_ms_, kRaspblockMaxStreamMs));
+  timeline_.end = ExactMs(static_cast<std::int64_t>(program.duration_ms));
+  program.timeline = std::move(timeline_);
   return program;
 }
 

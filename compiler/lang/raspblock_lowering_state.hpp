@@ -60,7 +60,9 @@ inline LocationKey key_of(const Location& at) { return {at.file, at.line, at.col
 class RaspblockLowering {
  public:
   RaspblockLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
-      : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {}
+      : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {
+    timeline_.servos.resize(kChannels.size());
+  }
 
   RaspblockProgram run(const LoadedFile& main);
 
@@ -119,6 +121,7 @@ class RaspblockLowering {
   Location last_drive_at_;
   Location end_at_;
   std::vector<TimedPacket> packets_;
+  Timeline timeline_;
   std::map<LocationKey, std::vector<Location>> include_sites_;
 };
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "compiler/source/source.hpp"
+#include "compiler/timeline/timeline.hpp"
 #include "runtime/protocol/raspblock.hpp"
 
 namespace seqc::compiler {
@@ -26,6 +27,9 @@ struct RaspblockProgram {
   // (Rocker 0,0,0) at duration_ms, so a completed play leaves the car standing.
   std::vector<TimedPacket> packets;
   std::uint32_t duration_ms = 0;  // when the last step ends
+  // The intended curves of the six positional outputs (pan, tilt, servo1-servo4, in that
+  // order), the same timeline the arm's moves become; the packets sample it.
+  Timeline timeline;
 };
 
 }  // namespace seqc::compiler

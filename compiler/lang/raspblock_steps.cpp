@@ -224,15 +224,29 @@ bool RaspblockLowering::resolve_move(const YamlNode& target, std::map<std::size_
 void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint32_t t,
                                     std::uint64_t n, Easing ease,
                                     const std::map<std::size_t, int>& targets) {
-  std::map<std::size_t, std::optional<int>> from;
-  for (const auto& [c, end] : targets) from[c] = pos_[c];
+  // The move on the timeline first (an output without a known start jumps: a flat segment at
+  // its target); the packets then sample each output's segment.
+  std::map<std::size_t, Segment> curve;
+  for (const auto& [c, end] : targets) {
+    Segment seg;
+    seg.kind = ease.is_linear() ? CurveKind::Linear : CurveKind::Eased;
+    seg.easing = ease;
+    seg.start = ExactMs(static_cast<std::int64_t>(start));
+    seg.end = ExactMs(static_cast<std::int64_t>(start + t));
+    seg.from = pos_[c] ? *pos_[c] : end;
+    seg.to = end;
+    seg.at = at;
+    curve[c] = seg;
+    timeline_.servos[c].push_back(seg);
+  }
   for (std::uint64_t k = 1; k <= n && !full_; ++k) {
     const std::uint64_t send = start + (std::uint64_t{t} * (k - 1) + n / 2) / n;
-    const double f = ease.at(static_cast<double>(k) / static_cast<double>(n));
+    // The position k/n of the way through the move, sent at (k-1)/n of its time.
+    const double when = static_cast<double>(start) +
+                        static_cast<double>(t) * static_cast<double>(k) / static_cast<double>(n);
     std::array<std::optional<int>, kChannels.size()> next;
-    for (const auto& [c, end] : targets) {
-      next[c] =
-          from[c] && k < n ? static_cast<int>(std::llround(*from[c] + (end - *from[c]) * f)) : end;
+    for (const auto& [c, seg] : curve) {
+      next[c] = k < n ? static_cast<int>(std::llround(seg.value(when))) : targets.at(c);
     }
     if (next[kPan] || next[kTilt]) {
       const int h = next[kPan].value_or(pos_[kPan].value_or(kHome));

@@ -135,6 +135,34 @@ TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
   EXPECT_EQ(p->packets.back().at_ms, 1240u);
 }
 
+TEST(RaspblockStream, GimbalMovesFollowTheSameCurvesAsTheArm) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - move: {pan: 1000}\n"
+      "    time: 100ms\n"
+      "  - move: {pan: 2000}\n"
+      "    time: 200ms\n"
+      "    ease: sine-in-out\n"
+      "    steps: 4\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  // The timeline holds the intended curve: sine-in-out is half way at half time.
+  ASSERT_EQ(p->timeline.servos.size(), 6u);
+  ASSERT_EQ(p->timeline.servos[0].size(), 2u);
+  EXPECT_DOUBLE_EQ(*p->timeline.value(0, 200), 1500);
+  // The packets sample it: (1 - cos(pi k/4)) / 2 of the way at k = 1..4, sent at (k-1)/4.
+  std::vector<std::pair<std::uint32_t, int>> got;
+  for (const TimedPacket& t : p->packets) {
+    if (const auto* g = std::get_if<raspblock::GimbalServos>(&t.packet)) {
+      got.emplace_back(t.at_ms, g->horizontal);
+    }
+  }
+  const std::vector<std::pair<std::uint32_t, int>> want = {
+      {0, 1000}, {100, 1146}, {150, 1500}, {200, 1854}, {250, 2000}};
+  EXPECT_EQ(got, want);
+}
+
 TEST(RaspblockStream, HexListsSendTimesRightAligned) {
   auto out = compile_text("robot: raspblock\nsequence:\n  - drive: {x: -10}\n    time: 12.5s\n");
   ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
