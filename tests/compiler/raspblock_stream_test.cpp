@@ -139,7 +139,7 @@ TEST(RaspblockStream, GimbalMovesFollowTheSameCurvesAsTheArm) {
   auto out = compile_text(
       "robot: raspblock\n"
       "sequence:\n"
-      "  - move: {pan: 1000}\n"
+      "  - move: {pan: 1000, tilt: home}\n"
       "    time: 100ms\n"
       "  - move: {pan: 2000}\n"
       "    time: 200ms\n"
