@@ -17,7 +17,7 @@
 #include <variant>
 #include <vector>
 
-#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/raspblock_program.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/source.hpp"
 #include "compiler/timeline/timeline.hpp"

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/protocol/group_download.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 #include "runtime/protocol/lsc_stream.hpp"

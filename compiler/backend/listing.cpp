@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 namespace seqc::backend {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/raspblock_program.hpp"
 
 namespace seqc::backend {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/raspblock_program.hpp"
 #include "compiler/source/source.hpp"
 #include "runtime/protocol/bytes.hpp"
 #include "runtime/protocol/result.hpp"

@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "compiler/lang/reporter.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "compiler/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {

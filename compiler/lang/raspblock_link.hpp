@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/raspblock_program.hpp"
 #include "runtime/protocol/raspblock.hpp"
 
 namespace seqc::compiler {

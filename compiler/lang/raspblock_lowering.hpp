@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "compiler/lang/file_loader.hpp"
-#include "compiler/lang/raspblock_program.hpp"
+#include "compiler/raspblock_program.hpp"
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
 

@@ -18,7 +18,7 @@
 #include "compiler/lang/raspblock_settings.hpp"
 #include "compiler/lang/scope_chain.hpp"
 #include "compiler/lang/step_parts.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "compiler/timeline/easing.hpp"
 
 namespace seqc::compiler {

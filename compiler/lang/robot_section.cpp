@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 namespace seqc::compiler {
 namespace {

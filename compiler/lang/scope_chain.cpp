@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "compiler/lang/robot_section.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 namespace seqc::compiler {
 

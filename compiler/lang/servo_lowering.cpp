@@ -10,7 +10,7 @@
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/lang/servo_lowering_state.hpp"
 #include "compiler/lang/step_parts.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/protocol/group_download.hpp"
 
 namespace seqc::compiler {

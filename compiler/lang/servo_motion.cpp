@@ -7,7 +7,7 @@
 
 #include "compiler/lang/servo_lowering_state.hpp"
 #include "compiler/lang/step_parts.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "runtime/protocol/group_download.hpp"
 

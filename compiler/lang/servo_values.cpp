@@ -1,7 +1,7 @@
 // The servo-controller front end's values: positions with their limits, exact times at the
 // tempo in force, and tolerances.
 #include "compiler/lang/servo_lowering_state.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 namespace seqc::compiler {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/protocol/group_download.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "compiler/backend/raspblock_stream.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/servo_play.hpp"

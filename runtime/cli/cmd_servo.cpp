@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"

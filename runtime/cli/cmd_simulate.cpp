@@ -5,7 +5,7 @@
 
 #include "compiler/backend/raspblock_simulate.hpp"
 #include "compiler/backend/simulate.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/disk.hpp"

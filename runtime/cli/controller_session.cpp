@@ -3,7 +3,7 @@
 #include <ostream>
 #include <utility>
 
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/port_open.hpp"
 

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "compiler/lang/profiles.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 namespace seqc::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "compiler/backend/servo_backend.hpp"
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 #include "runtime/player/player.hpp"
 
 namespace seqc::cli {

@@ -1,4 +1,4 @@
-#include "compiler/lang/units.hpp"
+#include "compiler/source/units.hpp"
 
 #include <gtest/gtest.h>
 
