@@ -9,19 +9,17 @@ namespace {
 
 // One servo's segments with their boundaries rounded to whole milliseconds.
 struct RoundedTrack {
-  const std::vector<Segment>* segments = nullptr;
   std::vector<std::int64_t> start, end;
 };
 
 class Fitter {
  public:
   Fitter(const Timeline& timeline, const FitOptions& options)
-      : tl_(timeline), opt_(options), tracks_(timeline.servos.size()) {
+      : tl_(timeline), opt_(options), tracks_(timeline.servo_count()) {
     for (std::size_t s = 0; s < tracks_.size(); ++s) {
-      tracks_[s].segments = &tl_.servos[s];
-      for (const Segment& seg : tl_.servos[s]) {
-        tracks_[s].start.push_back(seg.start.round());
-        tracks_[s].end.push_back(seg.end.round());
+      for (std::size_t i = 0; i < tl_.count(s); ++i) {
+        tracks_[s].start.push_back(tl_.start_of(s, i).round());
+        tracks_[s].end.push_back(tl_.end_of(s, i).round());
       }
     }
   }
@@ -70,11 +68,10 @@ class Fitter {
   std::optional<double> intended(std::size_t s, double t) const { return tl_.value(s, t); }
 
   // The segment of servo s in force at ms t (the last starting at or before it).
-  const Segment* segment_at(std::size_t s, double t) const {
-    const auto& segs = tl_.servos[s];
-    auto it = std::upper_bound(segs.begin(), segs.end(), t,
-                               [](double x, const Segment& g) { return x < g.start.value(); });
-    return it == segs.begin() ? nullptr : &*(it - 1);
+  std::optional<Segment> segment_at(std::size_t s, double t) const {
+    const auto i = tl_.index_at(s, t);
+    if (!i) return std::nullopt;
+    return tl_.segment(s, *i);
   }
 
   int target(std::size_t s, std::int64_t t) const {
@@ -96,8 +93,8 @@ class Fitter {
       const double line =
           p0 + (p1 - p0) * (td - static_cast<double>(a)) / static_cast<double>(b - a);
       const double want = intended(s, td).value_or(line);
-      const Segment* seg = segment_at(s, td);
-      const double tol = seg != nullptr ? seg->tolerance : 1.0;
+      const std::optional<Segment> seg = segment_at(s, td);
+      const double tol = seg ? seg->tolerance : 1.0;
       const double err = std::abs(line - want);
       if (err - tol > most) {
         most = err - tol;
@@ -117,7 +114,7 @@ class Fitter {
       const auto [first, last] = overlapping(s, a, b);
       if (first == last) continue;
       const RoundedTrack& t = tracks_[s];
-      const bool straight = last - first == 1 && (*t.segments)[first].is_straight() &&
+      const bool straight = last - first == 1 && tl_.segment(s, first).is_straight() &&
                             t.start[first] <= a && t.end[first] >= b;
       if (!straight) curved.push_back(s);
     }
@@ -161,9 +158,9 @@ class Fitter {
       for (std::size_t t = 0; t <= n; ++t) {
         const double at = static_cast<double>(a + static_cast<std::int64_t>(t));
         const double w = intended(curved[i], at).value_or(0);
-        const Segment* seg = segment_at(curved[i], at);
+        const std::optional<Segment> seg = segment_at(curved[i], at);
         want[i * (n + 1) + t] = w;
-        tol[i * (n + 1) + t] = (seg != nullptr ? seg->tolerance : 1.0) + 1e-9;
+        tol[i * (n + 1) + t] = (seg ? seg->tolerance : 1.0) + 1e-9;
         end[i * (n + 1) + t] = std::round(w);
       }
     }
@@ -234,8 +231,8 @@ class Fitter {
       bool open = true;  // the instant e bounds every later line
       for (std::size_t i = 0; i < curved.size(); ++i) {
         const double want = intended(curved[i], static_cast<double>(e)).value_or(p0[i]);
-        const Segment* seg = segment_at(curved[i], static_cast<double>(e));
-        const double tol = (seg != nullptr ? seg->tolerance : 1.0) + 1e-9;
+        const std::optional<Segment> seg = segment_at(curved[i], static_cast<double>(e));
+        const double tol = (seg ? seg->tolerance : 1.0) + 1e-9;
         lo[i] = std::max(lo[i], (want - tol - p0[i]) / span);
         hi[i] = std::min(hi[i], (want + tol - p0[i]) / span);
         open = open && lo[i] <= hi[i];
@@ -249,12 +246,12 @@ class Fitter {
     FittedAction action;
     action.start_ms = static_cast<std::uint32_t>(s);
     action.time_ms = static_cast<std::uint32_t>(e - s);
-    ExactMs newest{-1};
+    std::optional<Instant> newest;
     for (std::size_t servo = 0; servo < tracks_.size(); ++servo) {
       const auto [first, last] = overlapping(servo, s, e);
       if (first == last) continue;
-      const Segment& seg = (*tracks_[servo].segments)[last - 1];
-      if (seg.start > newest || newest == ExactMs{-1}) {
+      const Segment seg = tl_.segment(servo, last - 1);
+      if (!newest || seg.start > *newest) {
         newest = seg.start;
         action.source = seg.at;
       }
@@ -281,7 +278,8 @@ class Fitter {
       for (std::size_t servo = 0; servo < tracks_.size(); ++servo) {
         if (intended(servo, static_cast<double>(s))) {
           action.targets.push_back({servo, target(servo, e)});
-          if (action.source.file == kNoFile) action.source = tl_.servos[servo].back().at;
+          if (action.source.file == kNoFile)
+            action.source = tl_.segment(servo, tl_.count(servo) - 1).at;
         }
       }
     }
@@ -297,9 +295,9 @@ class Fitter {
     if (is_curved) {
       const double over = excess(s, a, b, &at, &err, &tol);
       if (over > 1e-9) {
-        const Segment* seg = segment_at(s, static_cast<double>(at));
+        const std::optional<Segment> seg = segment_at(s, static_cast<double>(at));
         result_.shortfalls.push_back(
-            {s, static_cast<std::uint32_t>(at), err, tol, seg != nullptr ? seg->at : Location{}});
+            {s, static_cast<std::uint32_t>(at), err, tol, seg ? seg->at : Location{}});
       }
     } else {
       for (std::int64_t t : {a, b}) {

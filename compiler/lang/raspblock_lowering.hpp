@@ -7,9 +7,9 @@
 #include <cstdint>
 
 #include "compiler/lang/file_loader.hpp"
-#include "compiler/raspblock_program.hpp"
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
+#include "compiler/raspblock_program.hpp"
 
 namespace seqc::compiler {
 

@@ -61,7 +61,7 @@ class RaspblockLowering {
  public:
   RaspblockLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
       : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {
-    timeline_.servos.resize(kChannels.size());
+    timeline_.resize(kChannels.size());
   }
 
   RaspblockProgram run(const LoadedFile& main);

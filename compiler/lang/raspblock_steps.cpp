@@ -237,7 +237,7 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
     seg.to = end;
     seg.at = at;
     curve[c] = seg;
-    timeline_.servos[c].push_back(seg);
+    timeline_.add(c, seg);
   }
   for (std::uint64_t k = 1; k <= n && !full_; ++k) {
     const std::uint64_t send = start + (std::uint64_t{t} * (k - 1) + n / 2) / n;

@@ -36,7 +36,7 @@ ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& r
       reporter_(reporter),
       scopes_(robot.home_servos),
       pos_(robot.info.servos.size()) {
-  timeline_.servos.resize(robot.info.servos.size());
+  timeline_.resize(robot.info.servos.size());
 }
 
 ServoProgram ServoLowering::run(const LoadedFile& main) {

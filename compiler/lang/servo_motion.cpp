@@ -253,7 +253,7 @@ void ServoLowering::wait_step(const YamlNode& step, const YamlNode& value) {
 }
 
 void ServoLowering::add_segment(std::size_t servo, Segment segment) {
-  timeline_.servos[servo].push_back(std::move(segment));
+  timeline_.add(servo, segment);
 }
 
 bool ServoLowering::claim(std::size_t servo, Location at) {

@@ -5,6 +5,7 @@
 // intermediates and saturates far beyond any group's length instead of overflowing.
 #pragma once
 
+#include <cmath>
 #include <compare>
 #include <cstdint>
 #include <numeric>
@@ -89,6 +90,19 @@ class ExactMs {
 
   std::int64_t num_ = 0;
   std::int64_t den_ = 1;
+};
+
+// A point of the timeline as it is stored: milliseconds in a double. ExactMs values convert
+// to it; it is exact for whole and half milliseconds and within 1e-9 ms of any other time a
+// sequence can hold, so rounding it gives what rounding the ExactMs gives (a value with a
+// denominator above 2 is never within 1e-6 of a half).
+struct Instant {
+  double ms = 0;
+  constexpr Instant() = default;
+  Instant(ExactMs t) : ms(t.value()) {}  // NOLINT: exact times convert freely
+  double value() const { return ms; }
+  std::int64_t round() const { return static_cast<std::int64_t>(std::llround(ms)); }
+  friend auto operator<=>(const Instant&, const Instant&) = default;
 };
 
 }  // namespace seqc::compiler

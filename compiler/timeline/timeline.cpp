@@ -28,15 +28,63 @@ double Segment::value(double t_ms) const {
   return from;
 }
 
+bool Timeline::Span::same(const Segment& s) const {
+  return start == s.start && end == s.end && kind == s.kind && easing == s.easing &&
+         tolerance == static_cast<float>(s.tolerance) && keep_boundaries == s.keep_boundaries &&
+         at.file == s.at.file && at.line == s.at.line && at.column == s.at.column;
+}
+
+void Timeline::add(std::size_t servo, const Segment& s) {
+  // The servos of a step are added one after another (with `steps`, piece after piece), so
+  // the span they share is among the last few.
+  std::uint32_t index = static_cast<std::uint32_t>(spans_.size());
+  const std::size_t look = std::min<std::size_t>(spans_.size(), 64);
+  for (std::size_t k = 1; k <= look; ++k) {
+    if (spans_[spans_.size() - k].same(s)) {
+      index = static_cast<std::uint32_t>(spans_.size() - k);
+      break;
+    }
+  }
+  if (index == spans_.size()) {
+    spans_.push_back({s.start, s.end, s.easing, static_cast<float>(s.tolerance), s.kind,
+                      s.keep_boundaries, s.at});
+  }
+  servos_[servo].push_back({index, static_cast<float>(s.from), static_cast<float>(s.to),
+                            static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+}
+
+Segment Timeline::segment(std::size_t servo, std::size_t i) const {
+  const Piece& p = servos_[servo][i];
+  const Span& span = spans_[p.span];
+  Segment s;
+  s.start = span.start;
+  s.end = span.end;
+  s.from = p.from;
+  s.to = p.to;
+  s.kind = span.kind;
+  s.easing = span.easing;
+  s.slope_from = p.slope_from;
+  s.slope_to = p.slope_to;
+  s.tolerance = span.tolerance;
+  s.keep_boundaries = span.keep_boundaries;
+  s.at = span.at;
+  return s;
+}
+
+std::optional<std::size_t> Timeline::index_at(std::size_t servo, double t_ms) const {
+  if (servo >= servos_.size()) return std::nullopt;
+  const std::vector<Piece>& pieces = servos_[servo];
+  auto it = std::upper_bound(pieces.begin(), pieces.end(), t_ms, [&](double t, const Piece& p) {
+    return t < spans_[p.span].start.value();
+  });
+  if (it == pieces.begin()) return std::nullopt;
+  return static_cast<std::size_t>(it - pieces.begin()) - 1;
+}
+
 std::optional<double> Timeline::value(std::size_t servo, double t_ms) const {
-  if (servo >= servos.size()) return std::nullopt;
-  const std::vector<Segment>& segs = servos[servo];
-  // The last segment that starts at or before t.
-  auto it = std::upper_bound(segs.begin(), segs.end(), t_ms,
-                             [](double t, const Segment& s) { return t < s.start.value(); });
-  if (it == segs.begin()) return std::nullopt;
-  --it;
-  return it->value(t_ms);
+  const auto i = index_at(servo, t_ms);
+  if (!i) return std::nullopt;
+  return segment(servo, *i).value(t_ms);
 }
 
 }  // namespace seqc::compiler

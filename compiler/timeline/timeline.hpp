@@ -1,15 +1,21 @@
 // The timeline: what the author meant, per servo, on exact time, before anything is rounded or
-// cut into controller actions. The front end appends segments as it walks the steps; fitting
+// cut into controller actions. The front end adds segments as it walks the steps; fitting
 // (compiler/fitting/) turns the whole timeline into the fewest actions that stay within each
-// segment's tolerance, and `seqc simulate --compare` / `seqc plot` read it as the intended curve.
+// segment's tolerance, and `seqc simulate --compare` reads it as the intended curve.
 //
 // A servo's segments are in time order and do not overlap. Between segments (and after the
 // last) the servo holds its last value; before its first segment its position is unknown.
 // A segment is either a hold (the servo is named and re-sent, as by `wait`), a straight line,
 // an eased move, or one piece of a C1 cubic Hermite curve (`through`).
+//
+// Storage is compact, because a group may hold 1,020 steps of 32 servos: what the servos of
+// one step share (times, shape, tolerance, source) is kept once, and each servo keeps only its
+// own ends and slopes (as floats: well under a thousandth of a unit). segment() rebuilds the
+// full Segment.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,11 +26,11 @@
 
 namespace seqc::compiler {
 
-enum class CurveKind { Hold, Linear, Eased, Hermite };
+enum class CurveKind : std::uint8_t { Hold, Linear, Eased, Hermite };
 
 struct Segment {
-  ExactMs start;  // absolute, from the start of the sequence
-  ExactMs end;
+  Instant start;  // absolute, from the start of the sequence
+  Instant end;
   double from = 0;  // device units (not rounded)
   double to = 0;
   CurveKind kind = CurveKind::Linear;
@@ -46,16 +52,47 @@ struct TimelineMarker {
   Location where;
 };
 
-struct Timeline {
-  std::vector<std::vector<Segment>> servos;  // by output index (the robot's servo order)
+class Timeline {
+ public:
+  void resize(std::size_t servos) { servos_.resize(servos); }
+  std::size_t servo_count() const { return servos_.size(); }
+  // Appends to `servo`'s segments (after its last one).
+  void add(std::size_t servo, const Segment& segment);
+  std::size_t count(std::size_t servo) const { return servos_[servo].size(); }
+  Segment segment(std::size_t servo, std::size_t i) const;
+  Instant start_of(std::size_t servo, std::size_t i) const {
+    return spans_[servos_[servo][i].span].start;
+  }
+  Instant end_of(std::size_t servo, std::size_t i) const {
+    return spans_[servos_[servo][i].span].end;
+  }
+  // The index of the last segment of `servo` starting at or before t, if any.
+  std::optional<std::size_t> index_at(std::size_t servo, double t_ms) const;
+  // The intended position of `servo` at t, or nullopt while it is still unknown.
+  std::optional<double> value(std::size_t servo, double t_ms) const;
+
   std::vector<TimelineMarker> markers;
   ExactMs end;  // when the last step ends
-  // Tempo and meter in force at the start, for the beat/bar grid of plots (0 = none).
+  // Tempo and meter in force at the start, for a beat/bar grid (0 = none).
   double tempo = 0;
   int beats_per_bar = 0;
 
-  // The intended position of `servo` at t, or nullopt while it is still unknown.
-  std::optional<double> value(std::size_t servo, double t_ms) const;
+ private:
+  struct Span {  // what the servos of one step share
+    Instant start, end;
+    Easing easing;
+    float tolerance = 1;
+    CurveKind kind = CurveKind::Linear;
+    bool keep_boundaries = false;
+    Location at;
+    bool same(const Segment& s) const;
+  };
+  struct Piece {  // one servo's own part
+    std::uint32_t span = 0;
+    float from = 0, to = 0, slope_from = 0, slope_to = 0;
+  };
+  std::vector<Span> spans_;
+  std::vector<std::vector<Piece>> servos_;
 };
 
 }  // namespace seqc::compiler

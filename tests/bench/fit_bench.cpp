@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
   names.push_back("cubic-bezier(0.1, 0.7, 0.3, 1)");
   names.push_back("hermite");
   names.push_back("hermite-fast-middle");
-  const std::vector<int> durations = quick ? std::vector<int>{500, 1000}
-                                           : std::vector<int>{500, 1000, 2000, 5000};
+  const std::vector<int> durations =
+      quick ? std::vector<int>{500, 1000} : std::vector<int>{500, 1000, 2000, 5000};
   std::vector<Row> rows;
   for (const std::string& name : names) {
     for (int ms : durations) {
@@ -115,9 +115,9 @@ int main(int argc, char** argv) {
           seg.easing = *parse_easing(name).easing;
         }
         Timeline tl;
-        tl.servos.resize(1);
-        tl.servos[0].push_back(seg);
-        tl.end = seg.end;
+        tl.resize(1);
+        tl.add(0, seg);
+        tl.end = ExactMs(ms);
         const FitResult fit = fit_timeline(tl);
         Row r;
         r.name = name;
@@ -167,10 +167,10 @@ int main(int argc, char** argv) {
     above_tol += over ? 1 : 0;
     off_minimum += over_min > 0.1 ? 1 : 0;
     worst_over_min = std::max(worst_over_min, over_min);
-    std::printf("%-32s %6d %6.0f %7d %7d %7.3f %7s %8.3f%s%s\n", r.name.c_str(), r.ms,
-                r.amplitude, r.fitted, r.uniform, ratio,
-                possible ? std::to_string(r.minimum).c_str() : "none", r.error,
-                over ? "  ABOVE TOLERANCE" : "", over_min > 0.1 ? "  >10% above minimum" : "");
+    std::printf("%-32s %6d %6.0f %7d %7d %7.3f %7s %8.3f%s%s\n", r.name.c_str(), r.ms, r.amplitude,
+                r.fitted, r.uniform, ratio, possible ? std::to_string(r.minimum).c_str() : "none",
+                r.error, over ? "  ABOVE TOLERANCE" : "",
+                over_min > 0.1 ? "  >10% above minimum" : "");
   }
   const double mean = ratio_sum / static_cast<double>(rows.size());
   const double mean_feasible = feasible > 0 ? feasible_sum / feasible : 0;

@@ -37,15 +37,15 @@ double controller_at(const std::vector<FittedAction>& actions, double start_valu
 
 Timeline one_curve(const Segment& seg) {
   Timeline tl;
-  tl.servos.resize(1);
+  tl.resize(1);
   Segment start;  // where the servo is before the curve: a short hold
   start.kind = CurveKind::Hold;
   start.start = ExactMs(0);
   start.end = seg.start;
   start.from = start.to = seg.from;
-  tl.servos[0].push_back(start);
-  tl.servos[0].push_back(seg);
-  tl.end = seg.end;
+  tl.add(0, start);
+  tl.add(0, seg);
+  tl.end = ExactMs(static_cast<std::int64_t>(seg.end.round()));
   return tl;
 }
 

@@ -179,8 +179,8 @@ sequence:
   EXPECT_DOUBLE_EQ(*tl.value(5, 2200), 700);
   EXPECT_DOUBLE_EQ(*tl.value(3, 2200), 600);
   // The interior slope is (p2 - p0) / (t2 - t0): base 200/1200 per ms.
-  EXPECT_DOUBLE_EQ(tl.servos[5][1].slope_to, 200.0 / 1200.0);
-  EXPECT_DOUBLE_EQ(tl.servos[5][2].slope_to, 0);
+  EXPECT_NEAR(tl.segment(5, 1).slope_to, 200.0 / 1200.0, 1e-7);
+  EXPECT_EQ(tl.segment(5, 2).slope_to, 0);
   EXPECT_LE(p.fit_error, 1.0);
   const Keyframe& last = p.keyframes.back();
   EXPECT_EQ(last.start_ms + last.time_ms, 2200u);

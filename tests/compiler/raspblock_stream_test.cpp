@@ -148,8 +148,8 @@ TEST(RaspblockStream, GimbalMovesFollowTheSameCurvesAsTheArm) {
   const RaspblockProgram* p = out.raspblock_program();
   ASSERT_NE(p, nullptr) << diagnostics_of(out);
   // The timeline holds the intended curve: sine-in-out is half way at half time.
-  ASSERT_EQ(p->timeline.servos.size(), 6u);
-  ASSERT_EQ(p->timeline.servos[0].size(), 2u);
+  ASSERT_EQ(p->timeline.servo_count(), 6u);
+  ASSERT_EQ(p->timeline.count(0), 2u);
   EXPECT_DOUBLE_EQ(*p->timeline.value(0, 200), 1500);
   // The packets sample it: (1 - cos(pi k/4)) / 2 of the way at k = 1..4, sent at (k-1)/4.
   std::vector<std::pair<std::uint32_t, int>> got;

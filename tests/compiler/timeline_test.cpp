@@ -96,13 +96,13 @@ TEST(Easing, BadNamesSayWhatIsWrong) {
 
 TEST(Timeline, SegmentsAndHolds) {
   Timeline tl;
-  tl.servos.resize(1);
+  tl.resize(1);
   Segment a;
   a.start = ExactMs(100);
   a.end = ExactMs(300);
   a.from = 0;
   a.to = 200;
-  tl.servos[0].push_back(a);
+  tl.add(0, a);
   EXPECT_FALSE(tl.value(0, 50));
   EXPECT_DOUBLE_EQ(*tl.value(0, 200), 100);
   EXPECT_DOUBLE_EQ(*tl.value(0, 1000), 200);  // holds after its last segment
