@@ -1,9 +1,38 @@
-# Every dependency comes from a Debian 12 package (scripts/install-deps.sh installs them).
-find_package(yaml-cpp REQUIRED)   # libyaml-cpp-dev
-find_package(CLI11 REQUIRED)      # libcli11-dev
-find_package(fmt REQUIRED)        # libfmt-dev
-find_package(GTest REQUIRED)      # libgtest-dev
-include(GoogleTest)
-find_package(Threads REQUIRED)
-find_package(PkgConfig REQUIRED)  # pkg-config
-pkg_check_modules(HIDAPI REQUIRED IMPORTED_TARGET hidapi-hidraw)  # libhidapi-dev
+# Every dependency comes from a Debian 12 package (scripts/install-deps.sh installs them). A
+# missing one stops the configure step with the package that provides it, not CMake's generic
+# "could not find a package configuration file".
+
+# seqc_find(Name debian-package [find_package arguments...])
+macro(seqc_find name debian_package)
+  find_package(${name} ${ARGN} QUIET)
+  if(NOT ${name}_FOUND)
+    message(FATAL_ERROR
+      "seqc needs ${name}, which is missing. On Debian or Ubuntu install it with:\n"
+      "  sudo apt-get install ${debian_package}\n"
+      "(scripts/install-deps.sh installs everything seqc builds and tests with.)")
+  endif()
+endmacro()
+
+seqc_find(yaml-cpp libyaml-cpp-dev)
+seqc_find(CLI11 libcli11-dev)
+seqc_find(fmt libfmt-dev)
+seqc_find(Threads libc6-dev)
+seqc_find(PkgConfig pkg-config)
+pkg_check_modules(HIDAPI QUIET IMPORTED_TARGET hidapi-hidraw)
+if(NOT HIDAPI_FOUND)
+  message(FATAL_ERROR
+    "seqc needs hidapi (hidapi-hidraw), which is missing. On Debian or Ubuntu install it with:\n"
+    "  sudo apt-get install libhidapi-dev")
+endif()
+
+# GoogleTest only for the tests: `-DBUILD_TESTING=OFF` builds the tool without it.
+if(BUILD_TESTING)
+  find_package(GTest QUIET)
+  if(NOT GTest_FOUND)
+    message(FATAL_ERROR
+      "seqc's tests need GoogleTest, which is missing. Install it with:\n"
+      "  sudo apt-get install libgtest-dev libgmock-dev\n"
+      "or build the tool alone with -DBUILD_TESTING=OFF.")
+  endif()
+  include(GoogleTest)
+endif()

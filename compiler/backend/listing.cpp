@@ -1,10 +1,12 @@
 #include "compiler/backend/listing.hpp"
+#include "compiler/source/json_text.hpp"
 
 #include <fmt/format.h>
 
 #include "compiler/source/units.hpp"
 
 namespace seqc::backend {
+using compiler::json_string;
 namespace {
 
 std::string servo_label(const compiler::ServoProgram& program, std::uint8_t id) {
@@ -48,29 +50,6 @@ struct FieldsOf {
 
 std::string fields(const lsc::Request& request) { return std::visit(FieldsOf{}, request); }
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 }  // namespace
 

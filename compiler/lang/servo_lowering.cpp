@@ -64,7 +64,10 @@ void ServoLowering::finish(ServoProgram& program) {
   }
   for (const FitShortfall& s : fit.shortfalls) {
     const ServoInfo& info = robot_.info.servos[s.servo];
-    reporter_.warning(s.where, "even 20ms actions cannot keep '" + info.name + "' within " +
+    // A curve always has a segment; should one not, the warning still points into the file.
+    const Location where =
+        s.where.file != kNoFile ? s.where : sequence_at_.value_or(Location{0, 1, 1});
+    reporter_.warning(where, "even 20ms actions cannot keep '" + info.name + "' within " +
                                    format_units(s.tolerance) + " of this curve: it is " +
                                    format_units(s.error) + " off at " + format_seconds(s.at_ms));
   }

@@ -53,10 +53,11 @@ std::string caret_padding(std::string_view line, std::size_t column) {
 //         |   ^
 // Without a column the caret line is left out; with line 0 only "path: error: message" is
 // printed; a location in no known file (kNoFile or a stale index) prints "seqc: error: message".
-std::string render(const Diagnostic& d, const SourceManager& sources, bool strict) {
+std::string render(const Diagnostic& d, const SourceManager& sources, bool strict, bool color) {
   const Location& at = d.location;
   const bool known_file = at.file < sources.file_count();
-  std::string out;
+  const auto sgr = [color](const char* code) { return color ? std::string(code) : std::string(); };
+  std::string out = sgr("\033[1m");
   if (!known_file) {
     out += "seqc";
   } else {
@@ -69,18 +70,18 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
   const bool promoted = strict && d.severity == Severity::Warning;
   switch (d.severity) {
     case Severity::Error:
-      out += ": error: ";
+      out += ": " + sgr("\033[31m") + "error: ";
       break;
     case Severity::Warning:
-      out += promoted ? ": error: " : ": warning: ";
+      out += promoted ? ": " + sgr("\033[31m") + "error: " : ": " + sgr("\033[35m") + "warning: ";
       break;
     case Severity::Note:
-      out += ": note: ";
+      out += ": " + sgr("\033[36m") + "note: ";
       break;
   }
-  out += d.message;
+  out += sgr("\033[0m\033[1m") + d.message;
   if (promoted) out += " [--strict]";
-  out += '\n';
+  out += sgr("\033[0m") + '\n';
 
   if (!known_file || at.line == 0) return out;
   if (at.line > sources.line_count(at.file)) return out;
@@ -92,14 +93,16 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
   out += line;
   out += '\n';
   if (at.column > 0) {
-    out += std::string(width, ' ') + " | " + caret_padding(line, at.column) + "^\n";
+    out += std::string(width, ' ') + " | " + caret_padding(line, at.column) + sgr("\033[32m") +
+           "^" + sgr("\033[0m") + "\n";
   }
   return out;
 }
 
-std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool strict) {
+std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool strict,
+                       bool color) {
   std::string out;
-  for (const Diagnostic& d : ds.all()) out += render(d, sources, strict);
+  for (const Diagnostic& d : ds.all()) out += render(d, sources, strict, color);
   return out;
 }
 

@@ -43,9 +43,12 @@ class Diagnostics {
 };
 
 // "path:line:col: error: message", the source line, and a caret under the column.
-// With strict, warnings are rendered as errors.
-std::string render(const Diagnostic& d, const SourceManager& sources, bool strict = false);
-std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool strict = false);
+// With strict, warnings are rendered as errors. With color, ANSI SGR codes as clang uses them:
+// bold location and message, red error, magenta warning, cyan note, green caret.
+std::string render(const Diagnostic& d, const SourceManager& sources, bool strict = false,
+                   bool color = false);
+std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool strict = false,
+                       bool color = false);
 
 // The closest candidate to `word` by edit distance, or "" if none is close enough.
 std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates);

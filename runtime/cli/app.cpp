@@ -1,22 +1,65 @@
 #include "runtime/cli/app.hpp"
 
 #include <ostream>
+#include <string>
+#include <vector>
 
-#include <CLI/CLI.hpp>
-
-#include "runtime/cli/commands.hpp"
+#include "runtime/cli/usage_hints.hpp"
+#include "runtime/cli/version.hpp"
 
 namespace seqc::cli {
+namespace {
 
-int run(int argc, const char* const* argv, Context& ctx) {
-  CLI::App app{"seqc: compile, check and upload motion sequences for hobby servo robots", "seqc"};
-  app.set_version_flag("--version", "seqc 0.1.0");
+constexpr const char* kExitFooter =
+    "Exit status: 0 ok, 1 invalid input, 2 usage error, 3 port unavailable,\n"
+    "4 device failure, 5 file error, 70 internal error, 130 interrupted.";
+
+// `seqc help [SUBCOMMAND...]`: the same text as `seqc [SUBCOMMAND...] --help`.
+void add_help_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto topic = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd =
+      app.add_subcommand("help", "Print the help of seqc or of a subcommand (seqc help group run)");
+  cmd->add_option("SUBCOMMAND", *topic, "The subcommand to explain");
+  cmd->callback([&app, &ctx, &result, topic] {
+    std::string unknown;
+    const CLI::App* target = find_subcommand(app, *topic, unknown);
+    if (target == nullptr) {
+      ctx.err << "seqc: error: " << unknown << "\n";
+      result.code = ExitCode::Usage;
+      return;
+    }
+    ctx.out << target->help();
+    result.code = ExitCode::Ok;
+  });
+}
+
+// --color: "auto" colours diagnostics when stderr is a terminal and NO_COLOR is unset.
+bool wants_color(const std::string& mode, const Context& ctx) {
+  if (mode == "always") return true;
+  if (mode == "never") return false;
+  return ctx.err_is_terminal && !ctx.no_color_env;
+}
+
+}  // namespace
+
+void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
+  app.set_version_flag("--version", std::string("seqc ") + kVersion);
   app.require_subcommand(1);
-  app.footer(
-      "Exit status: 0 ok, 1 invalid input, 2 usage error, 3 port unavailable,\n"
-      "4 device failure, 5 file error, 70 internal error, 130 interrupted.");
+  app.fallthrough();  // global options may also follow the subcommand
+  app.footer(kExitFooter);
+  auto color = std::make_shared<std::string>("auto");
+  auto quiet = std::make_shared<bool>(false);
+  auto verbose = std::make_shared<bool>(false);
+  app.add_flag("-q,--quiet", *quiet, "Print only errors and data (no progress or summaries)");
+  app.add_flag("-v,--verbose", *verbose, "Also report every re-send, restart and probe");
+  app.add_option("--color", *color, "Colour in diagnostics: auto (a terminal without NO_COLOR), "
+                                    "always or never")
+      ->check(CLI::IsMember({"auto", "always", "never"}));
+  app.parse_complete_callback([&ctx, color, quiet, verbose] {
+    ctx.verbosity = *quiet ? -1 : (*verbose ? 1 : 0);
+    ctx.color = wants_color(*color, ctx);
+  });
 
-  Outcome outcome;
   add_check_command(app, ctx, outcome);
   add_compile_command(app, ctx, outcome);
   add_decode_command(app, ctx, outcome);
@@ -30,7 +73,20 @@ int run(int argc, const char* const* argv, Context& ctx) {
   add_offset_command(app, ctx, outcome);
   add_bus_info_command(app, ctx, outcome);
   add_upload_command(app, ctx, outcome);
+  add_help_command(app, ctx, outcome);
+}
 
+int run(int argc, const char* const* argv, Context& ctx) {
+  CLI::App app{kAppDescription, "seqc"};
+  Outcome outcome;
+  build_app(app, ctx, outcome);
+
+  std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+  if (auto unknown = find_unknown_word(app, args)) {
+    ctx.err << "seqc: error: " << *unknown << "\n"
+            << "seqc: run 'seqc help' for the list of commands and options\n";
+    return to_int(ExitCode::Usage);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,14 +1,18 @@
-// seqc check FILE... [--strict]: diagnostics on stderr, one summary line per file on stdout:
-// for a stored group its budget ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units
-// (base at 4.411 s)"), for a streamed program its packets and duration, else its mistakes.
+// seqc check FILE... [--strict] [--format text|json|sarif]: with text (the default)
+// diagnostics on stderr and one summary line per file on stdout: for a stored group its budget
+// ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)"), for a
+// streamed program its packets and duration, else its mistakes. With json or sarif, one
+// document on stdout holding every file's diagnostics (check_formats.hpp) and nothing else.
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "compiler/source/units.hpp"
+#include "runtime/cli/check_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/version.hpp"
 #include "runtime/protocol/group_download.hpp"
 
 namespace seqc::cli {
@@ -24,16 +28,43 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
   struct Options {
     std::vector<std::string> files;
     bool strict = false;
+    std::string format = "text";
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("check", "Check choreography files for mistakes");
   cmd->add_option("FILE", opts->files, "Choreography files (.yaml)")->required();
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->add_option("--format", opts->format,
+                  "text (default), json (an array of diagnostics) or sarif (SARIF 2.1.0)")
+      ->check(CLI::IsMember({"text", "json", "sarif"}));
   cmd->callback([&ctx, &result, opts] {
+    if (opts->format != "text") {
+      std::vector<Compiled> compiled;
+      compiled.reserve(opts->files.size());
+      std::vector<CheckedFile> files;
+      ExitCode code = ExitCode::Ok;
+      for (const std::string& path : opts->files) {
+        compiled.push_back(compile_quietly(ctx, path, opts->strict));
+        const Compiled& c = compiled.back();
+        if (c.code == ExitCode::FileError) {
+          code = ExitCode::FileError;
+        } else if (c.code != ExitCode::Ok && code == ExitCode::Ok) {
+          code = ExitCode::InvalidInput;
+        }
+      }
+      for (std::size_t i = 0; i < compiled.size(); ++i) {
+        files.push_back({opts->files[i] == "-" ? kStdinName : opts->files[i], &compiled[i].output});
+      }
+      ctx.out << (opts->format == "json" ? diagnostics_json(files, opts->strict)
+                                         : diagnostics_sarif(files, opts->strict, kVersion));
+      result.code = code;
+      return;
+    }
     bool invalid = false;
     bool unreadable = false;
-    for (const std::string& path : opts->files) {
-      Compiled c = compile_and_report(ctx, path, opts->strict);
+    for (const std::string& given : opts->files) {
+      Compiled c = compile_and_report(ctx, given, opts->strict);
+      const std::string path = given == "-" ? kStdinName : given;
       if (c.code == ExitCode::FileError) {
         unreadable = true;
         continue;

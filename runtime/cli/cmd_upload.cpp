@@ -1,5 +1,5 @@
-// seqc upload FILE [--port P] [--group N] [--run [--times K]] [--dry-run] [--trace FILE]
-//                  [--verbose] [--strict] [--retries N]
+// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever]] [--dry-run]
+//                  [--trace FILE] [--strict] [--retries N]
 // Compiles FILE, downloads it into an action group of the servo controller (runtime/upload)
 // and, with --run, starts it. An invalid file sends nothing and opens no port.
 #include <fstream>
@@ -29,7 +29,7 @@ struct UploadArgs {
   int times = 1;
   bool dry_run = false;
   std::string trace;
-  bool verbose = false;
+  bool forever = false;
   bool strict = false;
   int retries = 4;
 };
@@ -61,7 +61,9 @@ void print_dry_run(Context& ctx, const UploadArgs& a, const std::vector<lsc::Req
   ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
   if (a.run) {
     ctx.out << line_for(
-        lsc::GroupRun{static_cast<std::uint8_t>(a.group), static_cast<std::uint16_t>(a.times)}, "");
+        lsc::GroupRun{static_cast<std::uint8_t>(a.group),
+                      static_cast<std::uint16_t>(a.forever ? 0 : a.times)},
+        "");
     ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
   }
 }
@@ -91,7 +93,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
 
   if (a.dry_run) {
     print_dry_run(ctx, a, plan);
-    ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
+    if (ctx.verbosity >= 0) ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
             << "; nothing was sent\n";
     return ExitCode::Ok;
   }
@@ -124,9 +126,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   options.group = group;
   options.retries = a.retries;
   options.run = a.run;
-  options.run_times = static_cast<std::uint16_t>(a.times);
-  upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, a.verbose);
-  if (a.verbose) {
+  options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
+  upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
+                                   ctx.terminal_columns);
+  if (ctx.verbosity > 0) {
     ctx.err << "upload: " << plural(actions, "action") << " into group " << a.group << " on "
             << transport->describe() << "\n";
   }
@@ -144,15 +147,16 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   std::string detail = fmt::format("{}, {:.1f} s", where, secs);
   if (r.retries > 0) detail += ", " + plural(static_cast<std::size_t>(r.retries), "re-send");
   if (r.restarts > 0) detail += ", " + plural(static_cast<std::size_t>(r.restarts), "restart");
-  ctx.out << "the controller acknowledged " << plural(r.actions_acknowledged, "action")
+  if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it
+  ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
           << " into group " << a.group << " (" << detail << ")\n";
   if (a.run) {
     const std::string times =
-        a.times == 0 ? "looping until stopped" : plural(static_cast<std::size_t>(a.times), "time");
+        a.forever ? "looping until stopped" : plural(static_cast<std::size_t>(a.times), "time");
     if (r.run_reported) {
-      ctx.out << "group " << a.group << " started (" << times << ")\n";
+      ctx.err << "seqc: group " << a.group << " started (" << times << ")\n";
     } else {
-      ctx.out << "asked the controller to run group " << a.group << " (" << times
+      ctx.err << "seqc: asked the controller to run group " << a.group << " (" << times
               << "); it did not report starting it\n";
     }
   }
@@ -172,13 +176,16 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--group", a->group, "Action group to store it in (0-254, default 0)")
       ->check(CLI::Range(0, 254));
   CLI::Option* run = cmd->add_flag("--run", a->run, "Start the group once it is stored");
-  cmd->add_option("--times", a->times, "With --run: how many times (0 = until stopped, default 1)")
-      ->check(CLI::Range(0, 65535))
-      ->needs(run);
+  CLI::Option* times =
+      cmd->add_option("--times", a->times, "With --run: how many times to play it (1-65535)")
+          ->check(CLI::Range(1, 65535))
+          ->needs(run);
+  cmd->add_flag("--forever", a->forever, "With --run: play it until stopped")
+      ->needs(run)
+      ->excludes(times);
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
   cmd->add_option("--trace", a->trace,
                   "Write every byte sent and received, with times, to this file (docs/trace.md)");
-  cmd->add_flag("--verbose", a->verbose, "Report every re-send, restart and skipped frame");
   cmd->add_flag("--strict", a->strict, "Treat warnings as errors");
   cmd->add_option("--retries", a->retries,
                   "Re-sends of one frame before giving up (0-20, default 4)")

@@ -1,8 +1,9 @@
 // Shared by the offline subcommands: compile one file and report on stderr the way every
-// subcommand does (diagnostics, or "seqc: error: cannot read ..." for a file error).
+// subcommand does (diagnostics, coloured when ctx.color, or "seqc: error: cannot read ..." for
+// a file error). The path "-" reads the file from standard input; it is called <stdin> in
+// diagnostics and its includes resolve from the current directory.
 #pragma once
 
-#include <ostream>
 #include <string>
 
 #include "compiler/compile.hpp"
@@ -17,16 +18,11 @@ struct Compiled {
   ExitCode code = ExitCode::Ok;
 };
 
-inline Compiled compile_and_report(Context& ctx, const std::string& path, bool strict) {
-  Compiled c{compiler::compile_file(path, ctx.files, compiler::CompileOptions{strict})};
-  if (c.output.read_error) {
-    ctx.err << "seqc: error: " << *c.output.read_error << "\n";
-    c.code = ExitCode::FileError;
-    return c;
-  }
-  ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict);
-  c.code = c.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
-  return c;
-}
+inline constexpr const char* kStdinName = "<stdin>";
+
+// Compiles without printing anything (for --format json|sarif).
+Compiled compile_quietly(Context& ctx, const std::string& path, bool strict);
+// Compiles and prints the diagnostics (or the file error) on ctx.err.
+Compiled compile_and_report(Context& ctx, const std::string& path, bool strict);
 
 }  // namespace seqc::cli

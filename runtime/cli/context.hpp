@@ -29,6 +29,15 @@ struct Context {
   // several commands can share it. Its time is xarm_clock's.
   emu::XArmEmulator* xarm_emulator = nullptr;
   io::ManualClock* xarm_clock = nullptr;
+  // From the environment, read once in main: NO_COLOR set and non-empty, and the terminal's
+  // width in columns (0 when stderr is not a terminal).
+  bool no_color_env = false;
+  int terminal_columns = 0;
+
+  // Set from the global options before any subcommand runs:
+  // -q/--quiet = -1 (errors and data only), 0, -v/--verbose = 1 (every re-send, port, probe).
+  int verbosity = 0;
+  bool color = false;  // diagnostics in colour (--color, NO_COLOR, err_is_terminal)
 };
 
 }  // namespace seqc::cli

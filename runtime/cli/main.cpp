@@ -1,5 +1,7 @@
 // seqc's entry point: wires the real clock, disk and terminal into the CLI and runs it.
+#include <sys/ioctl.h>
 #include <unistd.h>
+#include <cstdlib>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -26,5 +28,11 @@ int main(int argc, char** argv) {
   seqc::io::DiskFileReader files;
   seqc::cli::Context ctx{std::cout,      std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
                          &g_interrupted, &std::cin};
+  const char* no_color = std::getenv("NO_COLOR");  // https://no-color.org: set and non-empty
+  ctx.no_color_env = no_color != nullptr && *no_color != '\0';
+  struct winsize ws {};
+  if (ctx.err_is_terminal && ::ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0) {
+    ctx.terminal_columns = ws.ws_col;
+  }
   return seqc::cli::run(argc, argv, ctx);
 }

@@ -21,17 +21,24 @@ std::string permission_denied_message(std::string_view path,
   std::string out = "permission denied opening " + std::string(path) + "\n";
   if (is_hidraw_path(path)) {
     out +=
-        "  hint: install seqc's udev rule so your login can use the controller:\n"
-        "    sudo cp scripts/udev/99-seqc-lobot.rules /etc/udev/rules.d/\n"
+        "  hint: install seqc's udev rule so your login can use the controller (the .deb\n"
+        "  installs it as /usr/lib/udev/rules.d/70-seqc.rules); from a source tree:\n"
+        "    sudo cp scripts/udev/70-seqc.rules /etc/udev/rules.d/\n"
         "    sudo udevadm control --reload-rules && sudo udevadm trigger\n"
         "  then unplug and replug the controller (see docs/ports.md)";
     return out;
   }
-  // Serial devices belong to the dialout group on Debian, Ubuntu and Fedora (uucp on Arch).
-  std::string g =
-      group && !group->empty() && *group != "root" && *group != "tty" ? *group : "dialout";
-  out += "  hint: add yourself to the '" + g + "' group, then log out and back in:\n";
-  out += "    sudo usermod -aG " + g + " $USER";
+  // Name the group the node really belongs to; when that says nothing useful (root, tty, or
+  // unknown), give the group serial adapters belong to on Debian, Ubuntu and Fedora.
+  const bool owned = group && !group->empty() && *group != "root" && *group != "tty";
+  const std::string g = owned ? *group : "dialout";
+  out += "  hint: " +
+         (owned ? std::string(path) + " belongs to the '" + g + "' group"
+                : std::string("serial ports usually belong to the 'dialout' group")) +
+         "; add yourself to it, then log out and back in:\n";
+  out += "    sudo usermod -aG " + g + " $USER\n";
+  out += "  (or install seqc's udev rule, 70-seqc.rules, which gives the user at the machine\n"
+         "  access to the usual USB serial adapters; see docs/ports.md)";
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "runtime/upload/progress_text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -51,6 +52,13 @@ std::string format_progress_bar(const UploadProgress& p, int width) {
   return out;
 }
 
+int bar_cells_for(const UploadProgress& p, int columns) {
+  if (columns <= 0) return 30;
+  // The text after the bar, at its widest; one column spare so the cursor never wraps.
+  const int text = static_cast<int>(format_progress_bar(p, 0).size()) - 3;
+  return std::clamp(columns - text - 4, 5, 50);
+}
+
 std::string format_progress_line(const UploadProgress& p) {
   const std::size_t total = p.actions_total == 0 ? 1 : p.actions_total;
   char head[80];
@@ -67,8 +75,8 @@ std::string format_retry(const RetryEvent& e) {
          std::to_string(e.max_attempts) + ": " + e.reason;
 }
 
-ProgressPrinter::ProgressPrinter(std::ostream& err, bool terminal, bool verbose)
-    : err_(err), terminal_(terminal), verbose_(verbose) {}
+ProgressPrinter::ProgressPrinter(std::ostream& err, bool terminal, int verbosity, int columns)
+    : err_(err), terminal_(terminal), verbosity_(verbosity), columns_(columns) {}
 
 ProgressPrinter::~ProgressPrinter() { finish(); }
 
@@ -95,8 +103,9 @@ void ProgressPrinter::on_progress(const UploadProgress& p) {
     last_attempt_ = p.attempt;
     last_tenth_ = 0;
   }
+  if (verbosity_ < 0) return;
   if (terminal_) {
-    std::string bar = format_progress_bar(p);
+    std::string bar = format_progress_bar(p, bar_cells_for(p, columns_));
     if (bar == last_bar_) return;
     last_bar_ = bar;
     err_ << "\r\033[K" << bar;
@@ -112,11 +121,11 @@ void ProgressPrinter::on_progress(const UploadProgress& p) {
 }
 
 void ProgressPrinter::on_retry(const RetryEvent& event) {
-  if (verbose_) message_line(format_retry(event));
+  if (verbosity_ > 0) message_line(format_retry(event));
 }
 
 void ProgressPrinter::on_note(const std::string& note) {
-  if (verbose_) message_line(note);
+  if (verbosity_ > 0) message_line(note);
 }
 
 }  // namespace seqc::upload

@@ -14,6 +14,8 @@ namespace seqc::upload {
 
 // "[##########..........]  510/1020 actions  1.2 kB/s  0:12 left" (width = bar cells).
 std::string format_progress_bar(const UploadProgress& p, int width = 30);
+// The bar's cells so that the whole line fits in `columns` (30 when columns is 0).
+int bar_cells_for(const UploadProgress& p, int columns);
 // "510/1020 actions acknowledged (50%), 1.2 kB/s, about 0:12 left".
 std::string format_progress_line(const UploadProgress& p);
 // "re-sending step 4 (action 17 of 1020: block 0, index 16), attempt 2 of 5: no ..."
@@ -21,7 +23,9 @@ std::string format_retry(const RetryEvent& e);
 
 class ProgressPrinter final : public UploadObserver {
  public:
-  ProgressPrinter(std::ostream& err, bool terminal, bool verbose);
+  // verbosity: -1 prints nothing, 0 progress, 1 also re-sends and notes. columns: the
+  // terminal's width (0 = unknown), so the bar fits on one line.
+  ProgressPrinter(std::ostream& err, bool terminal, int verbosity, int columns = 0);
   ~ProgressPrinter() override;
 
   void on_progress(const UploadProgress& progress) override;
@@ -35,7 +39,8 @@ class ProgressPrinter final : public UploadObserver {
 
   std::ostream& err_;
   bool terminal_;
-  bool verbose_;
+  int verbosity_;
+  int columns_;
   bool bar_shown_ = false;
   std::string last_bar_;
   std::size_t last_tenth_ = 0;

@@ -135,23 +135,34 @@ TEST(FormatPortList, OneLinePerCandidate) {
 }
 
 TEST(PortMessages, PermissionHints) {
+  const std::string rule_hint =
+      "  (or install seqc's udev rule, 70-seqc.rules, which gives the user at the machine\n"
+      "  access to the usual USB serial adapters; see docs/ports.md)";
   EXPECT_EQ(permission_denied_message("/dev/ttyUSB0", std::string("dialout")),
             "permission denied opening /dev/ttyUSB0\n"
-            "  hint: add yourself to the 'dialout' group, then log out and back in:\n"
-            "    sudo usermod -aG dialout $USER");
+            "  hint: /dev/ttyUSB0 belongs to the 'dialout' group; add yourself to it, then log "
+            "out and back in:\n"
+            "    sudo usermod -aG dialout $USER\n" +
+                rule_hint);
+  // The group the node really has, not always dialout (Arch: uucp).
   EXPECT_EQ(permission_denied_message("/dev/ttyACM0", std::string("uucp")),
             "permission denied opening /dev/ttyACM0\n"
-            "  hint: add yourself to the 'uucp' group, then log out and back in:\n"
-            "    sudo usermod -aG uucp $USER");
-  // root- or tty-owned nodes: the usual serial group is still the advice.
-  EXPECT_NE(permission_denied_message("/dev/ttyUSB0", std::string("root")).find("dialout"),
+            "  hint: /dev/ttyACM0 belongs to the 'uucp' group; add yourself to it, then log out "
+            "and back in:\n"
+            "    sudo usermod -aG uucp $USER\n" +
+                rule_hint);
+  // root- or tty-owned nodes: the usual serial group is still the advice, not "belongs to root".
+  const std::string root_owned = permission_denied_message("/dev/ttyUSB0", std::string("root"));
+  EXPECT_NE(root_owned.find("serial ports usually belong to the 'dialout' group"),
             std::string::npos);
+  EXPECT_EQ(root_owned.find("belongs to"), std::string::npos);
   EXPECT_NE(permission_denied_message("/dev/ttyUSB0", std::nullopt).find("dialout"),
             std::string::npos);
   EXPECT_EQ(permission_denied_message("/dev/hidraw3", std::string("root")),
             "permission denied opening /dev/hidraw3\n"
-            "  hint: install seqc's udev rule so your login can use the controller:\n"
-            "    sudo cp scripts/udev/99-seqc-lobot.rules /etc/udev/rules.d/\n"
+            "  hint: install seqc's udev rule so your login can use the controller (the .deb\n"
+            "  installs it as /usr/lib/udev/rules.d/70-seqc.rules); from a source tree:\n"
+            "    sudo cp scripts/udev/70-seqc.rules /etc/udev/rules.d/\n"
             "    sudo udevadm control --reload-rules && sudo udevadm trigger\n"
             "  then unplug and replug the controller (see docs/ports.md)");
 }
@@ -172,8 +183,8 @@ TEST(PortMessages, ErrnoChoosesTheMessage) {
 // The rule file must name the same device the code looks for, and exist where the
 // permission message sends people.
 TEST(UdevRule, GrantsAccessToTheDeviceDiscoveryLooksFor) {
-  std::ifstream in(std::string(SEQC_SOURCE_DIR) + "/scripts/udev/99-seqc-lobot.rules");
-  ASSERT_TRUE(in) << "scripts/udev/99-seqc-lobot.rules is missing";
+  std::ifstream in(std::string(SEQC_SOURCE_DIR) + "/scripts/udev/70-seqc.rules");
+  ASSERT_TRUE(in) << "scripts/udev/70-seqc.rules is missing";
   std::stringstream text;
   text << in.rdbuf();
   std::string rule;
@@ -190,7 +201,7 @@ TEST(UdevRule, GrantsAccessToTheDeviceDiscoveryLooksFor) {
   EXPECT_NE(rule.find("KERNEL==\"hidraw*\""), std::string::npos) << rule;
   EXPECT_NE(rule.find("TAG+=\"uaccess\""), std::string::npos) << rule;
   EXPECT_NE(permission_denied_message("/dev/hidraw0", std::nullopt)
-                .find("scripts/udev/99-seqc-lobot.rules"),
+                .find("scripts/udev/70-seqc.rules"),
             std::string::npos);
 }
 

@@ -43,7 +43,7 @@ TEST(ProgressText, Retry) {
 
 TEST(ProgressPrinter, PlainLinesEveryTenthAndRetriesOnlyWhenVerbose) {
   std::ostringstream quiet, verbose;
-  ProgressPrinter q(quiet, false, false), v(verbose, false, true);
+  ProgressPrinter q(quiet, false, 0), v(verbose, false, 1);
   for (std::size_t i = 0; i <= 1020; i += 51) {
     q.on_progress(at(i, std::chrono::milliseconds(i * 36)));
     v.on_progress(at(i, std::chrono::milliseconds(i * 36)));
@@ -63,7 +63,7 @@ TEST(ProgressPrinter, PlainLinesEveryTenthAndRetriesOnlyWhenVerbose) {
 TEST(ProgressPrinter, TerminalRedrawsOneLine) {
   std::ostringstream err;
   {
-    ProgressPrinter p(err, true, false);
+    ProgressPrinter p(err, true, 0);
     p.on_progress(at(1, 1s));
     p.on_progress(at(2, 2s));
   }

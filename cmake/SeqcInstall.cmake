@@ -1,0 +1,24 @@
+# What `cmake --install` puts where (GNU layout; the .deb installs under /usr):
+#   bin/seqc                                  the tool
+#   share/seqc/seqc.schema.json               the language's JSON Schema, for editors
+#   share/doc/seqc/examples/*.yaml            the examples; README, LICENSE, CHANGELOG
+#   share/man/man1/seqc.1                     generated from the same text as --help
+#   share/bash-completion/completions/seqc    bash (zsh: share/zsh/vendor-completions/_seqc,
+#   share/fish/vendor_completions.d/seqc.fish  fish), generated likewise
+#   lib/udev/rules.d/70-seqc.rules            device access (uaccess; plugdev/dialout fallback)
+include(GNUInstallDirs)
+
+install(TARGETS seqc RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES schemas/seqc.schema.json DESTINATION ${CMAKE_INSTALL_DATADIR}/seqc)
+install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
+        FILES_MATCHING PATTERN "*.yaml")
+install(FILES README.md LICENSE CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES ${SEQC_GENERATED_DOCS}/seqc.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+install(FILES ${SEQC_GENERATED_DOCS}/seqc.bash
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME seqc)
+install(FILES ${SEQC_GENERATED_DOCS}/_seqc DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
+install(FILES ${SEQC_GENERATED_DOCS}/seqc.fish
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/fish/vendor_completions.d)
+# udev reads rules from /usr/lib/udev/rules.d (and /etc/udev/rules.d), not from /usr/local: a
+# prefix other than /usr installs the rule where `sudo cp` can find it (docs/ports.md).
+install(FILES scripts/udev/70-seqc.rules DESTINATION lib/udev/rules.d)

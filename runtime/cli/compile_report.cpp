@@ -1,0 +1,62 @@
+#include "runtime/cli/compile_report.hpp"
+
+#include <iterator>
+#include <ostream>
+
+namespace seqc::cli {
+namespace {
+
+// Serves <stdin> from the text read once; every other path (includes) from the disk.
+class StdinFirstReader final : public compiler::FileReader {
+ public:
+  StdinFirstReader(std::string text, compiler::FileReader& rest)
+      : text_(std::move(text)), rest_(rest) {}
+  seqc::Result<std::string> read(const std::string& path) override {
+    if (path == kStdinName) return text_;
+    return rest_.read(path);
+  }
+
+ private:
+  std::string text_;
+  compiler::FileReader& rest_;
+};
+
+Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict) {
+  Compiled c{compiler::compile_file(path, files, compiler::CompileOptions{strict})};
+  if (c.output.read_error) {
+    c.code = ExitCode::FileError;
+  } else {
+    c.code = c.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
+  }
+  return c;
+}
+
+}  // namespace
+
+Compiled compile_quietly(Context& ctx, const std::string& path, bool strict) {
+  if (path == "-") {
+    std::string text;
+    if (ctx.in != nullptr) {
+      text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
+    }
+    StdinFirstReader reader(std::move(text), ctx.files);
+    return compile_from(reader, kStdinName, strict);
+  }
+  return compile_from(ctx.files, path, strict);
+}
+
+}  // namespace seqc::cli
+
+namespace seqc::cli {
+
+Compiled compile_and_report(Context& ctx, const std::string& path, bool strict) {
+  Compiled c = compile_quietly(ctx, path, strict);
+  if (c.output.read_error) {
+    ctx.err << "seqc: error: " << *c.output.read_error << "\n";
+    return c;
+  }
+  ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
+  return c;
+}
+
+}  // namespace seqc::cli
