@@ -6,6 +6,7 @@
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/session_text.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/disk.hpp"
 
@@ -18,6 +19,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string emit = "hex";
     std::string output;
     bool strict = false;
+    bool dry_run = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -31,8 +33,11 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "frames")
       ->check(CLI::IsMember({"hex", "listing", "json"}))
       ->default_val("hex");
-  cmd->add_option("-o,--output", opts->output, "Write here instead of stdout (only on success)");
+  cmd->add_option("-o,--output", opts->output, "Write here instead of stdout (only on success; - is stdout)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->add_flag("--dry-run", opts->dry_run,
+                "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
+                "commented hex; `seqc decode -` reads it back");
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
@@ -48,7 +53,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
                                : opts->emit == "listing"
                                    ? backend::render_stream_listing(*car, *frames, c.output.sources)
                                    : backend::render_stream_json(*car, *frames);
-      if (opts->output.empty()) {
+      if (opts->output.empty() || opts->output == "-") {
         ctx.out << text;
       } else if (auto written = io::write_file_atomically(opts->output, text); !written) {
         ctx.err << "seqc: error: cannot write '" << opts->output << "': " << written.error().message
@@ -67,14 +72,18 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
       return;
     }
     std::string text;
-    if (opts->emit == "hex") {
+    if (opts->dry_run) {
+      std::vector<lsc::Request> requests;
+      for (const backend::PlannedFrame& f : *plan) requests.push_back(f.request);
+      text = upload_session_hex(requests, group, false, 1);
+    } else if (opts->emit == "hex") {
       text = backend::render_hex(*plan);
     } else if (opts->emit == "listing") {
       text = backend::render_listing(*program, *plan, group, c.output.sources);
     } else {
       text = backend::render_json(*program, *plan, group, c.output.sources);
     }
-    if (opts->output.empty()) {
+    if (opts->output.empty() || opts->output == "-") {
       ctx.out << text;
       return;
     }

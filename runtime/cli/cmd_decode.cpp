@@ -10,15 +10,14 @@
 namespace seqc::cli {
 namespace {
 
-// Lines starting with '#' are comments (so a listing's hex lines can be pasted with notes).
+// '#' starts a comment that runs to the end of the line, so a listing's hex lines can be
+// pasted with notes and `seqc upload --dry-run` ("55 55 02 07  # GroupStop") reads back.
 std::string strip_comments(const std::string& text) {
   std::istringstream in(text);
   std::string line;
   std::string out;
   while (std::getline(in, line)) {
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos && line[first] == '#') continue;
-    out += line + "\n";
+    out += line.substr(0, line.find('#')) + "\n";
   }
   return out;
 }

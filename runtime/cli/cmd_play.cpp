@@ -12,6 +12,7 @@
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/play_progress.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/servo_play.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
@@ -116,7 +117,7 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
   for (const backend::StreamFrame& f : *frames) {
     schedule.push_back({std::chrono::milliseconds(f.at_ms), f.bytes});
   }
-  ctx.err << "seqc: playing " << o.file << " on " << link->describe() << ": " << schedule.size()
+  if (ctx.verbosity >= 0) ctx.err << "seqc: playing " << o.file << " on " << link->describe() << ": " << schedule.size()
           << " frames over " << compiler::format_seconds(program.duration_ms)
           << "; Ctrl-C stops the car\n";
   ctx.err.flush();
@@ -124,7 +125,13 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
   player::PlayOptions options;
   options.interrupted = ctx.interrupted;
   options.safe_stop = backend::stop_frame();
+  PlayProgress progress(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0, ctx.terminal_columns,
+                        std::chrono::milliseconds(program.duration_ms), schedule.size());
+  options.on_sent = [&](std::size_t i, const player::FrameTiming&) {
+    progress.on_sent(i, schedule[i].at);
+  };
   const player::PlayReport report = player::play(schedule, *link, ctx.clock, options);
+  progress.finish();
   const player::LatenessSummary late = player::summarize(report.lateness);
 
   ExitCode code = ExitCode::Ok;
@@ -133,6 +140,7 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
                                                        "; the car may still be moving";
   switch (report.end) {
     case player::PlayEnd::Completed:
+      if (ctx.verbosity < 0) break;
       ctx.err << "seqc: played " << report.sent << " frames in "
               << compiler::format_seconds(program.duration_ms) << "; lateness p50 "
               << ms_text(late.p50) << ", p99 " << ms_text(late.p99) << ", max " << ms_text(late.max)
@@ -149,7 +157,7 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
       code = ExitCode::DeviceFailure;
       break;
   }
-  if (spec->kind == transport::PortKind::Emulator) {
+  if (spec->kind == transport::PortKind::Emulator && ctx.verbosity >= 0) {
     ctx.err << "seqc: emu:raspblock received " << board.packets().size() << " packets, "
             << board.rejections().size() << " rejected\n";
   }

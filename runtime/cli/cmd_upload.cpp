@@ -12,6 +12,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/port_open.hpp"
+#include "runtime/cli/session_text.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 #include "runtime/upload/controller_link.hpp"
 #include "runtime/upload/progress_text.hpp"
@@ -47,27 +48,6 @@ ExitCode exit_code_for(upload::UploadStatus s) {
   }
 }
 
-std::string line_for(const lsc::Request& r, const std::string& role) {
-  auto bytes = lsc::encode_serial(r);
-  return fmt::format("{:<40}  # {}{}\n", bytes ? to_hex(*bytes) : "?", role, lsc::describe(r));
-}
-
-// --dry-run: every frame `upload` would send, in order, on stdout.
-void print_dry_run(Context& ctx, const UploadArgs& a, const std::vector<lsc::Request>& plan) {
-  ctx.out << line_for(lsc::GetBatteryVoltage{}, "probe: ");
-  ctx.out << line_for(lsc::GroupStop{}, "");
-  ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
-  for (const auto& r : plan) ctx.out << line_for(r, "");
-  ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
-  if (a.run) {
-    ctx.out << line_for(
-        lsc::GroupRun{static_cast<std::uint8_t>(a.group),
-                      static_cast<std::uint16_t>(a.forever ? 0 : a.times)},
-        "");
-    ctx.out << line_for(lsc::GetBatteryVoltage{}, "barrier: ");
-  }
-}
-
 std::string plural(std::size_t n, const char* word) {
   return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
 }
@@ -92,7 +72,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   const std::size_t actions = program->keyframes.size();
 
   if (a.dry_run) {
-    print_dry_run(ctx, a, plan);
+    ctx.out << upload_session_hex(plan, group, a.run,
+                                  static_cast<std::uint16_t>(a.forever ? 0 : a.times));
     if (ctx.verbosity >= 0) ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
             << "; nothing was sent\n";
     return ExitCode::Ok;

@@ -1,5 +1,7 @@
 #include "runtime/cli/servo_play.hpp"
 
+#include "runtime/cli/play_progress.hpp"
+
 #include <algorithm>
 #include <ostream>
 #include <string>
@@ -47,13 +49,20 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
     if (!s.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage")) {
       return ExitCode::DeviceFailure;
     }
-    ctx.err << "seqc: playing " << frames.size() << " moves ("
+    if (ctx.verbosity >= 0) ctx.err << "seqc: playing " << frames.size() << " moves ("
             << compiler::format_seconds(program->duration_ms()) << ") live on " << s.port_name()
             << "; Ctrl-C stops\n";
     player::PlayOptions options;
     options.interrupted = ctx.interrupted;
+    PlayProgress progress(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0,
+                          ctx.terminal_columns, std::chrono::milliseconds(program->duration_ms()),
+                          frames.size());
+    options.on_sent = [&](std::size_t i, const player::FrameTiming&) {
+      progress.on_sent(i, frames[i].at);
+    };
     const player::PlayReport report =
         player::play(frames, s.link().transport(), s.link().clock(), options);
+    progress.finish();
     const std::size_t sent = report.sent;
     const auto last_step = [&] {
       if (sent == 0) return std::string("before the first step");
@@ -79,7 +88,8 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
         const auto us = [](io::Duration d) {
           return std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(d).count());
         };
-        ctx.out << "played " << sent << " moves, "
+        if (ctx.verbosity < 0) return ExitCode::Ok;
+        ctx.err << "seqc: played " << sent << " moves, "
                 << compiler::format_seconds(program->duration_ms()) << " (send lateness p50 "
                 << us(late.p50) << " us, p99 " << us(late.p99) << " us, max " << us(late.max)
                 << " us)\n";

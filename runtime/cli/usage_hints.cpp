@@ -1,5 +1,7 @@
 #include "runtime/cli/usage_hints.hpp"
 
+#include <cctype>
+
 #include "compiler/source/diagnostics.hpp"
 
 namespace seqc::cli {
@@ -62,7 +64,10 @@ std::optional<std::string> find_unknown_word(const CLI::App& app,
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& word = args[i];
     if (word == "--") break;
-    if (word.size() > 1 && word[0] == '-') {
+    // "-20" is a negative number (an offset), not an option.
+    const bool number = word.size() > 1 && (std::isdigit(static_cast<unsigned char>(word[1])) ||
+                                            word[1] == '.');
+    if (word.size() > 1 && word[0] == '-' && !number) {
       const std::string name = word.substr(0, word.find('='));
       // Short options may be bundled ("-qv") or carry a value ("-o-"); check the first letter.
       const std::string key = name[1] == '-' ? name : name.substr(0, 2);

@@ -1,6 +1,8 @@
 #include "runtime/transport/port_discovery.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <set>
 #include <system_error>
@@ -14,6 +16,29 @@ bool is_usb_serial_name(const std::string& name) {
   return name.starts_with("ttyUSB") || name.starts_with("ttyACM");
 }
 
+bool is_onboard_uart_name(const std::string& name) {
+  return name.starts_with("ttyAMA") || name.starts_with("ttyS");
+}
+
+// JSON string without the compiler's helper (transport stays below it): device paths and USB
+// strings are short ASCII in practice; anything else is escaped byte by byte.
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c >= 0x7F) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
 std::string describe_hid(const HidDeviceInfo& info) {
   std::string out = info.product.empty() ? "USB HID" : info.product;
   if (!info.manufacturer.empty()) out += " (" + info.manufacturer + ")";
@@ -23,6 +48,7 @@ std::string describe_hid(const HidDeviceInfo& info) {
 
 std::string candidate_line(const PortCandidate& c) {
   if (c.kind == PortKind::Hid) return format_port(c.spec()) + "  " + describe_hid(c.hid);
+  if (c.onboard_uart) return c.path + "  on-board UART";
   if (c.path != c.device) return c.path + " -> " + c.device;
   return c.path;
 }
@@ -71,6 +97,19 @@ Discovery discover_ports(const DeviceLister& lister) {
             [](const auto& a, const auto& b) { return a.path < b.path; });
   out.candidates = std::move(serial);
 
+  std::vector<PortCandidate> uarts;
+  for (const std::string& name : lister.list_directory("/dev")) {
+    if (!is_onboard_uart_name(name)) continue;
+    const auto type = lister.read_line("/sys/class/tty/" + name + "/type");
+    if (!type || type->empty() || *type == "0") continue;  // no UART behind the node
+    PortCandidate c = serial_candidate("/dev/" + name, "/dev/" + name);
+    c.onboard_uart = true;
+    uarts.push_back(std::move(c));
+  }
+  std::sort(uarts.begin(), uarts.end(),
+            [](const auto& a, const auto& b) { return a.path < b.path; });
+  out.candidates.insert(out.candidates.end(), uarts.begin(), uarts.end());
+
   auto hid = lister.lobot_hid_devices();
   if (!hid) {
     out.warnings.push_back("cannot list USB HID devices: " + hid.error().message);
@@ -92,7 +131,11 @@ std::string no_controller_message() {
          "  hint: to try without hardware: --port emu:xarm";
 }
 
-Result<PortCandidate> select_default_port(const std::vector<PortCandidate>& candidates) {
+Result<PortCandidate> select_default_port(const std::vector<PortCandidate>& all) {
+  std::vector<PortCandidate> candidates;
+  for (const PortCandidate& c : all) {
+    if (!c.onboard_uart) candidates.push_back(c);
+  }
   if (candidates.size() == 1) return candidates.front();
   if (candidates.empty()) return make_error(no_controller_message());
   std::string msg =
@@ -105,6 +148,30 @@ std::string format_port_list(const std::vector<PortCandidate>& candidates) {
   std::string out;
   for (const auto& c : candidates) out += candidate_line(c) + "\n";
   return out;
+}
+
+std::string format_port_json(const std::vector<PortCandidate>& candidates) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const PortCandidate& c = candidates[i];
+    const char* kind = c.kind == PortKind::Hid ? "hid" : (c.onboard_uart ? "uart" : "serial");
+    out += (i ? ",\n  {" : "\n  {") + std::string("\"port\": ") + quoted(format_port(c.spec())) +
+           ", \"kind\": \"" + kind + "\", \"device\": " + quoted(c.device);
+    if (c.kind == PortKind::Hid) {
+      out += ", \"product\": " + quoted(c.hid.product) +
+             ", \"manufacturer\": " + quoted(c.hid.manufacturer) +
+             ", \"serial_number\": " + quoted(c.hid.serial_number);
+    }
+    out += "}";
+  }
+  return out + (candidates.empty() ? "]\n" : "\n]\n");
+}
+
+std::optional<std::string> SystemDeviceLister::read_line(const std::string& path) const {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) return std::nullopt;
+  return line;
 }
 
 std::vector<std::string> SystemDeviceLister::list_directory(const std::string& dir) const {

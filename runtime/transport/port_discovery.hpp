@@ -1,8 +1,14 @@
 // Finding the controller when no --port is given, and `seqc ports`.
 //
 // Candidates: every USB serial port (/dev/serial/by-id/* resolved to its device, then any
-// /dev/ttyUSB* or /dev/ttyACM* without a by-id link) and every xArm HID device (0483:5750 with
-// product string "LOBOT"). The file system and hidapi come in through DeviceLister.
+// /dev/ttyUSB* or /dev/ttyACM* without a by-id link), the on-board UARTs (/dev/ttyAMA*, where a
+// Raspblock board sits on a Raspberry Pi, and /dev/ttyS*) whose hardware answers (the kernel's
+// serial core reports a UART type other than 0, "unknown", in /sys/class/tty/NAME/type), and
+// every xArm HID device (0483:5750 with product string "LOBOT"). The file system and hidapi
+// come in through DeviceLister.
+//
+// On-board UARTs are listed but never chosen when --port is left out: most PCs have a ttyS0
+// with nothing on it, and a Raspberry Pi's console may be on ttyAMA0.
 #pragma once
 
 #include <optional>
@@ -25,6 +31,11 @@ class DeviceLister {
   virtual std::optional<std::string> resolve(const std::string& path) const = 0;
   // The xArm HID devices (find_lobot_devices on the real backend).
   virtual Result<std::vector<HidDeviceInfo>> lobot_hid_devices() const = 0;
+  // The first line of a small text file (sysfs attributes), or nothing if it cannot be read.
+  virtual std::optional<std::string> read_line(const std::string& path) const {
+    (void)path;
+    return std::nullopt;
+  }
 };
 
 struct PortCandidate {
@@ -34,6 +45,7 @@ struct PortCandidate {
   std::string path;
   std::string device;  // Serial: the device node (/dev/ttyUSB0). Hid: same as path.
   HidDeviceInfo hid;   // Hid only: product, manufacturer, serial number
+  bool onboard_uart = false;  // ttyAMA*/ttyS*: listed, never chosen by default
   friend bool operator==(const PortCandidate&, const PortCandidate&) = default;
 
   PortSpec spec() const;
@@ -49,14 +61,18 @@ struct Discovery {
 
 Discovery discover_ports(const DeviceLister& lister);
 
-// Exactly one candidate: it. None: "no controller found" with hints. Several: the list and
+// Exactly one candidate (on-board UARTs aside): it. None: "no controller found" with hints. Several: the list and
 // "use --port".
 Result<PortCandidate> select_default_port(const std::vector<PortCandidate>& candidates);
 
 // The `seqc ports` listing, one line per candidate:
 //   /dev/serial/by-id/usb-1a86_USB_Serial-if00-port0 -> /dev/ttyUSB0
 //   hid:/dev/hidraw3  LOBOT (MyUSB_HID) serial 0001
+//   /dev/ttyAMA0  on-board UART
 std::string format_port_list(const std::vector<PortCandidate>& candidates);
+// `seqc ports --json`: [{"port": "...", "kind": "serial|uart|hid", "device": "...",
+// "product": "...", "manufacturer": "...", "serial_number": "..."}] (the last three for HID).
+std::string format_port_json(const std::vector<PortCandidate>& candidates);
 
 // The message for "nothing found" (shared by select_default_port and `seqc ports`).
 std::string no_controller_message();
@@ -68,6 +84,7 @@ class SystemDeviceLister final : public DeviceLister {
   std::vector<std::string> list_directory(const std::string& dir) const override;
   std::optional<std::string> resolve(const std::string& path) const override;
   Result<std::vector<HidDeviceInfo>> lobot_hid_devices() const override;
+  std::optional<std::string> read_line(const std::string& path) const override;
 
  private:
   HidBackend& hid_;

@@ -145,10 +145,13 @@ class UploadE2E : public ::testing::Test {
 TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   std::string out, err;
   ASSERT_EQ(run({kSeqc, "upload", kWalk, "--port", link_, "--run"}, &out, &err), 0) << err;
-  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
-      << out;
-  EXPECT_NE(out.find("group 0 started"), std::string::npos) << out;
-  EXPECT_EQ(out.find("verified"), std::string::npos);
+  // The summary is on stderr; stdout carries data only (nothing, for an upload).
+  EXPECT_EQ(out, "");
+  EXPECT_NE(err.find("seqc: the controller acknowledged 29 actions into group 0"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("seqc: group 0 started"), std::string::npos) << err;
+  EXPECT_EQ(err.find("verified"), std::string::npos);
 
   std::string hex, json;
   ASSERT_EQ(run({kSeqc, "compile", kWalk, "--emit", "hex"}, &hex), 0);
@@ -274,7 +277,7 @@ TEST(UploadCli, InvalidFileSendsNothingAndOpensNoPort) {
 
 TEST(UploadCli, EmulatorInProcessWithFaultsCompletes) {
   std::string cmd = kSeqc + " upload " + kWalk +
-                    " --port 'emu:xarm?drop=0.05,corrupt=0.05,dup=0.05,seed=3' --run 2>/dev/null";
+                    " --port 'emu:xarm?drop=0.05,corrupt=0.05,dup=0.05,seed=3' --run 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   char buf[512];

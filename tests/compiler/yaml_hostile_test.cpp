@@ -208,7 +208,11 @@ TEST(YamlHostile, OversizedFileIsRejectedWithoutParsing) {
   big.resize(5u << 20, '#');
   const auto r = load("big.yaml", big);
   EXPECT_FALSE(r.ok);
-  EXPECT_EQ(r.rendered, "big.yaml: error: file is 5242880 bytes; the limit is 1048576 bytes\n");
+  // Located at the start of the file (every diagnostic has a place), quoting its first line.
+  EXPECT_EQ(r.rendered,
+            "big.yaml:1:1: error: file is 5242880 bytes; the limit is 1048576 bytes\n"
+            "    1 | a: b: c\n"
+            "      | ^\n");
   std::printf("[ measured ] 5 MiB file rejected in %.3f ms\n", r.milliseconds);
 }
 

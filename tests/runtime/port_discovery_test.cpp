@@ -35,6 +35,12 @@ class FakeLister final : public DeviceLister {
     if (!hid_error.empty()) return make_error(hid_error);
     return hid;
   }
+  std::map<std::string, std::string> files;  // sysfs attributes
+  std::optional<std::string> read_line(const std::string& path) const override {
+    auto it = files.find(path);
+    if (it == files.end()) return std::nullopt;
+    return it->second;
+  }
 };
 
 const char* const kCh340 = "/dev/serial/by-id/usb-1a86_USB_Serial-if00-port0";
@@ -52,6 +58,47 @@ TEST(DiscoverPorts, SerialByIdIsPreferredAndNotListedTwice) {
       serial_candidate("/dev/ttyUSB1", "/dev/ttyUSB1"),
   };
   EXPECT_EQ(d.candidates, expected);
+}
+
+// On-board UARTs are listed when the serial core reports hardware behind them (type != 0),
+// after the USB ports, and never picked when --port is left out.
+TEST(DiscoverPorts, OnboardUartsThatAnswerAreListedButNotChosen) {
+  FakeLister fs;
+  fs.dirs["/dev"] = {"ttyS0", "ttyS1", "ttyS2", "ttyAMA0", "ttyUSB0"};
+  fs.files["/sys/class/tty/ttyS0/type"] = "4";    // a 16550A
+  fs.files["/sys/class/tty/ttyS1/type"] = "0";    // PORT_UNKNOWN: nothing there
+  fs.files["/sys/class/tty/ttyAMA0/type"] = "32";  // PL011 on a Raspberry Pi
+  // ttyS2: no sysfs attribute at all (not a serial-core port): left out.
+  const Discovery d = discover_ports(fs);
+  ASSERT_EQ(d.candidates.size(), 3u);
+  EXPECT_EQ(d.candidates[0].path, "/dev/ttyUSB0");
+  EXPECT_FALSE(d.candidates[0].onboard_uart);
+  EXPECT_EQ(d.candidates[1].path, "/dev/ttyAMA0");
+  EXPECT_TRUE(d.candidates[1].onboard_uart);
+  EXPECT_EQ(d.candidates[2].path, "/dev/ttyS0");
+  EXPECT_EQ(format_port_list(d.candidates),
+            "/dev/ttyUSB0\n/dev/ttyAMA0  on-board UART\n/dev/ttyS0  on-board UART\n");
+  auto chosen = select_default_port(d.candidates);
+  ASSERT_TRUE(chosen.ok());
+  EXPECT_EQ(chosen->path, "/dev/ttyUSB0");
+  // Only UARTs: nothing is chosen for the user.
+  EXPECT_FALSE(select_default_port({d.candidates[1], d.candidates[2]}).ok());
+}
+
+TEST(FormatPortJson, OneObjectPerCandidate) {
+  EXPECT_EQ(format_port_json({}), "[]\n");
+  PortCandidate uart = serial_candidate("/dev/ttyAMA0", "/dev/ttyAMA0");
+  uart.onboard_uart = true;
+  EXPECT_EQ(format_port_json({serial_candidate(kCh340, "/dev/ttyUSB0"), uart,
+                              hid_candidate(lobot("/dev/hidraw2", "2019-03"))}),
+            "[\n"
+            "  {\"port\": \"/dev/serial/by-id/usb-1a86_USB_Serial-if00-port0\", \"kind\": "
+            "\"serial\", \"device\": \"/dev/ttyUSB0\"},\n"
+            "  {\"port\": \"/dev/ttyAMA0\", \"kind\": \"uart\", \"device\": \"/dev/ttyAMA0\"},\n"
+            "  {\"port\": \"hid:/dev/hidraw2\", \"kind\": \"hid\", \"device\": \"/dev/hidraw2\", "
+            "\"product\": \"LOBOT\", \"manufacturer\": \"MyUSB_HID\", \"serial_number\": "
+            "\"2019-03\"}\n"
+            "]\n");
 }
 
 TEST(DiscoverPorts, HidDevicesFollowSerialOnes) {

@@ -1,0 +1,31 @@
+#include "runtime/cli/session_text.hpp"
+
+#include <fmt/format.h>
+
+#include "runtime/protocol/bytes.hpp"
+
+namespace seqc::cli {
+namespace {
+
+std::string line_for(const lsc::Request& r, const std::string& role) {
+  auto bytes = lsc::encode_serial(r);
+  return fmt::format("{:<40}  # {}{}\n", bytes ? to_hex(*bytes) : "?", role, lsc::describe(r));
+}
+
+}  // namespace
+
+std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group,
+                               bool run, std::uint16_t run_times) {
+  std::string out = line_for(lsc::GetBatteryVoltage{}, "probe: ");
+  out += line_for(lsc::GroupStop{}, "");
+  out += line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  for (const auto& r : plan) out += line_for(r, "");
+  out += line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  if (run) {
+    out += line_for(lsc::GroupRun{group, run_times}, "");
+    out += line_for(lsc::GetBatteryVoltage{}, "barrier: ");
+  }
+  return out;
+}
+
+}  // namespace seqc::cli
