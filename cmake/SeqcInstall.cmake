@@ -1,8 +1,9 @@
 # What `cmake --install` puts where (GNU layout; the .deb installs under /usr):
 #   bin/seqc                                  the tool
 #   share/seqc/seqc.schema.json               the language's JSON Schema, for editors
-#   share/doc/seqc/examples/*.yaml            the examples; README, LICENSE, CHANGELOG
-#   share/man/man1/seqc.1                     generated from the same text as --help
+#   share/doc/seqc/examples/*.yaml            the examples; README, copyright (the LICENSE),
+#                                             CHANGELOG
+#   share/man/man1/seqc.1.gz                  generated from the same text as --help
 #   share/bash-completion/completions/seqc    bash (zsh: share/zsh/vendor-completions/_seqc,
 #   share/fish/vendor_completions.d/seqc.fish  fish), generated likewise
 #   lib/udev/rules.d/70-seqc.rules            device access (uaccess; plugdev/dialout fallback)
@@ -12,8 +13,9 @@ install(TARGETS seqc RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES schemas/seqc.schema.json DESTINATION ${CMAKE_INSTALL_DATADIR}/seqc)
 install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         FILES_MATCHING PATTERN "*.yaml")
-install(FILES README.md LICENSE CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(FILES ${SEQC_GENERATED_DOCS}/seqc.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+install(FILES README.md CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
+install(FILES ${SEQC_GENERATED_DOCS}/seqc.1.gz DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 install(FILES ${SEQC_GENERATED_DOCS}/seqc.bash
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME seqc)
 install(FILES ${SEQC_GENERATED_DOCS}/_seqc DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)

@@ -19,12 +19,14 @@ std::string words(const std::vector<std::string>& list) {
 
 }  // namespace
 
-// The generated function keeps one table per property, keyed by the subcommand path ("" for
+// The generated function keeps one table per property, keyed by the subcommand path ("." for
 // seqc itself, "group run"), and walks the words typed so far to find the path.
 std::string bash_completion(const CommandDoc& root) {
   std::ostringstream t;
   walk(root, [&](const CommandDoc& c) {
-    const std::string key = "[\"" + c.joined_path() + "\"]=";
+    // bash cannot key an associative array by "": the top level is ".".
+    const std::string path = c.path.empty() ? "." : c.joined_path();
+    const std::string key = "[\"" + path + "\"]=";
     std::vector<std::string> subs, opts, valued, files, choices;
     for (const CommandDoc& s : c.subcommands) subs.push_back(s.path.back());
     for (const OptionDoc& o : c.options) {
@@ -34,7 +36,7 @@ std::string bash_completion(const CommandDoc& root) {
         valued.push_back(n);
         if (o.kind == ValueKind::File) files.push_back(n);
         if (o.kind == ValueKind::Choice) {
-          t << "  choices[\"" << c.joined_path() << ' ' << n << "\"]=\"" << words(o.choices)
+          t << "  choices[\"" << path << ' ' << n << "\"]=\"" << words(o.choices)
             << "\"\n";
         }
       }
@@ -56,14 +58,14 @@ _seqc() {
   local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]}
   local -A subs opts valued fileopts ext choices
 )" << t.str()
-      << R"(  local path="" i w next
+      << R"(  local path=. i w next
   for ((i = 1; i < COMP_CWORD; i++)); do
     w=${COMP_WORDS[i]}
-    if [[ " ${valued[$path]} ${valued[""]} " == *" $w "* ]]; then
+    if [[ " ${valued[$path]} ${valued[.]} " == *" $w "* ]]; then
       ((i++))
       continue
     fi
-    next=${path:+$path }$w
+    if [[ $path == . ]]; then next=$w; else next="$path $w"; fi
     if [[ $w != -* && -n ${subs[$next]+set} ]]; then
       path=$next
     fi
@@ -73,22 +75,22 @@ _seqc() {
     COMPREPLY=($(compgen -W "$(command seqc ports --names 2>/dev/null) hid emu:xarm emu:raspblock" -- "$cur"))
     return
   fi
-  local c=${choices["$path $prev"]-${choices[" $prev"]-}}
+  local c=${choices["$path $prev"]-${choices[". $prev"]-}}
   if [[ -n $c ]]; then
     COMPREPLY=($(compgen -W "$c" -- "$cur"))
     return
   fi
-  if [[ " ${fileopts[$path]} ${fileopts[""]} " == *" $prev "* ]]; then
+  if [[ " ${fileopts[$path]} ${fileopts[.]} " == *" $prev "* ]]; then
     compopt -o filenames 2>/dev/null
     COMPREPLY=($(compgen -f -- "$cur"))
     return
   fi
-  if [[ " ${valued[$path]} ${valued[""]} " == *" $prev "* ]]; then
+  if [[ " ${valued[$path]} ${valued[.]} " == *" $prev "* ]]; then
     COMPREPLY=()
     return
   fi
   if [[ $cur == -* ]]; then
-    COMPREPLY=($(compgen -W "${opts[$path]} ${opts[""]}" -- "$cur"))
+    COMPREPLY=($(compgen -W "${opts[$path]} ${opts[.]}" -- "$cur"))
     return
   fi
   if [[ -n ${subs[$path]} ]]; then

@@ -67,7 +67,8 @@ void fish_command(std::ostringstream& out, const CommandDoc& c, const CommandDoc
 }
 
 void zsh_tables(std::ostringstream& out, const CommandDoc& c) {
-  const std::string key = "[" + quoted(c.joined_path()) + "]=";
+  const std::string path = c.path.empty() ? "." : c.joined_path();  // "." is the top level
+  const std::string key = "[" + quoted(path) + "]=";
   std::vector<std::string> subs, opts, valued;
   for (const CommandDoc& s : c.subcommands) {
     subs.push_back(s.path.back() + ":" + s.description.substr(0, s.description.find('.')));
@@ -77,11 +78,11 @@ void zsh_tables(std::ostringstream& out, const CommandDoc& c) {
       opts.push_back(name);
       if (o.kind != ValueKind::None) valued.push_back(name);
       if (o.kind == ValueKind::Choice) {
-        out << "  choices[" << quoted(c.joined_path() + " " + name) << "]="
+        out << "  choices[" << quoted(path + " " + name) << "]="
             << quoted(words(o.choices)) << "\n";
       }
       if (o.kind == ValueKind::File) {
-        out << "  fileopts[" << quoted(c.joined_path() + " " + name) << "]=1\n";
+        out << "  fileopts[" << quoted(path + " " + name) << "]=1\n";
       }
     }
   }
@@ -112,15 +113,17 @@ std::string zsh_completion(const CommandDoc& root) {
       << "_seqc() {\n"
       << "  local -A subs opts valued yaml choices fileopts\n";
   zsh_tables(out, root);
-  out << R"zsh(  local path_="" w i
+  out << R"zsh(  local path_=. w i
   for ((i = 2; i < CURRENT; i++)); do
     w=${words[i]}
-    if [[ " ${valued[$path_]} ${valued[""]} " == *" $w "* ]]; then
+    if [[ " ${valued[$path_]} ${valued[.]} " == *" $w "* ]]; then
       ((i++))
       continue
     fi
-    if [[ $w != -* && -n ${subs[${path_:+$path_ }$w]+set} ]]; then
-      path_=${path_:+$path_ }$w
+    local next=$w
+    [[ $path_ != . ]] && next="$path_ $w"
+    if [[ $w != -* && -n ${subs[$next]+set} ]]; then
+      path_=$next
     fi
   done
   local prev=${words[CURRENT-1]} cur=${words[CURRENT]}
@@ -130,19 +133,19 @@ std::string zsh_completion(const CommandDoc& root) {
     compadd -a ports
     return
   fi
-  if [[ -n ${choices["$path_ $prev"]} || -n ${choices[" $prev"]} ]]; then
-    compadd ${=choices["$path_ $prev"]:-${choices[" $prev"]}}
+  if [[ -n ${choices["$path_ $prev"]} || -n ${choices[". $prev"]} ]]; then
+    compadd ${=choices["$path_ $prev"]:-${choices[". $prev"]}}
     return
   fi
-  if [[ -n ${fileopts["$path_ $prev"]} || -n ${fileopts[" $prev"]} ]]; then
+  if [[ -n ${fileopts["$path_ $prev"]} || -n ${fileopts[". $prev"]} ]]; then
     _files
     return
   fi
-  if [[ " ${valued[$path_]} ${valued[""]} " == *" $prev "* ]]; then
+  if [[ " ${valued[$path_]} ${valued[.]} " == *" $prev "* ]]; then
     return
   fi
   if [[ $cur == -* ]]; then
-    compadd -- ${=opts[$path_]} ${=opts[""]}
+    compadd -- ${=opts[$path_]} ${=opts[.]}
     return
   fi
   if [[ -n ${subs[$path_]} ]]; then
