@@ -28,7 +28,13 @@ void add_help_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::Usage;
       return;
     }
-    ctx.out << target->help();
+    // make_help, not help(): help() would describe the selected subcommand, `help` itself.
+    // The usage line names the whole path ("seqc group run"), as --help does.
+    std::string usage_name;
+    for (const CLI::App* a = target; a != nullptr; a = a->get_parent()) {
+      usage_name = a->get_name() + (usage_name.empty() ? "" : " " + usage_name);
+    }
+    ctx.out << target->get_formatter()->make_help(target, usage_name, CLI::AppFormatMode::Normal);
     result.code = ExitCode::Ok;
   });
 }

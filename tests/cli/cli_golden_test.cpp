@@ -10,57 +10,18 @@
 #include <string>
 #include <vector>
 
-#include "tests/golden_update.hpp"
+#include "tests/cli/seqc_run.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-const fs::path kSource = SEQC_SOURCE_DIR;
-const fs::path kGolden = kSource / "tests/golden";
-const fs::path kCliGolden = kSource / "tests/cli/golden";
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct SeqcRun {
-  std::string out;
-  std::string err;
-  int status = -1;
-};
-
-// Runs `seqc args` in `dir` with the shell (args are trusted test strings).
-SeqcRun seqc(const fs::path& dir, const std::string& args, const std::string& stdin_file = "") {
-  static int counter = 0;
-  const fs::path tmp = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp";
-  fs::create_directories(tmp);
-  const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  const fs::path out = tmp / ("out-" + tag);
-  const fs::path err = tmp / ("err-" + tag);
-  std::string cmd = "cd '" + dir.string() + "' && '" SEQC_BIN "' " + args + " >'" + out.string() +
-                    "' 2>'" + err.string() + "'";
-  cmd += " <" + (stdin_file.empty() ? std::string("/dev/null") : "'" + stdin_file + "'");
-  const int raw = std::system(cmd.c_str());
-  SeqcRun r{slurp(out), slurp(err), WIFEXITED(raw) ? WEXITSTATUS(raw) : -1};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-// Compares `actual` with the golden file, or rewrites it under SEQC_UPDATE_GOLDEN=1.
-void expect_golden(const fs::path& golden, const std::string& actual) {
-  if (seqc::testing::updating_goldens()) {
-    fs::create_directories(golden.parent_path());
-    std::ofstream(golden, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with SEQC_UPDATE_GOLDEN=1";
-  EXPECT_EQ(slurp(golden), actual) << "differs from " << golden;
-}
+using seqc::testing::expect_golden;
+using seqc::testing::kCliGolden;
+using seqc::testing::kGolden;
+using seqc::testing::kSource;
+using seqc::testing::seqc;
+using seqc::testing::SeqcRun;
+using seqc::testing::slurp;
 
 std::vector<fs::path> files_matching(const fs::path& dir, const std::string& prefix,
                                      const std::string& ext) {
