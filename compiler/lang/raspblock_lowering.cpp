@@ -41,6 +41,7 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   reporter_.check_keys(
       root, {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name", "description"},
       "at the top level");
+  reporter_.check_free_text(root);
   if (!is_main) {
     check_included_robot(root, robot_.info.profile, reporter_);
     if (const YamlNode* p = root.find("pid")) {

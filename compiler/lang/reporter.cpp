@@ -27,6 +27,16 @@ void Reporter::unknown(Location at, std::string_view what, std::string_view word
   error(at, std::move(message));
 }
 
+void Reporter::check_free_text(const YamlNode& root) {
+  for (const char* key : {"name", "description"}) {
+    const YamlNode* node = root.find(key);
+    if (node != nullptr && !node->is_scalar() && node->kind != YamlNode::Kind::Null) {
+      error(node->location, "'" + std::string(key) + "' is free text, not " +
+                                std::string(kind_name(*node)));
+    }
+  }
+}
+
 bool Reporter::check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
                           std::string_view where) {
   bool ok = true;

@@ -44,6 +44,9 @@ class Reporter {
   bool check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
                   std::string_view where);
 
+  // `name` and `description` are free text: a list or map there is an error.
+  void check_free_text(const YamlNode& root);
+
   // "unknown X 'word'; did you mean 'y'?" (the suggestion only when one is close).
   void unknown(Location at, std::string_view what, std::string_view word,
                const std::vector<std::string>& candidates, std::string_view where = {});

@@ -101,6 +101,7 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
                        {"robot", "tempo", "meter", "resolution", "tolerance", "poses", "sections",
                         "sequence", "name", "description"},
                        "at the top level");
+  reporter_.check_free_text(root);
   if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {
     return;  // its steps would only add errors about servos this robot lacks
   }

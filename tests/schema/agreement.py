@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""The JSON Schema and `seqc check` agree on which files are valid.
+
+Every file is judged twice: by the schema (python3-jsonschema, after PyYAML reads the file, as
+an editor would) and by `seqc check` (exit 0, warnings allowed). Any disagreement fails, except
+the files in ALLOWED below, each with the reason a schema cannot express the check. An allowed
+file on which they agree also fails, so the list never goes stale. Corpus files state what they
+expect on their first line (`# expect: valid|invalid - why`), and seqc must agree with that too.
+
+Usage: agreement.py SEQC SCHEMA FILE...
+"""
+import json
+import os
+import subprocess
+import sys
+
+import jsonschema
+import yaml
+
+# Checks a schema cannot express, by file. Keys are paths relative to the repository.
+ALLOWED = {
+    # Two values compared with each other: JSON Schema has no "min < max".
+    "tests/schema/corpus/bad-min-above-max.yaml": "min must be below max",
+    # Limits depend on the profile *and* on what the value means: +50 and 50 are the same
+    # number to a schema, and relative moves, mirroring and poses are resolved by seqc.
+    "tests/schema/corpus/bad-above-max-position.yaml": "position limit",
+    "tests/golden/bad-position-above-max.yaml": "position limit (device units and degrees)",
+    "tests/golden/bad-relative-out-of-limits.yaml": "relative move past a limit",
+    "tests/golden/bad-mirrored-out-of-limits.yaml": "mirrored position past a limit",
+    "tests/golden/bad-relative-unknown-start.yaml": "relative move without a known start",
+    # Names defined elsewhere in the file or by the profile.
+    "tests/golden/bad-unknown-pose.yaml": "a pose name that is not defined",
+    "tests/golden/bad-unknown-servo.yaml": "a servo name the robot does not have",
+    "tests/golden/bad-unknown-section.yaml": "a section that is not defined; one that calls itself",
+    "tests/golden/bad-mirror-unknown-servo.yaml": "a mirror table naming an undefined servo",
+    "tests/golden/bad-mirror-without-table.yaml": "mirror used without a table in robot",
+    "tests/golden/bad-duplicate-servo-id.yaml": "two servos with one id",
+    "tests/golden/bad-servo-in-two-tracks.yaml": "a servo moved in two tracks",
+    # Time: beats at the tempo in force, sums and positions in time.
+    "tests/golden/bad-at-in-the-past.yaml": "an 'at' earlier than the steps before it end",
+    "tests/golden/bad-beats-without-tempo.yaml": "beats need a tempo set elsewhere",
+    "tests/golden/bad-ease-steps-too-short.yaml": "time / steps below 20ms",
+    "tests/golden/bad-wait-first.yaml": "a wait before any servo has a position",
+    "tests/golden/bad-too-many-actions.yaml": "the action budget (1,020 per group)",
+    # Include targets: a schema sees one file at a time.
+    "tests/golden/bad-error-in-include.yaml": "the mistake is in the included file",
+    "tests/golden/bad-include-cycle.yaml": "an include cycle",
+    "tests/golden/bad-include-missing.yaml": "an included file that does not exist",
+    "tests/golden/bad-include-other-robot.yaml": "an included file for another robot",
+    "tests/golden/bad-include-too-deep.yaml": "includes nested too deep",
+    # YAML that PyYAML reads differently from the YAML 1.2 seqc follows.
+    "tests/golden/bad-duplicate-key.yaml": "PyYAML keeps the last of two equal keys silently",
+}
+
+
+def schema_verdict(validator, path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = yaml.safe_load(f)
+    except (yaml.YAMLError, UnicodeDecodeError) as e:
+        return False, f"YAML: {str(e).splitlines()[0]}"
+    errors = list(validator.iter_errors(doc))
+    if not errors:
+        return True, ""
+    best = jsonschema.exceptions.best_match(errors)
+    where = "/".join(str(p) for p in best.absolute_path) or "(top)"
+    return False, f"{where}: {best.message[:160]}"
+
+
+def main():
+    seqc, schema_path, files = sys.argv[1], sys.argv[2], sys.argv[3:]
+    root = os.getcwd()
+    with open(schema_path) as f:
+        schema = json.load(f)
+    jsonschema.Draft7Validator.check_schema(schema)
+    validator = jsonschema.Draft7Validator(schema)
+    problems, allowed_seen, agree = [], set(), 0
+    for path in files:
+        rel = os.path.relpath(path, root)
+        by_schema, why = schema_verdict(validator, path)
+        run = subprocess.run([seqc, "check", path], capture_output=True, text=True)
+        by_seqc = run.returncode == 0
+        with open(path, encoding="utf-8", errors="replace") as f:
+            first = f.readline()
+        if first.startswith("# expect: "):
+            expected = first.split()[2] == "valid"
+            if expected != by_seqc:
+                problems.append(f"{rel}: expects {'valid' if expected else 'invalid'}, seqc "
+                                f"says {'valid' if by_seqc else 'invalid'}: {run.stderr[:300]}")
+        if by_schema == by_seqc:
+            agree += 1
+            if rel in ALLOWED:
+                problems.append(f"{rel}: allowed to disagree ({ALLOWED[rel]}) but agrees; "
+                                f"remove it from ALLOWED")
+            continue
+        if rel in ALLOWED:
+            allowed_seen.add(rel)
+            continue
+        side = ("the schema accepts it, seqc rejects it:\n    " + run.stderr.strip()[:400]
+                if by_schema else f"seqc accepts it, the schema rejects it: {why}")
+        problems.append(f"{rel}: {side}")
+    for rel in sorted(set(ALLOWED) - allowed_seen):
+        if not any(os.path.relpath(p, root) == rel for p in files):
+            problems.append(f"{rel}: in ALLOWED but not checked")
+    for p in problems:
+        print("FAIL:", p, file=sys.stderr)
+    print(f"schema vs seqc check: {len(files)} files, {agree} agree, {len(allowed_seen)} "
+          f"allowed disagreements, {len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
