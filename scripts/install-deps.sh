@@ -7,7 +7,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libyaml-cpp-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libhidapi-dev
   python3 python3-yaml python3-jsonschema
-  dpkg-dev file groff-base zsh fish
+  dpkg-dev file groff-base zsh fish pre-commit git
 )
 # clang builds the libFuzzer targets; optional, installed when available.
 optional=(clang libclang-rt-dev)
