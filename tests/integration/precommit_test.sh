@@ -6,7 +6,7 @@
 # Usage: precommit_test.sh SOURCE_DIR SEQC_BINARY
 set -uo pipefail
 src=$1
-bin_dir=$(dirname "$2")
+bin_dir=$(cd "$(dirname "$2")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export PATH="$bin_dir:$PATH" HOME="$work/home" PRE_COMMIT_HOME="$work/cache"
