@@ -50,7 +50,6 @@ struct FieldsOf {
 
 std::string fields(const lsc::Request& request) { return std::visit(FieldsOf{}, request); }
 
-
 }  // namespace
 
 std::string location_text(const compiler::Location& at, const compiler::SourceManager& sources) {

@@ -31,8 +31,8 @@ void Reporter::check_free_text(const YamlNode& root) {
   for (const char* key : {"name", "description"}) {
     const YamlNode* node = root.find(key);
     if (node != nullptr && !node->is_scalar() && node->kind != YamlNode::Kind::Null) {
-      error(node->location, "'" + std::string(key) + "' is free text, not " +
-                                std::string(kind_name(*node)));
+      error(node->location,
+            "'" + std::string(key) + "' is free text, not " + std::string(kind_name(*node)));
     }
   }
 }

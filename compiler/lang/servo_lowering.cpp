@@ -68,8 +68,8 @@ void ServoLowering::finish(ServoProgram& program) {
     const Location where =
         s.where.file != kNoFile ? s.where : sequence_at_.value_or(Location{0, 1, 1});
     reporter_.warning(where, "even 20ms actions cannot keep '" + info.name + "' within " +
-                                   format_units(s.tolerance) + " of this curve: it is " +
-                                   format_units(s.error) + " off at " + format_seconds(s.at_ms));
+                                 format_units(s.tolerance) + " of this curve: it is " +
+                                 format_units(s.error) + " off at " + format_seconds(s.at_ms));
   }
   for (const FittedAction& a : fit.actions) {
     Keyframe k;

@@ -362,10 +362,9 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
                                   Diagnostics& diags, const YamlLimits& limits) {
   const std::string& text = sources.text(file);
   if (text.size() > limits.max_bytes) {
-    // Located at its start: the whole file is the problem, and every diagnostic has a place.
-    diags.error(Location{file, 1, 1}, "file is " + std::to_string(text.size()) +
-                                          " bytes; the limit is " +
-                                          std::to_string(limits.max_bytes) + " bytes");
+    diags.error(Location{file, 1, 1} /* the whole file */,
+                "file is " + std::to_string(text.size()) + " bytes; the limit is " +
+                    std::to_string(limits.max_bytes) + " bytes");
     return std::nullopt;
   }
   if (auto problem = yaml_detail::check_bytes(text)) {

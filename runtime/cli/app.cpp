@@ -58,8 +58,9 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   auto verbose = std::make_shared<bool>(false);
   app.add_flag("-q,--quiet", *quiet, "Print only errors and data (no progress or summaries)");
   app.add_flag("-v,--verbose", *verbose, "Also report every re-send, restart and probe");
-  app.add_option("--color", *color, "Colour in diagnostics: auto (a terminal without NO_COLOR), "
-                                    "always or never")
+  app.add_option("--color", *color,
+                 "Colour in diagnostics: auto (a terminal without NO_COLOR), "
+                 "always or never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
   app.parse_complete_callback([&ctx, color, quiet, verbose] {
     ctx.verbosity = *quiet ? -1 : (*verbose ? 1 : 0);

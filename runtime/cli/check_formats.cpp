@@ -144,11 +144,10 @@ std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict
     const bool file_rule = i == rules.size();
     const std::string id = file_rule ? "file-error" : std::string(rules[i].id);
     const std::string title = file_rule ? "File error" : std::string(rules[i].title);
-    const std::string help =
-        file_rule ? "A file could not be read." : std::string(rules[i].help);
+    const std::string help = file_rule ? "A file could not be read." : std::string(rules[i].help);
     out += (i ? ",\n      " : "\n      ") + std::string("{\"id\": ") + json_string(id) +
-           ", \"name\": " + json_string(camel(title)) + ", \"shortDescription\": {\"text\": " +
-           json_string(help) + "}}";
+           ", \"name\": " + json_string(camel(title)) +
+           ", \"shortDescription\": {\"text\": " + json_string(help) + "}}";
   }
   out += "]}},\n    \"results\": [";
   bool first = true;
@@ -161,9 +160,9 @@ std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict
     out += first ? "\n      {" : ",\n      {";
     first = false;
     out += "\"ruleId\": " + json_string(id) + ", \"ruleIndex\": " + std::to_string(index) +
-           ", \"level\": \"" + severity(e, strict) + "\", \"message\": {\"text\": " +
-           json_string(message(e)) + "}, \"locations\": [{\"physicalLocation\": " +
-           sarif_location(e.at) + "}]";
+           ", \"level\": \"" + severity(e, strict) +
+           "\", \"message\": {\"text\": " + json_string(message(e)) +
+           "}, \"locations\": [{\"physicalLocation\": " + sarif_location(e.at) + "}]";
     if (!e.notes.empty()) {
       out += ", \"relatedLocations\": [";
       for (std::size_t i = 0; i < e.notes.size(); ++i) {

@@ -6,8 +6,8 @@
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/session_text.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/session_text.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
@@ -33,7 +33,8 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "frames")
       ->check(CLI::IsMember({"hex", "listing", "json"}))
       ->default_val("hex");
-  cmd->add_option("-o,--output", opts->output, "Write here instead of stdout (only on success; - is stdout)");
+  cmd->add_option("-o,--output", opts->output,
+                  "Write here instead of stdout (only on success; - is stdout)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->add_flag("--dry-run", opts->dry_run,
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "

@@ -12,8 +12,8 @@
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/play_progress.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/play_progress.hpp"
 #include "runtime/cli/servo_play.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/io/realtime.hpp"
@@ -117,9 +117,10 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
   for (const backend::StreamFrame& f : *frames) {
     schedule.push_back({std::chrono::milliseconds(f.at_ms), f.bytes});
   }
-  if (ctx.verbosity >= 0) ctx.err << "seqc: playing " << o.file << " on " << link->describe() << ": " << schedule.size()
-          << " frames over " << compiler::format_seconds(program.duration_ms)
-          << "; Ctrl-C stops the car\n";
+  if (ctx.verbosity >= 0)
+    ctx.err << "seqc: playing " << o.file << " on " << link->describe() << ": " << schedule.size()
+            << " frames over " << compiler::format_seconds(program.duration_ms)
+            << "; Ctrl-C stops the car\n";
   ctx.err.flush();
 
   player::PlayOptions options;

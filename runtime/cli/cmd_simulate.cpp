@@ -24,7 +24,8 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Print each servo's position (or the car's state) over time, as CSV");
   cmd->add_option("FILE", opts->file, "Choreography file (.yaml)")->required();
-  cmd->add_option("-o,--output", opts->output, "Write the CSV here instead of stdout (- is stdout)");
+  cmd->add_option("-o,--output", opts->output,
+                  "Write the CSV here instead of stdout (- is stdout)");
   cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
       ->check(CLI::Range(1, 60000))
       ->default_val(20);

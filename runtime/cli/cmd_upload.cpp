@@ -74,8 +74,9 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (a.dry_run) {
     ctx.out << upload_session_hex(plan, group, a.run,
                                   static_cast<std::uint16_t>(a.forever ? 0 : a.times));
-    if (ctx.verbosity >= 0) ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
-            << "; nothing was sent\n";
+    if (ctx.verbosity >= 0)
+      ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
+              << "; nothing was sent\n";
     return ExitCode::Ok;
   }
 

@@ -1,9 +1,9 @@
 // seqc's entry point: wires the real clock, disk and terminal into the CLI and runs it.
 #include <sys/ioctl.h>
 #include <unistd.h>
-#include <cstdlib>
 #include <atomic>
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 
 #include "runtime/cli/app.hpp"

@@ -49,14 +49,14 @@ ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compi
     if (!s.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage")) {
       return ExitCode::DeviceFailure;
     }
-    if (ctx.verbosity >= 0) ctx.err << "seqc: playing " << frames.size() << " moves ("
-            << compiler::format_seconds(program->duration_ms()) << ") live on " << s.port_name()
-            << "; Ctrl-C stops\n";
+    if (ctx.verbosity >= 0)
+      ctx.err << "seqc: playing " << frames.size() << " moves ("
+              << compiler::format_seconds(program->duration_ms()) << ") live on " << s.port_name()
+              << "; Ctrl-C stops\n";
     player::PlayOptions options;
     options.interrupted = ctx.interrupted;
-    PlayProgress progress(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0,
-                          ctx.terminal_columns, std::chrono::milliseconds(program->duration_ms()),
-                          frames.size());
+    PlayProgress progress(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0, ctx.terminal_columns,
+                          std::chrono::milliseconds(program->duration_ms()), frames.size());
     options.on_sent = [&](std::size_t i, const player::FrameTiming&) {
       progress.on_sent(i, frames[i].at);
     };

@@ -14,8 +14,8 @@ std::string line_for(const lsc::Request& r, const std::string& role) {
 
 }  // namespace
 
-std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group,
-                               bool run, std::uint16_t run_times) {
+std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group, bool run,
+                               std::uint16_t run_times) {
   std::string out = line_for(lsc::GetBatteryVoltage{}, "probe: ");
   out += line_for(lsc::GroupStop{}, "");
   out += line_for(lsc::GetBatteryVoltage{}, "barrier: ");

@@ -13,7 +13,7 @@
 namespace seqc::cli {
 
 // run_times: 0 plays until stopped; ignored without run.
-std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group,
-                               bool run, std::uint16_t run_times);
+std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group, bool run,
+                               std::uint16_t run_times);
 
 }  // namespace seqc::cli

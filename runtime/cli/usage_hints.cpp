@@ -65,8 +65,8 @@ std::optional<std::string> find_unknown_word(const CLI::App& app,
     const std::string& word = args[i];
     if (word == "--") break;
     // "-20" is a negative number (an offset), not an option.
-    const bool number = word.size() > 1 && (std::isdigit(static_cast<unsigned char>(word[1])) ||
-                                            word[1] == '.');
+    const bool number =
+        word.size() > 1 && (std::isdigit(static_cast<unsigned char>(word[1])) || word[1] == '.');
     if (word.size() > 1 && word[0] == '-' && !number) {
       const std::string name = word.substr(0, word.find('='));
       // Short options may be bundled ("-qv") or carry a value ("-o-"); check the first letter.

@@ -43,8 +43,8 @@ struct PortCandidate {
   // Serial: the stable /dev/serial/by-id path when there is one, else the device.
   // Hid: the hidapi path.
   std::string path;
-  std::string device;  // Serial: the device node (/dev/ttyUSB0). Hid: same as path.
-  HidDeviceInfo hid;   // Hid only: product, manufacturer, serial number
+  std::string device;         // Serial: the device node (/dev/ttyUSB0). Hid: same as path.
+  HidDeviceInfo hid;          // Hid only: product, manufacturer, serial number
   bool onboard_uart = false;  // ttyAMA*/ttyS*: listed, never chosen by default
   friend bool operator==(const PortCandidate&, const PortCandidate&) = default;
 
@@ -61,8 +61,8 @@ struct Discovery {
 
 Discovery discover_ports(const DeviceLister& lister);
 
-// Exactly one candidate (on-board UARTs aside): it. None: "no controller found" with hints. Several: the list and
-// "use --port".
+// Exactly one candidate (on-board UARTs aside): it. None: "no controller found" with hints.
+// Several: the list and "use --port".
 Result<PortCandidate> select_default_port(const std::vector<PortCandidate>& candidates);
 
 // The `seqc ports` listing, one line per candidate:

@@ -37,8 +37,9 @@ std::string permission_denied_message(std::string_view path,
                 : std::string("serial ports usually belong to the 'dialout' group")) +
          "; add yourself to it, then log out and back in:\n";
   out += "    sudo usermod -aG " + g + " $USER\n";
-  out += "  (or install seqc's udev rule, 70-seqc.rules, which gives the user at the machine\n"
-         "  access to the usual USB serial adapters; see docs/ports.md)";
+  out +=
+      "  (or install seqc's udev rule, 70-seqc.rules, which gives the user at the machine\n"
+      "  access to the usual USB serial adapters; see docs/ports.md)";
   return out;
 }
 

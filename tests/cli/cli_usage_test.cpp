@@ -124,8 +124,9 @@ TEST(Usage, DashIsStdinForFilesAndStdoutForOutput) {
 
 TEST(Usage, DryRunFramesDecodeBack) {
   // Through a real pipe, as the documentation shows it.
-  const std::string cmd = "cd '" + kSource.string() + "' && '" SEQC_BIN
-                          "' compile --dry-run examples/walk.yaml | '" SEQC_BIN "' decode -";
+  const std::string cmd = "cd '" + kSource.string() +
+                          "' && '" SEQC_BIN "' compile --dry-run examples/walk.yaml | '" SEQC_BIN
+                          "' decode -";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::string out;

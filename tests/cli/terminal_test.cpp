@@ -124,18 +124,16 @@ TEST(Terminal, UploadProgressFitsTheWindow) {
 }
 
 TEST(Terminal, PlayShowsProgress) {
-  const TerminalRun r = on_terminal({"play", "tests/golden/raspblock/small.yaml", "--port",
-                                     "emu:raspblock"},
-                                    70);
+  const TerminalRun r =
+      on_terminal({"play", "tests/golden/raspblock/small.yaml", "--port", "emu:raspblock"}, 70);
   ASSERT_EQ(r.status, 0) << r.screen;
   EXPECT_NE(r.screen.find(" s  frame "), std::string::npos) << r.screen;
   for (const std::string& line : drawn_lines(r.screen)) {
     if (line.find(" s  frame ") != std::string::npos) EXPECT_LT(visible_width(line), 70u) << line;
   }
   // --quiet: no progress at all.
-  const TerminalRun quiet = on_terminal({"-q", "play", "tests/golden/raspblock/small.yaml",
-                                         "--port", "emu:raspblock"},
-                                        70);
+  const TerminalRun quiet = on_terminal(
+      {"-q", "play", "tests/golden/raspblock/small.yaml", "--port", "emu:raspblock"}, 70);
   EXPECT_EQ(quiet.screen.find("frame"), std::string::npos) << quiet.screen;
 }
 

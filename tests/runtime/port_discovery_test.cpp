@@ -65,8 +65,8 @@ TEST(DiscoverPorts, SerialByIdIsPreferredAndNotListedTwice) {
 TEST(DiscoverPorts, OnboardUartsThatAnswerAreListedButNotChosen) {
   FakeLister fs;
   fs.dirs["/dev"] = {"ttyS0", "ttyS1", "ttyS2", "ttyAMA0", "ttyUSB0"};
-  fs.files["/sys/class/tty/ttyS0/type"] = "4";    // a 16550A
-  fs.files["/sys/class/tty/ttyS1/type"] = "0";    // PORT_UNKNOWN: nothing there
+  fs.files["/sys/class/tty/ttyS0/type"] = "4";     // a 16550A
+  fs.files["/sys/class/tty/ttyS1/type"] = "0";     // PORT_UNKNOWN: nothing there
   fs.files["/sys/class/tty/ttyAMA0/type"] = "32";  // PL011 on a Raspberry Pi
   // ttyS2: no sysfs attribute at all (not a serial-core port): left out.
   const Discovery d = discover_ports(fs);
@@ -247,9 +247,9 @@ TEST(UdevRule, GrantsAccessToTheDeviceDiscoveryLooksFor) {
       << rule;
   EXPECT_NE(rule.find("KERNEL==\"hidraw*\""), std::string::npos) << rule;
   EXPECT_NE(rule.find("TAG+=\"uaccess\""), std::string::npos) << rule;
-  EXPECT_NE(permission_denied_message("/dev/hidraw0", std::nullopt)
-                .find("scripts/udev/70-seqc.rules"),
-            std::string::npos);
+  EXPECT_NE(
+      permission_denied_message("/dev/hidraw0", std::nullopt).find("scripts/udev/70-seqc.rules"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -27,8 +27,7 @@ ValueKind kind_of(const OptionDoc& o) {
   if (!o.choices.empty()) return ValueKind::Choice;
   for (const std::string& n : o.names) {
     if (n == "--port") return ValueKind::Port;
-    if (n == "-o" || n == "--output" || n == "--trace" || n == "--record" ||
-        n == "--dump-groups") {
+    if (n == "-o" || n == "--output" || n == "--trace" || n == "--record" || n == "--dump-groups") {
       return ValueKind::File;
     }
   }

@@ -36,8 +36,7 @@ std::string bash_completion(const CommandDoc& root) {
         valued.push_back(n);
         if (o.kind == ValueKind::File) files.push_back(n);
         if (o.kind == ValueKind::Choice) {
-          t << "  choices[\"" << path << ' ' << n << "\"]=\"" << words(o.choices)
-            << "\"\n";
+          t << "  choices[\"" << path << ' ' << n << "\"]=\"" << words(o.choices) << "\"\n";
         }
       }
     }

@@ -36,9 +36,9 @@ void fish_command(std::ostringstream& out, const CommandDoc& c, const CommandDoc
   std::vector<std::string> subs;
   for (const CommandDoc& s : c.subcommands) subs.push_back(s.path.back());
   for (const CommandDoc& s : c.subcommands) {
-    std::string here = c.path.empty() ? "not __fish_seen_subcommand_from " + words(subs)
-                                      : cond + "; and not __fish_seen_subcommand_from " +
-                                            words(subs);
+    std::string here = c.path.empty()
+                           ? "not __fish_seen_subcommand_from " + words(subs)
+                           : cond + "; and not __fish_seen_subcommand_from " + words(subs);
     out << "complete -c seqc -f -n " << quoted(here) << " -a " << s.path.back() << " -d "
         << quoted(s.description.substr(0, s.description.find('.'))) << "\n";
   }
@@ -78,8 +78,8 @@ void zsh_tables(std::ostringstream& out, const CommandDoc& c) {
       opts.push_back(name);
       if (o.kind != ValueKind::None) valued.push_back(name);
       if (o.kind == ValueKind::Choice) {
-        out << "  choices[" << quoted(path + " " + name) << "]="
-            << quoted(words(o.choices)) << "\n";
+        out << "  choices[" << quoted(path + " " + name) << "]=" << quoted(words(o.choices))
+            << "\n";
       }
       if (o.kind == ValueKind::File) {
         out << "  fileopts[" << quoted(path + " " + name) << "]=1\n";
