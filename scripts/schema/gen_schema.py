@@ -47,6 +47,11 @@ def doc(title, text, **more):
     return out
 
 
+def string(title, text, pattern, message):
+    """A string with a pattern, and the message editors show when it does not match."""
+    return doc(title, text, type="string", pattern=pattern, patternErrorMessage=message)
+
+
 def ref(name):
     return {"$ref": "#/definitions/" + name}
 
@@ -66,34 +71,28 @@ definitions = {
                      type="string", pattern=NAME,
                      patternErrorMessage="a servo name is letters, digits and _, not starting "
                                          "with a digit"),
-    "servoTime": doc("Time", TIME_HELP + "; at least `20ms` (one controller action).",
-                     type="string", pattern=f"^(?:{MS_20}|{S_20}|{BEATS})$",
-                     patternErrorMessage="a time of at least 20ms with its unit: 500ms, 1.5s, 2b "
-                                         "or 1bar (a bare number is an error)"),
-    "time": doc("Time", TIME_HELP + ".", type="string", pattern=f"^{NUM}(ms|s|b|bar)$",
-                patternErrorMessage="a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare "
-                                    "number is an error)"),
-    "carTime": doc("Time", "`500ms`, `1.5s` or `2b` (beats at `tempo`).", type="string",
-                   pattern=f"^{NUM}(ms|s|b)$",
-                   patternErrorMessage="a time with its unit: 500ms, 1.5s or 2b (a bare number "
-                                       "is an error)"),
-    "at": doc("Start at", "Start this step exactly this long after the start of the list that "
-              "holds it (`at: 4bar`); the gap before it is a hold.", type="string",
-              pattern=f"^{NUM}(ms|s|b|bar)$",
-              patternErrorMessage="a time with its unit: 500ms, 1.5s, 2b or 1bar"),
+    "servoTime": string("Time", TIME_HELP + "; at least `20ms` (one controller action).",
+                        f"^(?:{MS_20}|{S_20}|{BEATS})$",
+                        "a time of at least 20ms with its unit: 500ms, 1.5s, 2b or 1bar (a bare "
+                        "number is an error)"),
+    "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bar)$",
+                   "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
+    "carTime": string("Time", "`500ms`, `1.5s` or `2b` (beats at `tempo`).", f"^{NUM}(ms|s|b)$",
+                      "a time with its unit: 500ms, 1.5s or 2b (a bare number is an error)"),
+    "at": string("Start at", "Start this step exactly this long after the start of the list "
+                 "that holds it (`at: 4bar`); the gap before it is a hold.",
+                 f"^{NUM}(ms|s|b|bar)$", "a time with its unit: 500ms, 1.5s, 2b or 1bar"),
     "position": doc("Position", "Device units (`500`), degrees (`90deg`), relative to where the "
                     "servo is (`+50`, `-10deg`), or `home`.", type=["integer", "string"],
                     pattern=r"^(?:[+-]?[0-9]+(?:\.[0-9]+)?deg|[+-]?[0-9]+|home)$",
                     patternErrorMessage="a position: 500 (device units), 90deg, +50, -10deg or "
                                         "home"),
-    "speed": doc("Maximum speed", "Device units per second (`400/s`) or degrees per second "
-                 "(`90deg/s`); faster moves are warnings.", type="string",
-                 pattern=rf"^{NUM}(deg)?/s$",
-                 patternErrorMessage="a speed: 400/s (device units) or 90deg/s"),
-    "accel": doc("Maximum acceleration", "Device units (`4000/s2`) or degrees (`900deg/s2`) per "
-                 "second squared (`/s^2` also works); checked along curved moves.",
-                 type="string", pattern=rf"^{NUM}(deg)?/s(2|\^2)$",
-                 patternErrorMessage="an acceleration: 4000/s2 or 900deg/s2"),
+    "speed": string("Maximum speed", "Device units per second (`400/s`) or degrees per second "
+                    "(`90deg/s`); faster moves are warnings.", rf"^{NUM}(deg)?/s$",
+                    "a speed: 400/s (device units) or 90deg/s"),
+    "accel": string("Maximum acceleration", "Device units (`4000/s2`) or degrees (`900deg/s2`) "
+                    "per second squared (`/s^2` also works); checked along curved moves.",
+                    rf"^{NUM}(deg)?/s(2|\^2)$", "an acceleration: 4000/s2 or 900deg/s2"),
     "tolerance": doc("Tolerance", "How far the controller's motion may stray from the intended "
                      "curve at any millisecond: device units (`1`, `0.5`) or degrees (`0.5deg`). "
                      "Default 1.", type=["number", "string"], exclusiveMinimum=0,
