@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """What a reader of the documentation meets: every complete choreography shown in README.md and
 docs/ (a ```yaml block with both `robot:` and `sequence:` at the top level) passes `seqc check`,
-and every relative link points at a file (and heading) that exists.
+every diagnostic shown has its caret under the column it names, and every relative link points
+at a file (and heading) that exists.
 Usage: docs_test.py SEQC REPO_ROOT"""
 import os
 import re
@@ -39,6 +40,20 @@ with tempfile.TemporaryDirectory() as tmp:
             if run.returncode != 0:
                 line = text[:m.start()].count("\n") + 2
                 problems.append(f"{rel}:{line}: the example does not check:\n{run.stderr}")
+        # A diagnostic as seqc prints it: "path:L:C: ...", "  N | source", "    | ^".
+        lines = text.splitlines()
+        for n, line in enumerate(lines[:-2]):
+            head = re.match(r"^\S+?:(\d+):(\d+): (error|warning|note): ", line)
+            src = re.match(r"^ *(\d+) \| (.*)$", lines[n + 1])
+            caret = re.match(r"^ *\| (\s*)\^$", lines[n + 2])
+            if not (head and src and caret):
+                continue
+            blocks += 1
+            if int(src.group(1)) != int(head.group(1)):
+                problems.append(f"{rel}:{n + 1}: quotes line {src.group(1)}, names {head.group(1)}")
+            if len(caret.group(1)) != int(head.group(2)) - 1:
+                problems.append(f"{rel}:{n + 3}: caret at column {len(caret.group(1)) + 1}, "
+                                f"the diagnostic names column {head.group(2)}")
         for m in re.finditer(r"\]\(([^)\s]+)\)", text):
             target = m.group(1)
             if re.match(r"^[a-z]+:", target):
@@ -57,6 +72,6 @@ with tempfile.TemporaryDirectory() as tmp:
                     problems.append(f"{rel}: link to {target}: no heading '#{anchor}'")
 for p in problems:
     print("FAIL:", p, file=sys.stderr)
-print(f"docs: {len(pages)} pages, {blocks} examples checked, {links} links followed, "
+print(f"docs: {len(pages)} pages, {blocks} examples and diagnostics checked, {links} links followed, "
       f"{len(problems)} problems")
 sys.exit(1 if problems else 0)

@@ -53,6 +53,54 @@ ALLOWED = {
 }
 
 
+def documentation_problems(schema):
+    """What editors show: every key has a title, a description and a markdownDescription
+    (directly or through its $ref), every pattern a patternErrorMessage, snippets exist for a
+    move, a repeat and a robot definition, and no oneOf (editors report "matches more than
+    one" for it)."""
+    problems = []
+    defs = schema["definitions"]
+
+    def resolve(node):
+        while isinstance(node, dict) and "$ref" in node:
+            node = defs[node["$ref"].rsplit("/", 1)[1]]
+        return node
+
+    # Keys are documented where they are declared; if/then/else/not/anyOf branches only refine
+    # (or forbid) keys declared beside them.
+    def walk(node, where, declared=True):
+        if isinstance(node, list):
+            for i, n in enumerate(node):
+                walk(n, f"{where}[{i}]", declared)
+            return
+        if not isinstance(node, dict):
+            return
+        if "oneOf" in node:
+            problems.append(f"{where}: oneOf")
+        if "pattern" in node and "patternErrorMessage" not in node:
+            problems.append(f"{where}: a pattern without patternErrorMessage")
+        for key, sub in (node.get("properties", {}) if declared else {}).items():
+            target = resolve(sub)
+            if target is True or target is False:
+                continue  # if/then branches allow or forbid keys documented elsewhere
+            for field in ("title", "description", "markdownDescription"):
+                if field not in target and field not in sub:
+                    problems.append(f"{where}.properties.{key}: no {field}")
+        for key, sub in node.items():
+            if key not in ("enum", "const", "required", "defaultSnippets"):
+                branch = key in ("if", "then", "else", "not", "anyOf", "allOf")
+                walk(sub, f"{where}.{key}", declared and not branch)
+
+    walk(schema, "schema")
+    labels = {s["label"] for d in defs.values() if isinstance(d, dict)
+              for s in d.get("defaultSnippets", [])}
+    labels |= {s["label"] for s in schema["properties"]["robot"].get("defaultSnippets", [])}
+    for want in ("move", "repeat", "robot definition", "drive"):
+        if want not in labels:
+            problems.append(f"no defaultSnippet '{want}'")
+    return problems
+
+
 def schema_verdict(validator, path):
     try:
         with open(path, encoding="utf-8") as f:
@@ -74,7 +122,7 @@ def main():
         schema = json.load(f)
     jsonschema.Draft7Validator.check_schema(schema)
     validator = jsonschema.Draft7Validator(schema)
-    problems, allowed_seen, agree = [], set(), 0
+    problems, allowed_seen, agree = documentation_problems(schema), set(), 0
     for path in files:
         rel = os.path.relpath(path, root)
         by_schema, why = schema_verdict(validator, path)
