@@ -200,8 +200,8 @@ ExitCode write_info(Context& ctx, const WriteOptions& o) {
       }
     }
     if (!s.tell(write)) return ExitCode::DeviceFailure;
-    ctx.out << "written to every servo on the bus (kept over power-off):\n"
-            << limits_table(write.limits, {{"id", std::to_string(write.servo)}});
+    summarize(ctx, "written to every servo on the bus (kept over power-off):");
+    ctx.out << limits_table(write.limits, {{"id", std::to_string(write.servo)}});
     return ExitCode::Ok;
   });
 }

@@ -65,9 +65,9 @@ ExitCode run_group(Context& ctx, const RunOptions& o) {
     const std::string how = o.forever ? "looping until `seqc group stop`"
                                       : std::to_string(times) + (times == 1 ? " time" : " times");
     if (saw_start(s, *group)) {
-      ctx.out << "group " << int{*group} << " started, " << how << "\n";
+      summarize(ctx, "group " + std::to_string(*group) + " started, " + how);
     } else {
-      ctx.out << "group " << int{*group} << ": run sent, " << how << "\n";
+      summarize(ctx, "group " + std::to_string(*group) + ": run sent, " + how);
       ctx.err << "seqc: warning: the controller did not report group " << int{*group}
               << " starting; it may be empty (store one with `seqc upload`)\n";
     }
@@ -88,7 +88,7 @@ ExitCode stop_group(Context& ctx, const StopOptions& o) {
         which = " (group " + std::to_string(stopped->detail->group) + ")";
       }
     }
-    ctx.out << "stopped" << which << "\n";
+    summarize(ctx, "stopped" + which);
     return ExitCode::Ok;
   });
 }
@@ -105,7 +105,7 @@ ExitCode erase_group(Context& ctx, const EraseOptions& o) {
     if (!s.ask<lsc::GroupErased>(lsc::GroupErase{target->group}, "the erase confirmation")) {
       return ExitCode::DeviceFailure;
     }
-    ctx.out << (target->all ? "every group erased" : target->text() + " erased") << "\n";
+    summarize(ctx, target->all ? "every group erased" : target->text() + " erased");
     return ExitCode::Ok;
   });
 }

@@ -15,6 +15,12 @@ struct CompileOutput;
 
 namespace seqc::cli {
 
+// A summary of what a command did ("group 3 erased"): on stderr after "seqc: ", like every
+// message for people, and not at all with --quiet. Data (readings, listings) go to ctx.out.
+inline void summarize(Context& ctx, const std::string& line) {
+  if (ctx.verbosity >= 0) ctx.err << "seqc: " << line << "\n";
+}
+
 // Where a subcommand's callback stores its exit status.
 struct Outcome {
   ExitCode code = ExitCode::Ok;

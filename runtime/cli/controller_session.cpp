@@ -1,5 +1,7 @@
 #include "runtime/cli/controller_session.hpp"
 
+#include "runtime/cli/commands.hpp"
+
 #include <ostream>
 #include <utility>
 
@@ -173,7 +175,8 @@ ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const ls
                             const std::string& done) {
   return run_on_controller(ctx, options, [&](ControllerSession& s) {
     if (!s.tell(request)) return ExitCode::DeviceFailure;
-    ctx.out << done;
+    // `done` ends with a newline, as the callers write it.
+    summarize(ctx, done.substr(0, done.size() - (done.ends_with('\n') ? 1 : 0)));
     return ExitCode::Ok;
   });
 }

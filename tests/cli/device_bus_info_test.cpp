@@ -68,8 +68,8 @@ TEST(DeviceBusInfo, WriteWithEveryFieldSendsOneFrame) {
   EXPECT_EQ(r.code, 0) << r.err;
   // 1b id pminLo pminHi pmaxLo pmaxHi mvminLo mvminHi mvmaxLo mvmaxHi tLo tHi led warn
   EXPECT_EQ(h.received(), hex("55 55 0f 1b 01 64 00 84 03 70 17 d0 20 55 00 00 05  55 55 02 0f"));
+  EXPECT_EQ(r.err, "seqc: written to every servo on the bus (kept over power-off):\n");
   EXPECT_EQ(r.out,
-            "written to every servo on the bus (kept over power-off):\n"
             "field           value\n"
             "id              1\n"
             "position-min    100\n"
