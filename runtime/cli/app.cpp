@@ -106,7 +106,15 @@ int run(int argc, const char* const* argv, Context& ctx) {
     ctx.out << e.what() << "\n";
     return to_int(ExitCode::Ok);
   } catch (const CLI::ParseError& e) {
-    ctx.err << "seqc: error: " << e.what() << "\n";
+    // Point at the help of the subcommand that was being parsed ("seqc help group run").
+    std::string path;
+    for (const CLI::App* a = &app; !a->get_subcommands().empty();) {
+      a = a->get_subcommands().front();
+      path += " " + a->get_name();
+    }
+    ctx.err << "seqc: error: " << e.what() << "\n"
+            << "seqc: run 'seqc help" << path << "' for "
+            << (path.empty() ? "the list of commands and options" : "its options") << "\n";
     return to_int(ExitCode::Usage);
   }
   return to_int(outcome.code);

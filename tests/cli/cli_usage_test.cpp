@@ -42,6 +42,17 @@ TEST(Usage, MistypedOptionSuggestsTheClosestOfThatSubcommand) {
   EXPECT_EQ(seqc(kSource, "offset adjust 1 -20 --port emu:xarm").status, 0);
 }
 
+TEST(Usage, AMissingArgumentPointsAtTheRightHelp) {
+  EXPECT_EQ(seqc(kSource, "").err,
+            "seqc: error: A subcommand is required\n"
+            "seqc: run 'seqc help' for the list of commands and options\n");
+  const SeqcRun r = seqc(kSource, "group run");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "seqc: error: GROUP is required\n"
+            "seqc: run 'seqc help group run' for its options\n");
+}
+
 TEST(Usage, HelpSubcommandPrintsTheSameTextAsDashDashHelp) {
   EXPECT_EQ(seqc(kSource, "help").out, seqc(kSource, "--help").out);
   EXPECT_EQ(seqc(kSource, "help check").out, seqc(kSource, "check --help").out);
