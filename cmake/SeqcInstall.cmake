@@ -11,6 +11,8 @@ include(GNUInstallDirs)
 
 install(TARGETS seqc RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES schemas/seqc.schema.json DESTINATION ${CMAKE_INSTALL_DATADIR}/seqc)
+# Also beside the examples, so their modeline ($schema=../schemas/seqc.schema.json) works there.
+install(FILES schemas/seqc.schema.json DESTINATION ${CMAKE_INSTALL_DOCDIR}/schemas)
 install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         FILES_MATCHING PATTERN "*.yaml")
 install(FILES README.md CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})

@@ -10,7 +10,7 @@ for f in bin/seqc share/seqc/seqc.schema.json share/man/man1/seqc.1.gz \
   share/bash-completion/completions/seqc share/zsh/vendor-completions/_seqc \
   share/fish/vendor_completions.d/seqc.fish lib/udev/rules.d/70-seqc.rules \
   share/doc/seqc/examples/walk.yaml share/doc/seqc/examples/car-dance.yaml \
-  share/doc/seqc/copyright share/doc/seqc/CHANGELOG.md; do
+  share/doc/seqc/copyright share/doc/seqc/CHANGELOG.md share/doc/seqc/schemas/seqc.schema.json; do
   [ -e "$prefix/$f" ] || { echo "FAIL: $f not installed" >&2; exit 1; }
 done
 PATH="$prefix/bin:$PATH" seqc check "$prefix/share/doc/seqc/examples/car-dance.yaml"
