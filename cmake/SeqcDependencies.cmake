@@ -16,6 +16,7 @@ endmacro()
 seqc_find(yaml-cpp libyaml-cpp-dev)
 seqc_find(CLI11 libcli11-dev)
 seqc_find(fmt libfmt-dev)
+seqc_find(SQLite3 libsqlite3-dev)  # .d6a action files are SQLite databases
 seqc_find(Threads libc6-dev)
 seqc_find(PkgConfig pkg-config)
 pkg_check_modules(HIDAPI QUIET IMPORTED_TARGET hidapi-hidraw)

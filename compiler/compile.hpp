@@ -49,6 +49,8 @@ struct RobotInfo {
   std::string profile;  // "xarm", "lsc-16", "lsc-32"
   RobotKind kind = RobotKind::ServoController;
   std::vector<ServoInfo> servos;  // in id order
+  // The highest id the file's `servos:` section names (0 when it names none).
+  std::uint8_t highest_defined_id = 0;
 
   const ServoInfo* find_id(std::uint8_t id) const;
   const ServoInfo* find_name(std::string_view name) const;

@@ -22,6 +22,10 @@ const std::vector<RobotProfile>& profiles() {
         {"shoulder", 5},
         {"base", 6}},
        "servo", kRatedDegreesPerSecond * 1000.0 / 240.0},
+      // Any LewanSoul/Hiwonder bus servos on the controller (humanoids, hexapods, the .d6a files
+      // of Hiwonder's tools): ids 1-32 named s1..s32, the xArm's units and speed.
+      {"bus", RobotKind::ServoController, 1, 32, 0, 1000, 500, 0.0, 1000.0 / 240.0, {},
+       "s", kRatedDegreesPerSecond * 1000.0 / 240.0},
       // PWM boards: 500-2500 us, 1500 = neutral; 0-180 degrees is the usual hobby-servo travel.
       {"lsc-16", RobotKind::ServoController, 0, 15, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},

@@ -265,6 +265,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
       for (const auto& [key, def] : servos->entries) {
         parse_servo(robot, key, def, defined_ids, reporter);
       }
+      if (!defined_ids.empty()) robot.info.highest_defined_id = defined_ids.rbegin()->first;
     } else if (servos->kind != YamlNode::Kind::Null) {
       reporter.error(servos->location, "'servos' must be a map of name: id or name: {id: ...}");
     }

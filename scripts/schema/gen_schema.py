@@ -28,6 +28,8 @@ PROFILES = {
     # name: (first id, last id, min, max, home, what)
     "xarm": (1, 6, 0, 1000, 500, "xArm bus servos 1-6 (claw, wrist_roll, wrist_pitch, elbow, "
              "shoulder, base), 0-1000 over 0-240deg, home 500"),
+    "bus": (1, 32, 0, 1000, 500, "LewanSoul/Hiwonder bus servos 1-32 (s1..s32), 0-1000 over "
+            "0-240deg, home 500"),
     "lsc-16": (0, 15, 500, 2500, 1500, "LSC-16 PWM channels 0-15 (ch0..ch15), 500-2500 us over "
                "0-180deg, home 1500"),
     "lsc-32": (0, 31, 500, 2500, 1500, "LSC-32 PWM channels 0-31 (ch0..ch31), 500-2500 us over "
