@@ -274,6 +274,23 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
   return finish();
 }
 
+std::optional<RobotInfo> robot_of_text(const std::string& path, const std::string& text,
+                                       SourceManager& sources, Diagnostics& diags) {
+  const std::uint32_t file = sources.add(path, text);
+  const std::optional<YamlNode> root = load_yaml(sources, file, diags, YamlLimits{});
+  if (!root) return std::nullopt;
+  Reporter reporter(diags);
+  const YamlNode* robot = root->is_map() ? root->find("robot") : nullptr;
+  if (robot == nullptr) {
+    reporter.error(root->location, "missing 'robot': name the robot this file is for (" +
+                                       profile_list() + ")");
+    return std::nullopt;
+  }
+  std::optional<Robot> parsed = parse_robot(*robot, reporter);
+  if (!parsed || diags.has_errors()) return std::nullopt;
+  return parsed->info;
+}
+
 std::optional<std::string> included_robot_name(const YamlNode& value, Reporter& reporter) {
   if (!value.is_scalar()) {
     reporter.error(value.location,

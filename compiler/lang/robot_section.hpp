@@ -33,6 +33,11 @@ struct Robot {
 // cannot be determined; other mistakes are reported and the section applied as far as possible.
 std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter);
 
+// The robot a choreography's text names, for tools that edit the file without compiling it
+// (`seqc teach`): its servos with their names. Errors go to `diags` with their locations.
+std::optional<RobotInfo> robot_of_text(const std::string& path, const std::string& text,
+                                       SourceManager& sources, Diagnostics& diags);
+
 // The profile name an included file's `robot:` names (it may not define servos).
 std::optional<std::string> included_robot_name(const YamlNode& value, Reporter& reporter);
 

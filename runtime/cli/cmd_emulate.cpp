@@ -1,6 +1,7 @@
 // `seqc emulate xarm|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
 // path is the one line on stdout; progress and the Raspblock's state changes go to stderr.
 // On exit, --record writes what was received and --dump-groups (xarm) the stored groups.
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -32,6 +33,7 @@ struct EmulateOptions {
   std::string link;
   std::string record;
   std::string dump_groups;
+  std::string positions;
   CLI::Option* baud_opt = nullptr;
   CLI::Option* faults_opt = nullptr;
   CLI::Option* seed_opt = nullptr;
@@ -100,6 +102,18 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
     }
     config.faults = *faults;
     if (o.seed_opt->count() > 0) config.faults.seed = o.seed;
+    auto positions = emu::parse_positions(o.positions);
+    if (!positions) {
+      ctx.err << "seqc: error: --positions: " << positions.error().message << "\n";
+      return ExitCode::Usage;
+    }
+    config.initial_positions = *positions;
+    for (const auto& [id, position] : *positions) {
+      config.servo_count = std::max<std::size_t>(config.servo_count, id);
+    }
+  } else if (!o.positions.empty()) {
+    ctx.err << "seqc: error: --positions applies to the xarm emulator only\n";
+    return ExitCode::Usage;
   }
 
   emu::PtyOptions pty_options;
@@ -194,6 +208,9 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       cmd->add_option("--dump-groups", opts->dump_groups,
                       "xarm: on exit, write every valid stored group, one action\n"
                       "per line: GROUP INDEX TIME_MS ID=POSITION ...");
+  cmd->add_option("--positions", opts->positions,
+                  "xarm: servo positions at power-on, ID=POSITION,... e.g. 1=300,2=650\n"
+                  "(as if posed by hand; for seqc teach and servo read)");
   cmd->callback([opts, &ctx, &result] { result.code = run_emulate(*opts, ctx); });
 }
 

@@ -12,6 +12,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
@@ -19,8 +20,14 @@ namespace {
 
 // ---- read ----------------------------------------------------------------------------------
 
-ExitCode read_positions(Context& ctx, const ServoListOptions& o) {
-  auto robot = robot_for_profile(o.robot);
+struct ReadOptions : ServoListOptions {
+  std::string format = "table";
+  std::string name = "pose1";
+};
+
+ExitCode read_positions(Context& ctx, const ReadOptions& o) {
+  // A pose needs servo names: yaml uses the xArm's when no --robot is given.
+  auto robot = robot_for_profile(o.robot.empty() && o.format == "yaml" ? "xarm" : o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
   std::vector<std::string> names = o.servos;
   if (names.empty()) {
@@ -34,6 +41,22 @@ ExitCode read_positions(Context& ctx, const ServoListOptions& o) {
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{*ids}, "the positions");
     if (!reply) return ExitCode::DeviceFailure;
+    if (o.format == "yaml") {
+      // A line to paste under `poses:` (seqc teach adds them to a file itself).
+      std::vector<std::pair<std::uint8_t, std::uint16_t>> positions;
+      for (std::uint8_t id : *ids) {
+        for (const lsc::ServoTarget& t : reply->servos) {
+          if (t.id == id) positions.emplace_back(id, t.position);
+        }
+      }
+      ctx.out << "  " << pose_line(o.name, positions, **robot) << "\n";
+      if (positions.size() != ids->size()) {
+        ctx.err << "seqc: error: " << ids->size() - positions.size()
+                << " servo(s) did not answer; the pose lacks them\n";
+        return ExitCode::DeviceFailure;
+      }
+      return ExitCode::Ok;
+    }
     return print_servo_readings(ctx, *ids, *robot, "position", reply->servos,
                                 &lsc::ServoTarget::position);
   });
@@ -111,12 +134,17 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
       app.add_subcommand("servo", "Read, move or release single servos on the servo controller");
   servo->require_subcommand(1);
 
-  auto read = std::make_shared<ServoListOptions>();
+  auto read = std::make_shared<ReadOptions>();
   CLI::App* read_cmd =
       servo->add_subcommand("read", "Print the positions of servos as a table (ServoPositionRead)");
   read_cmd->add_option("SERVO", read->servos,
                        "Servo ids (or names with --robot); default with --robot: all of them");
   add_robot_option(*read_cmd, read->robot);
+  read_cmd->add_option("--format", read->format,
+                       "table (default), or yaml: a pose line to paste under poses: (servo names "
+                       "from --robot, else the xArm's)")
+      ->check(CLI::IsMember({"table", "yaml"}));
+  read_cmd->add_option("--name", read->name, "With --format yaml: the pose's name (default pose1)");
   add_device_options(*read_cmd, read->device);
   read_cmd->callback([read, &ctx, &result] { result.code = read_positions(ctx, *read); });
 

@@ -34,12 +34,10 @@ PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
     return r;
   }
   emu::XArmConfig config;
-  auto faults = emu::parse_faults(spec.emulator_options);
-  if (!faults) {
+  if (auto ok = emu::apply_emulator_options(spec.emulator_options, config); !ok) {
     return failure(ExitCode::Usage,
-                   "--port " + transport::format_port(spec) + ": " + faults.error().message);
+                   "--port " + transport::format_port(spec) + ": " + ok.error().message);
   }
-  config.faults = *faults;
   OpenedPort port;
   port.emulated_clock = std::make_unique<io::ManualClock>();
   port.emulator = std::make_unique<emu::XArmEmulator>(config);

@@ -10,6 +10,9 @@ ServoBank::ServoBank(const ServoModelConfig& config) {
   s.limits.position_min = config.min;
   s.limits.position_max = config.max;
   servos_.assign(config.count, s);
+  for (const auto& [id, position] : config.initial) {
+    if (id >= 1 && id <= servos_.size()) servos_[id - 1].from = servos_[id - 1].to = position;
+  }
 }
 
 bool ServoBank::has(std::uint8_t id) const { return find(id) != nullptr; }
@@ -59,6 +62,14 @@ void ServoBank::power_off(std::uint8_t id, io::TimePoint at) {
   s->from = s->to = here;
   s->t0 = s->t1 = at;
   s->powered = false;
+}
+
+bool ServoBank::pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at) {
+  Servo* s = find(id);
+  if (s == nullptr || s->powered) return false;
+  s->from = s->to = position;
+  s->t0 = s->t1 = at;
+  return true;
 }
 
 bool ServoBank::powered(std::uint8_t id) const {

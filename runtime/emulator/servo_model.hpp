@@ -19,6 +19,8 @@ struct ServoModelConfig {
   std::uint16_t min = 0;
   std::uint16_t max = 1000;
   std::uint16_t home = 500;
+  // Where servos stand at power-on instead of home (as if posed by hand): id, position.
+  std::vector<std::pair<std::uint8_t, std::uint16_t>> initial;
 };
 
 class ServoBank {
@@ -33,6 +35,8 @@ class ServoBank {
   void move(std::uint8_t id, std::uint16_t target, io::Duration duration, io::TimePoint start);
   // Unpowers the servo: it stops where it is at `at`.
   void power_off(std::uint8_t id, io::TimePoint at);
+  // A person moving a limp servo by hand; a powered servo holds against the hand (false).
+  bool pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at);
   bool powered(std::uint8_t id) const;
   std::uint16_t position(std::uint8_t id, io::TimePoint at) const;
 

@@ -1,5 +1,7 @@
 #include "runtime/emulator/xarm_config.hpp"
 
+#include <algorithm>
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -142,6 +144,55 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
     if (comma == spec.size()) break;
   }
   return f;
+}
+
+Result<ServoPositions> parse_positions(std::string_view spec) {
+  ServoPositions out;
+  std::size_t pos = 0;
+  while (pos < spec.size()) {
+    std::size_t comma = spec.find(',', pos);
+    if (comma == std::string_view::npos) comma = spec.size();
+    const std::string_view item = spec.substr(pos, comma - pos);
+    pos = comma + 1;
+    const std::size_t eq = item.find('=');
+    if (eq == std::string_view::npos) {
+      return make_error("position '" + std::string(item) + "' must be ID=POSITION, e.g. 1=300");
+    }
+    auto id = parse_unsigned("servo id", item.substr(0, eq));
+    auto p = parse_unsigned("position", item.substr(eq + 1));
+    if (!id || *id < 1 || *id > 253) {
+      return make_error("position '" + std::string(item) + "': servo ids are 1-253");
+    }
+    if (!p || *p > 1000) {
+      return make_error("position '" + std::string(item) + "': positions are 0-1000");
+    }
+    out.emplace_back(static_cast<std::uint8_t>(*id), static_cast<std::uint16_t>(*p));
+  }
+  return out;
+}
+
+Status apply_emulator_options(std::string_view spec, XArmConfig& config) {
+  std::string faults;
+  std::string positions;
+  std::size_t pos = 0;
+  while (pos < spec.size()) {
+    std::size_t comma = spec.find(',', pos);
+    if (comma == std::string_view::npos) comma = spec.size();
+    const std::string item(spec.substr(pos, comma - pos));
+    pos = comma + 1;
+    std::string& into = !item.empty() && item[0] >= '0' && item[0] <= '9' ? positions : faults;
+    into += (into.empty() ? "" : ",") + item;
+  }
+  auto f = parse_faults(faults);
+  if (!f) return f.error();
+  auto p = parse_positions(positions);
+  if (!p) return p.error();
+  config.faults = *f;
+  config.initial_positions = *p;
+  for (const auto& [id, position] : *p) {
+    config.servo_count = std::max<std::size_t>(config.servo_count, id);
+  }
+  return Ok{};
 }
 
 std::string describe_faults(const XArmFaults& f) {

@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/result.hpp"
@@ -39,6 +41,16 @@ Result<XArmFaults> parse_faults(std::string_view spec);
 // The spec form of `faults` (only non-default items), e.g. "drop=0.05,seed=7"; "none" if none.
 std::string describe_faults(const XArmFaults& faults);
 
+// Servo positions at power-on, "1=300,2=650" (ids 1-253, positions 0-1000): the robot as it was
+// posed by hand, for `seqc teach` and `seqc servo read` without hardware.
+using ServoPositions = std::vector<std::pair<std::uint8_t, std::uint16_t>>;
+Result<ServoPositions> parse_positions(std::string_view spec);
+
+struct XArmConfig;
+// The options `--port emu:xarm?...` takes: the fault items of parse_faults and servo positions
+// (numeric keys: "1=300,drop=0.01"). Applies them to `config`.
+Status apply_emulator_options(std::string_view spec, XArmConfig& config);
+
 struct XArmConfig {
   std::uint32_t baud = 0;        // 0 = unpaced; else every byte, either way, takes 10 bits on
                                  // the wire (requests: InputLine in front of the emulator)
@@ -55,6 +67,7 @@ struct XArmConfig {
   std::uint16_t servo_max = 1000;
   std::uint16_t servo_home = 500;
   std::uint8_t servo_temperature_c = 32;  // what BusServoInfoRead reports
+  ServoPositions initial_positions;        // power-on positions other than home
 
   // Modelling choice (not from the document): the request parser discards a partial frame
   // when the next byte arrives more than frame_gap after the previous one, so a corrupted LEN

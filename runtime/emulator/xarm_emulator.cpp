@@ -9,7 +9,8 @@ namespace seqc::emu {
 namespace {
 
 ServoModelConfig servo_config(const XArmConfig& c) {
-  return ServoModelConfig{c.servo_count, c.servo_min, c.servo_max, c.servo_home};
+  return ServoModelConfig{c.servo_count, c.servo_min, c.servo_max, c.servo_home,
+                          c.initial_positions};
 }
 
 std::optional<lsc::Frame> reply_frame(const lsc::Reply& reply) {
@@ -246,6 +247,11 @@ std::optional<std::vector<lsc::GroupAction>> XArmEmulator::stored_group(std::uin
 
 std::uint16_t XArmEmulator::servo_position(std::uint8_t id, io::TimePoint at) const {
   return servos_.position(id, at);
+}
+
+bool XArmEmulator::pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at) {
+  advance_to(std::max(at, now_));
+  return servos_.pose_by_hand(id, position, std::max(at, now_));
 }
 
 void XArmEmulator::power_cycle(io::TimePoint at) {

@@ -106,6 +106,9 @@ class XArmEmulator {
   // state (adjusted offsets, group speeds, servo modes, playback, a download in progress,
   // pending output, a busy period) is lost. A download in progress leaves its group empty.
   void power_cycle(io::TimePoint at);
+  // Moves a limp servo (after MultiServoOff) by hand, as during teach-in; false if it is
+  // powered (it holds) or not on the bus.
+  bool pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at);
 
   io::TimePoint now() const { return now_; }
   const XArmConfig& config() const { return config_; }

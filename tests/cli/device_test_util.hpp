@@ -53,12 +53,15 @@ class DeviceHarness {
     ctx.interrupted = &interrupted;
     ctx.xarm_emulator = &emu;
     ctx.xarm_clock = &clock;
+    ctx.in = in;
     RunResult r;
     r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
     r.out = out.str();
     r.err = err.str();
     return r;
   }
+
+  std::istream* in = nullptr;  // the command's standard input, when it reads one
 
   // What the emulated controller received since the last mark() (or ever), as lowercase hex.
   std::string received() const {

@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -22,7 +24,7 @@ struct TerminalRun {
 // Runs seqc with `args` on a new pseudo-terminal `columns` wide, in the source tree, with
 // `env` added to the environment (NO_COLOR is removed first, as in a plain login).
 TerminalRun on_terminal(const std::vector<std::string>& args, int columns,
-                        const std::vector<std::string>& env = {}) {
+                        const std::vector<std::string>& env = {}, const std::string& typed = "") {
   struct winsize ws {};
   ws.ws_col = static_cast<unsigned short>(columns);
   ws.ws_row = 24;
@@ -38,6 +40,8 @@ TerminalRun on_terminal(const std::vector<std::string>& args, int columns,
     execv(SEQC_BIN, argv.data());
     _exit(127);
   }
+  // What the person types: the terminal holds it until the program reads a line.
+  if (!typed.empty() && write(master, typed.data(), typed.size()) < 0) ADD_FAILURE() << "write";
   TerminalRun r;
   char buf[4096];
   for (;;) {
@@ -135,6 +139,29 @@ TEST(Terminal, PlayShowsProgress) {
   const TerminalRun quiet = on_terminal(
       {"-q", "play", "tests/golden/raspblock/small.yaml", "--port", "emu:raspblock"}, 70);
   EXPECT_EQ(quiet.screen.find("frame"), std::string::npos) << quiet.screen;
+}
+
+TEST(Terminal, TeachOnATerminal) {
+  const std::string path =
+      ::testing::TempDir() + "teach-pty-" + std::to_string(::getpid()) + ".yaml";
+  std::ofstream(path) << "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n";
+  const TerminalRun r =
+      on_terminal({"teach", path, "--port", "emu:xarm?1=250,5=420"}, 80, {}, "\nlift\nq\n");
+  ASSERT_EQ(r.status, 0) << r.screen;
+  EXPECT_NE(r.screen.find("press Enter to record the pose, q to finish"), std::string::npos)
+      << r.screen;
+  EXPECT_NE(r.screen.find("name [pose1]"), std::string::npos) << r.screen;
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text,
+            "robot: xarm\n"
+            "poses:\n"
+            "  lift: {claw: 250, wrist_roll: 500, wrist_pitch: 500, elbow: 500, shoulder: 420, "
+            "base: 500}\n"
+            "sequence:\n"
+            "  - move: home\n"
+            "    time: 1s\n");
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -1,0 +1,136 @@
+// seqc teach FILE.yaml [--port P]: teach-in. The servos go limp (MultiServoOff) so the robot can
+// be posed by hand; each Enter reads every servo's position (ServoPositionRead) and adds it to
+// the file's `poses:` as a named pose, editing the text (pose_text.hpp) so the file's comments
+// and layout stay as they were; `q` (or end of input) finishes. Prompts and reports go to
+// stderr; the file is rewritten atomically after each pose, so nothing taught is lost.
+#include <algorithm>
+#include <istream>
+#include <string>
+
+#include "compiler/lang/robot_section.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/pose_text.hpp"
+#include "runtime/io/disk.hpp"
+
+namespace seqc::cli {
+namespace {
+
+struct TeachOptions {
+  std::string file;
+  DeviceOptions device;
+};
+
+// The servos to read: those the file names in its robot section, else all of the profile's.
+std::vector<std::uint8_t> taught_ids(const compiler::RobotInfo& robot) {
+  std::vector<std::uint8_t> ids;
+  for (const compiler::ServoInfo& s : robot.servos) {
+    if (robot.highest_defined_id == 0 || s.id <= robot.highest_defined_id) ids.push_back(s.id);
+  }
+  return ids;
+}
+
+std::string next_default_name(const std::string& text) {
+  const std::vector<std::string> taken = pose_names(text);
+  for (int n = 1;; ++n) {
+    const std::string name = "pose" + std::to_string(n);
+    if (std::find(taken.begin(), taken.end(), name) == taken.end()) return name;
+  }
+}
+
+// Letters, digits and _, not starting with a digit (the language's names).
+bool is_pose_name(const std::string& name) {
+  if (name.empty() || (name[0] >= '0' && name[0] <= '9')) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+bool read_line(Context& ctx, std::string& line) {
+  return ctx.in != nullptr && static_cast<bool>(std::getline(*ctx.in, line));
+}
+
+ExitCode teach(Context& ctx, const TeachOptions& o) {
+  auto read = ctx.files.read(o.file);
+  if (!read) {
+    ctx.err << "seqc: error: " << read.error().message
+            << " (teach adds poses to an existing file; start one with a `robot:` line)\n";
+    return ExitCode::FileError;
+  }
+  std::string text = std::move(*read);
+  compiler::SourceManager sources;
+  compiler::Diagnostics diags;
+  const std::optional<compiler::RobotInfo> robot =
+      compiler::robot_of_text(o.file, text, sources, diags);
+  if (!robot) {
+    ctx.err << compiler::render_all(diags, sources, false, ctx.color);
+    return ExitCode::InvalidInput;
+  }
+  if (robot->servos.empty() || robot->servos.front().min != 0) {
+    ctx.err << "seqc: error: " << o.file << ": robot '" << robot->profile
+            << "' has PWM servos, which cannot report where they are; teach needs bus servos "
+               "(xarm, bus)\n";
+    return ExitCode::InvalidInput;
+  }
+  const std::vector<std::uint8_t> ids = taught_ids(*robot);
+  int added = 0;
+  const ExitCode code = run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+    if (!s.tell(lsc::MultiServoOff{ids})) return ExitCode::DeviceFailure;
+    ctx.err << "seqc: the servos are limp: pose the robot by hand.\n";
+    for (;;) {
+      ctx.err << "seqc: press Enter to record the pose, q to finish: " << std::flush;
+      std::string line;
+      if (!read_line(ctx, line) || line == "q" || line == "Q") break;
+      auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{ids}, "the positions");
+      if (!reply) return ExitCode::DeviceFailure;
+      std::vector<std::pair<std::uint8_t, std::uint16_t>> positions;
+      for (std::uint8_t id : ids) {
+        for (const lsc::ServoTarget& t : reply->servos) {
+          if (t.id == id) positions.emplace_back(id, t.position);
+        }
+      }
+      if (positions.size() != ids.size()) {
+        ctx.err << "seqc: warning: " << ids.size() - positions.size()
+                << " servo(s) did not answer; recording the others\n";
+      }
+      std::string name;
+      const std::string fallback = next_default_name(text);
+      for (;;) {
+        ctx.err << "seqc: name [" << fallback << "]: " << std::flush;
+        if (!read_line(ctx, name) || name.empty()) name = fallback;
+        if (is_pose_name(name)) break;
+        ctx.err << "seqc: a pose name is letters, digits and _, not starting with a digit\n";
+      }
+      const std::string pose = pose_line(name, positions, *robot);
+      auto edited = add_pose(text, pose, name);
+      if (!edited) {
+        ctx.err << "seqc: error: " << o.file << ": " << edited.error().message << "\n";
+        continue;
+      }
+      if (auto ok = io::write_file_atomically(o.file, *edited); !ok) {
+        ctx.err << "seqc: error: cannot write '" << o.file << "': " << ok.error().message << "\n";
+        return ExitCode::FileError;
+      }
+      text = std::move(*edited);
+      ++added;
+      summarize(ctx, "added " + pose);
+    }
+    return ExitCode::Ok;
+  });
+  summarize(ctx, std::to_string(added) + " pose" + (added == 1 ? "" : "s") + " added to " +
+                     o.file + "; the servos stay limp until they are moved again");
+  return code;
+}
+
+}  // namespace
+
+void add_teach_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto o = std::make_shared<TeachOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "teach", "Pose the robot by hand and add each pose to a choreography's poses (teach-in)");
+  cmd->add_option("FILE", o->file, "Choreography file (.yaml) to add the poses to")->required();
+  add_device_options(*cmd, o->device);
+  cmd->callback([&ctx, &result, o] { result.code = teach(ctx, *o); });
+}
+
+}  // namespace seqc::cli
