@@ -8,6 +8,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libfmt-dev libsqlite3-dev libgtest-dev libgmock-dev libhidapi-dev
   python3 python3-yaml python3-jsonschema
   dpkg-dev file groff-base zsh fish pre-commit git
+  chromium python3-pil
 )
 # clang builds the libFuzzer targets; optional, installed when available.
 optional=(clang libclang-rt-dev)

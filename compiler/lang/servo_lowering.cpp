@@ -67,9 +67,11 @@ void ServoLowering::finish(ServoProgram& program) {
     // A curve always has a segment; should one not, the warning still points into the file.
     const Location where =
         s.where.file != kNoFile ? s.where : sequence_at_.value_or(Location{0, 1, 1});
-    reporter_.warning(where, "even 20ms actions cannot keep '" + info.name + "' within " +
-                                 format_units(s.tolerance) + " of this curve: it is " +
-                                 format_units(s.error) + " off at " + format_seconds(s.at_ms));
+    const std::string message = "even 20ms actions cannot keep '" + info.name + "' within " +
+                                format_units(s.tolerance) + " of this curve: it is " +
+                                format_units(s.error) + " off at " + format_seconds(s.at_ms);
+    reporter_.warning(where, message);
+    timeline_.warnings.push_back({static_cast<double>(s.at_ms), s.servo, message});
   }
   for (const FittedAction& a : fit.actions) {
     Keyframe k;

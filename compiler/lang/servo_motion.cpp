@@ -342,18 +342,18 @@ void ServoLowering::check_kinematics(std::size_t servo, const Segment& segment, 
   const std::string shape =
       segment.kind == CurveKind::Eased ? " on this " + segment.easing.name() + " curve" : "";
   if (too_fast) {
-    reporter_.warning(segment.at,
-                      moved + (curved ? " peaks at " : " is ") + number(speed * per_unit, 0) + u +
-                          "/s" + shape + ", above " + info.name + "'s " +
-                          number(*info.max_speed * per_unit, 0) + u + "/s",
-                      note);
+    const std::string message =
+        moved + (curved ? " peaks at " : " is ") + number(speed * per_unit, 0) + u + "/s" + shape +
+        ", above " + info.name + "'s " + number(*info.max_speed * per_unit, 0) + u + "/s";
+    reporter_.warning(segment.at, message, note);
+    timeline_.warnings.push_back({segment.start.value(), servo, message});
   }
   if (too_sudden) {
-    reporter_.warning(segment.at,
-                      moved + " accelerates at up to " + number(accel * per_unit, 0) + u + "/s^2" +
-                          shape + ", above " + info.name + "'s " +
-                          number(*info.max_accel * per_unit, 0) + u + "/s^2",
-                      note);
+    const std::string message = moved + " accelerates at up to " + number(accel * per_unit, 0) + u +
+                                "/s^2" + shape + ", above " + info.name + "'s " +
+                                number(*info.max_accel * per_unit, 0) + u + "/s^2";
+    reporter_.warning(segment.at, message, note);
+    timeline_.warnings.push_back({segment.start.value(), servo, message});
   }
 }
 

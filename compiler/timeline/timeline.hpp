@@ -52,6 +52,13 @@ struct TimelineMarker {
   Location where;
 };
 
+// A warning about a servo at a time (speed, acceleration, fit), for pictures of the timeline.
+struct TimelineWarning {
+  double at_ms = 0;
+  std::size_t servo = 0;
+  std::string message;
+};
+
 class Timeline {
  public:
   void resize(std::size_t servos) { servos_.resize(servos); }
@@ -72,6 +79,7 @@ class Timeline {
   std::optional<double> value(std::size_t servo, double t_ms) const;
 
   std::vector<TimelineMarker> markers;
+  std::vector<TimelineWarning> warnings;
   ExactMs end;  // when the last step ends
   // Tempo and meter in force at the start, for a beat/bar grid (0 = none).
   double tempo = 0;

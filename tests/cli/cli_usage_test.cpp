@@ -172,3 +172,37 @@ TEST(CheckFormats, UnreadableFileIsADiagnosticOfThatFile) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Plot, SmallProgramGolden) {
+  // Every kind of mark: bar grid, a section and an `at:` cue, a curve and its actions, a narrowed
+  // limit, and the speed warning with its message as the marker's <title>.
+  const SeqcRun r = seqc(kSource, "plot tests/plot/small.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_golden(seqc::testing::kGolden / "plot/small.svg", r.out);
+  EXPECT_NE(r.out.find("<title>warning: 600 in 200ms is 3000/s, above base's 833/s</title>"),
+            std::string::npos);
+  EXPECT_EQ(r.out.find("<script"), std::string::npos);
+  EXPECT_EQ(r.out.find("href"), std::string::npos);  // nothing external
+}
+
+TEST(Plot, TheReadmePictureIsCurrent) {
+  const SeqcRun r = seqc(kSource, "plot examples/waltz.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_golden(kSource / "docs/images/waltz.svg", r.out);
+}
+
+TEST(Plot, WindowAndErrors) {
+  const SeqcRun window = seqc(kSource, "plot examples/walk.yaml --from 2s --to 4s");
+  EXPECT_EQ(window.status, 0);
+  EXPECT_NE(window.out.find(">2 s</text>"), std::string::npos);
+  EXPECT_NE(window.out.find(">4 s</text>"), std::string::npos);
+  EXPECT_EQ(window.out.find(">6 s</text>"), std::string::npos);
+  EXPECT_EQ(seqc(kSource, "plot examples/walk.yaml --from 4s --to 2s").status, 2);
+  EXPECT_EQ(seqc(kSource, "plot examples/walk.yaml --from 2b").err,
+            "seqc: error: --from 2b: give a time in ms or s, e.g. 1.5s\n");
+  EXPECT_EQ(seqc(kSource, "plot tests/golden/bad-unknown-pose.yaml").status, 1);
+}
+
+}  // namespace

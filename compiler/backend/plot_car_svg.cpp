@@ -1,0 +1,138 @@
+// The Raspblock half of plot_svg.hpp: the path from above and the outputs over time.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "compiler/backend/plot_svg.hpp"
+#include "compiler/backend/raspblock_simulate.hpp"
+#include "compiler/backend/svg_text.hpp"
+
+namespace seqc::backend {
+namespace {
+
+using svg::num;
+
+constexpr double kWidth = 1100, kPanel = 360, kTop = 58, kLaneLeft = 440, kLane = 70, kGap = 10;
+constexpr double kPi = 3.14159265358979323846;
+
+struct Pose {
+  double x = 0, y = 0, heading = 0;  // cm, cm, degrees clockwise from "forward" (up)
+};
+
+// The model printed on the picture: speed units as cm/s (x sideways, right positive; y
+// forward), z as degrees per second clockwise. The board's speeds are not calibrated to any
+// unit, so the shape is right and the scale is nominal.
+std::vector<Pose> integrate(const CarSimulation& sim) {
+  std::vector<Pose> out{Pose{}};
+  for (std::size_t i = 1; i < sim.samples.size(); ++i) {
+    const double dt = (sim.samples[i].time_ms - sim.samples[i - 1].time_ms) / 1000.0;
+    const CarState& s = sim.samples[i - 1].state;
+    Pose p = out.back();
+    const double h = p.heading * kPi / 180;
+    // Body frame (x right, y forward) to the world (x right, y up), heading clockwise.
+    p.x += (s.x * std::cos(h) + s.y * std::sin(h)) * dt;
+    p.y += (-s.x * std::sin(h) + s.y * std::cos(h)) * dt;
+    p.heading += s.z * dt;
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::string path_panel(const CarSimulation& sim, double top) {
+  const std::vector<Pose> path = integrate(sim);
+  double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+  for (const Pose& p : path) {
+    min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+    min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+  }
+  const double span = std::max({max_x - min_x, max_y - min_y, 20.0});
+  const double scale = (kPanel - 40) / span;
+  const double cx = 24 + kPanel / 2, cy = top + kPanel / 2;
+  const double mx = (min_x + max_x) / 2, my = (min_y + max_y) / 2;
+  auto X = [&](double x) { return cx + (x - mx) * scale; };
+  auto Y = [&](double y) { return cy - (y - my) * scale; };
+  std::string out = svg::rect(24, top, kPanel, kPanel, "fill=\"#f9fafb\" stroke=\"#d1d5db\"");
+  out +=
+      svg::text(30, top + 14, "path from above (nominal scale: 1 speed unit = 1 cm/s, z: 1 deg/s)",
+                "fill=\"#4b5563\" font-size=\"10\"");
+  std::vector<double> xs, ys;
+  for (const Pose& p : path) {
+    xs.push_back(X(p.x));
+    ys.push_back(Y(p.y));
+  }
+  out += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
+  // Heading arrows once a second.
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (sim.samples[i].time_ms % 1000 != 0) continue;
+    const double h = path[i].heading * kPi / 180;
+    out += svg::line(X(path[i].x), Y(path[i].y), X(path[i].x) + 9 * std::sin(h),
+                     Y(path[i].y) - 9 * std::cos(h), "stroke=\"#2563eb\" stroke-width=\"1.2\"");
+  }
+  out += "<g><title>start</title><circle cx=\"" + num(X(0)) + "\" cy=\"" + num(Y(0)) +
+         "\" r=\"5\" fill=\"#16a34a\"/></g>\n";
+  out += "<g><title>end</title><circle cx=\"" + num(xs.back()) + "\" cy=\"" + num(ys.back()) +
+         "\" r=\"5\" fill=\"#dc2626\"/></g>\n";
+  return out;
+}
+
+}  // namespace
+
+std::string plot_car_program(const compiler::RaspblockProgram& program,
+                             const PlotOptions& options) {
+  const CarSimulation sim = simulate_car(program, 20);
+  const double duration = sim.duration_ms;
+  const double from = options.from_ms.value_or(0);
+  const double to = std::max(from + 1, options.to_ms.value_or(duration));
+  auto x = [&](double t) {
+    return kLaneLeft + (t - from) / (to - from) * (kWidth - kLaneLeft - 24);
+  };
+  struct Output {
+    std::string name;
+    std::optional<int> (*get)(const CarState&);
+  };
+  const std::vector<Output> outputs = {
+      {"pan", [](const CarState& s) { return s.pan; }},
+      {"tilt", [](const CarState& s) { return s.tilt; }},
+      {"servo1", [](const CarState& s) { return s.servos[0]; }},
+      {"servo2", [](const CarState& s) { return s.servos[1]; }},
+      {"servo3", [](const CarState& s) { return s.servos[2]; }},
+      {"servo4", [](const CarState& s) { return s.servos[3]; }},
+  };
+  std::string lanes;
+  double y0 = kTop;
+  for (const Output& o : outputs) {
+    const bool used = std::any_of(sim.samples.begin(), sim.samples.end(),
+                                  [&](const CarSimulation::Sample& s) { return o.get(s.state); });
+    if (!used && o.name != "pan" && o.name != "tilt") continue;
+    auto y = [&](double v) { return y0 + kLane - (v - 400) / 2200.0 * kLane; };
+    lanes += svg::rect(kLaneLeft, y0, kWidth - kLaneLeft - 24, kLane,
+                       "fill=\"none\" stroke=\"#d1d5db\"");
+    lanes += svg::text(kLaneLeft - 8, y0 + 16, o.name, "text-anchor=\"end\" font-weight=\"bold\"");
+    lanes += svg::text(kLaneLeft - 8, y0 + 30, "us", "text-anchor=\"end\" fill=\"#6b7280\"");
+    std::vector<double> xs, ys;
+    for (const CarSimulation::Sample& s : sim.samples) {
+      if (s.time_ms < from || s.time_ms > to) continue;
+      xs.push_back(x(s.time_ms));
+      const auto v = o.get(s.state);
+      ys.push_back(v ? y(*v) : std::numeric_limits<double>::quiet_NaN());
+    }
+    lanes += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
+    y0 += kLane + kGap;
+  }
+  const double axis = std::max(y0, kTop + kPanel) + 6;
+  lanes += svg::line(kLaneLeft, y0, kWidth - 24, y0, "stroke=\"#374151\"");
+  const double step = svg::nice_step((to - from) / 1000.0, 8) * 1000.0;
+  for (double t = std::ceil(from / step) * step; t <= to + 1e-6; t += step) {
+    lanes +=
+        svg::text(x(t), y0 + 15, num(t / 1000.0) + " s", "text-anchor=\"middle\" fill=\"#374151\"");
+  }
+  std::string body = svg::text(12, 20, options.title, "font-size=\"15\" font-weight=\"bold\"");
+  body += svg::text(12, 38,
+                    std::to_string(program.packets.size()) + " packets, " + num(duration / 1000.0) +
+                        " s; the gimbal and servo outputs over time",
+                    "fill=\"#4b5563\"");
+  body += path_panel(sim, kTop) + lanes;
+  return svg::document(kWidth, axis + 30, options.title, body);
+}
+
+}  // namespace seqc::backend
