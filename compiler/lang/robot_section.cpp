@@ -282,8 +282,8 @@ std::optional<RobotInfo> robot_of_text(const std::string& path, const std::strin
   Reporter reporter(diags);
   const YamlNode* robot = root->is_map() ? root->find("robot") : nullptr;
   if (robot == nullptr) {
-    reporter.error(root->location, "missing 'robot': name the robot this file is for (" +
-                                       profile_list() + ")");
+    reporter.error(root->location,
+                   "missing 'robot': name the robot this file is for (" + profile_list() + ")");
     return std::nullopt;
   }
   std::optional<Robot> parsed = parse_robot(*robot, reporter);

@@ -140,9 +140,10 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result) {
   read_cmd->add_option("SERVO", read->servos,
                        "Servo ids (or names with --robot); default with --robot: all of them");
   add_robot_option(*read_cmd, read->robot);
-  read_cmd->add_option("--format", read->format,
-                       "table (default), or yaml: a pose line to paste under poses: (servo names "
-                       "from --robot, else the xArm's)")
+  read_cmd
+      ->add_option("--format", read->format,
+                   "table (default), or yaml: a pose line to paste under poses: (servo names "
+                   "from --robot, else the xArm's)")
       ->check(CLI::IsMember({"table", "yaml"}));
   read_cmd->add_option("--name", read->name, "With --format yaml: the pose's name (default pose1)");
   add_device_options(*read_cmd, read->device);

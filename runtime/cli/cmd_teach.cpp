@@ -117,8 +117,8 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
     }
     return ExitCode::Ok;
   });
-  summarize(ctx, std::to_string(added) + " pose" + (added == 1 ? "" : "s") + " added to " +
-                     o.file + "; the servos stay limp until they are moved again");
+  summarize(ctx, std::to_string(added) + " pose" + (added == 1 ? "" : "s") + " added to " + o.file +
+                     "; the servos stay limp until they are moved again");
   return code;
 }
 

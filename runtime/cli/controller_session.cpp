@@ -27,7 +27,8 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
 }
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
-  cmd.add_option("--robot", profile, "Robot profile (xarm, bus, lsc-16, lsc-32): allows servo names");
+  cmd.add_option("--robot", profile,
+                 "Robot profile (xarm, bus, lsc-16, lsc-32): allows servo names");
 }
 
 void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {

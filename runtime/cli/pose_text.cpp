@@ -32,7 +32,7 @@ std::size_t block_end(const std::vector<std::string>& lines, std::size_t start) 
     const std::string& l = lines[i];
     const auto first = l.find_first_not_of(" \t");
     if (first == std::string::npos || l[first] == '#') continue;  // blank or comment
-    if (first == 0) break;                                      // the next top-level key
+    if (first == 0) break;                                        // the next top-level key
     last = i;
   }
   return last;
@@ -85,8 +85,9 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
   }
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (top_key_inline(lines[i], "poses")) {
-      return make_error("'poses:' is written on one line; make it a block (each pose on its own "
-                        "line) so seqc can add to it");
+      return make_error(
+          "'poses:' is written on one line; make it a block (each pose on its own "
+          "line) so seqc can add to it");
     }
     if (!is_top_key(lines[i], "poses")) continue;
     const std::size_t end = block_end(lines, i);
@@ -112,8 +113,7 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
       break;
     }
   }
-  lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at),
-               {"poses:", "  " + pose_line_text});
+  lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at), {"poses:", "  " + pose_line_text});
   std::string out;
   for (const std::string& l : lines) out += l + "\n";
   return out;

@@ -67,7 +67,7 @@ struct XArmConfig {
   std::uint16_t servo_max = 1000;
   std::uint16_t servo_home = 500;
   std::uint8_t servo_temperature_c = 32;  // what BusServoInfoRead reports
-  ServoPositions initial_positions;        // power-on positions other than home
+  ServoPositions initial_positions;       // power-on positions other than home
 
   // Modelling choice (not from the document): the request parser discards a partial frame
   // when the next byte arrives more than frame_gap after the previous one, so a corrupted LEN
