@@ -12,7 +12,9 @@ namespace {
 
 using svg::num;
 
-constexpr double kWidth = 1100, kPanel = 360, kTop = 58, kLaneLeft = 440, kLane = 70, kGap = 10;
+// Lanes share the servo plot's left edge, so a show's performers line up on one time axis; the
+// path from above sits under them.
+constexpr double kWidth = 1100, kPanel = 360, kTop = 74, kLaneLeft = 150, kLane = 70, kGap = 10;
 constexpr double kPi = 3.14159265358979323846;
 
 struct Pose {
@@ -47,14 +49,24 @@ std::string path_panel(const CarSimulation& sim, double top) {
   }
   const double span = std::max({max_x - min_x, max_y - min_y, 20.0});
   const double scale = (kPanel - 40) / span;
-  const double cx = 24 + kPanel / 2, cy = top + kPanel / 2;
+  const double cx = kLaneLeft + kPanel / 2, cy = top + kPanel / 2;
   const double mx = (min_x + max_x) / 2, my = (min_y + max_y) / 2;
   auto X = [&](double x) { return cx + (x - mx) * scale; };
   auto Y = [&](double y) { return cy - (y - my) * scale; };
-  std::string out = svg::rect(24, top, kPanel, kPanel, "fill=\"#f9fafb\" stroke=\"#d1d5db\"");
-  out +=
-      svg::text(30, top + 14, "path from above (nominal scale: 1 speed unit = 1 cm/s, z: 1 deg/s)",
-                "fill=\"#4b5563\" font-size=\"10\"");
+  std::string out =
+      svg::rect(kLaneLeft, top, kPanel, kPanel, "fill=\"#f9fafb\" stroke=\"#d1d5db\"");
+  out += svg::text(12, top + 16, "path", "font-weight=\"bold\"");
+  out += svg::text(12, top + 30, "from above", "fill=\"#6b7280\"");
+  out += svg::text(kLaneLeft + kPanel + 12, top + 16,
+                   "model: speeds integrated as 1 speed unit = 1 cm/s (x right, y forward),",
+                   "fill=\"#4b5563\" font-size=\"10\"");
+  out += svg::text(kLaneLeft + kPanel + 12, top + 30,
+                   "z = 1 deg/s clockwise; the board's speeds are uncalibrated, so the scale is "
+                   "nominal.",
+                   "fill=\"#4b5563\" font-size=\"10\"");
+  out += svg::text(kLaneLeft + kPanel + 12, top + 48,
+                   "green: start, red: end, blue: heading each second",
+                   "fill=\"#4b5563\" font-size=\"10\"");
   std::vector<double> xs, ys;
   for (const Pose& p : path) {
     xs.push_back(X(p.x));
@@ -107,8 +119,8 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
     auto y = [&](double v) { return y0 + kLane - (v - 400) / 2200.0 * kLane; };
     lanes += svg::rect(kLaneLeft, y0, kWidth - kLaneLeft - 24, kLane,
                        "fill=\"none\" stroke=\"#d1d5db\"");
-    lanes += svg::text(kLaneLeft - 8, y0 + 16, o.name, "text-anchor=\"end\" font-weight=\"bold\"");
-    lanes += svg::text(kLaneLeft - 8, y0 + 30, "us", "text-anchor=\"end\" fill=\"#6b7280\"");
+    lanes += svg::text(12, y0 + 16, o.name, "font-weight=\"bold\"");
+    lanes += svg::text(12, y0 + 30, "us", "fill=\"#6b7280\"");
     std::vector<double> xs, ys;
     for (const CarSimulation::Sample& s : sim.samples) {
       if (s.time_ms < from || s.time_ms > to) continue;
@@ -119,7 +131,7 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
     lanes += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
     y0 += kLane + kGap;
   }
-  const double axis = std::max(y0, kTop + kPanel) + 6;
+  const double panel_top = y0 + 30;
   lanes += svg::line(kLaneLeft, y0, kWidth - 24, y0, "stroke=\"#374151\"");
   const double step = svg::nice_step((to - from) / 1000.0, 8) * 1000.0;
   for (double t = std::ceil(from / step) * step; t <= to + 1e-6; t += step) {
@@ -131,8 +143,8 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
                     std::to_string(program.packets.size()) + " packets, " + num(duration / 1000.0) +
                         " s; the gimbal and servo outputs over time",
                     "fill=\"#4b5563\"");
-  body += path_panel(sim, kTop) + lanes;
-  return svg::document(kWidth, axis + 30, options.title, body);
+  body += lanes + path_panel(sim, panel_top);
+  return svg::document(kWidth, panel_top + kPanel + 12, options.title, body);
 }
 
 }  // namespace seqc::backend

@@ -10,6 +10,7 @@
 
 #include "compiler/source/units.hpp"
 #include "runtime/cli/check_formats.hpp"
+#include "compiler/lang/show.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/version.hpp"
@@ -22,6 +23,75 @@ std::string plural(std::size_t n, const char* word) {
   return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
 }
 
+// One thing checked: a choreography; or a show file's own part, then each performer's file.
+struct Unit {
+  std::string path;
+  std::string label;  // how the summary names it
+  Compiled compiled;
+  bool show = false;  // the show file's own part
+  std::size_t performers = 0;
+};
+
+std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict) {
+  std::vector<Unit> out;
+  const std::string shown = given == "-" ? kStdinName : given;
+  if (given != "-") {
+    if (auto text = ctx.files.read(given); text && compiler::is_show_text(*text)) {
+      compiler::ShowOutput show = compiler::load_show(given, ctx.files, {strict});
+      Unit self{shown, shown, {}, true, show.performers.size()};
+      self.compiled.output.sources = std::move(show.sources);
+      self.compiled.output.diagnostics = std::move(show.diagnostics);
+      self.compiled.output.read_error = show.read_error;
+      self.compiled.code = show.read_error ? ExitCode::FileError
+                           : self.compiled.output.diagnostics.has_errors(strict)
+                               ? ExitCode::InvalidInput
+                               : ExitCode::Ok;
+      out.push_back(std::move(self));
+      for (compiler::Performer& p : show.performers) {
+        if (p.output.read_error) continue;  // reported in the show file, where it is named
+        Unit u{p.file, p.file + " (" + p.name + ")", {}, false, 0};
+        u.compiled.code = p.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
+        u.compiled.output = std::move(p.output);
+        out.push_back(std::move(u));
+      }
+      return out;
+    }
+  }
+  Unit u{shown, shown, compile_quietly(ctx, given, strict), false, 0};
+  out.push_back(std::move(u));
+  return out;
+}
+
+// The summary line of a unit (text form).
+std::string summary(const Unit& u, bool strict) {
+  const compiler::Diagnostics& d = u.compiled.output.diagnostics;
+  const std::string warned =
+      d.warning_count() ? ", " + plural(d.warning_count(), "warning") : std::string();
+  if (u.show && u.compiled.code == ExitCode::Ok) {
+    return fmt::format("{}: show with {}{}\n", u.label, plural(u.performers, "performer"), warned);
+  }
+  if (const compiler::RaspblockProgram* car = u.compiled.output.raspblock_program()) {
+    return fmt::format("{}: ok ({}, {}){}\n", u.label, plural(car->packets.size(), "packet"),
+                       compiler::format_seconds(car->duration_ms), warned);
+  }
+  if (const compiler::ServoProgram* p = u.compiled.output.servo_program()) {
+    // The group's budget: actions used, duration, and the largest distance between the
+    // compiled motion and the intended curve, with where it is.
+    const std::string where =
+        p->fit_error > 0
+            ? fmt::format(" ({} at {:.3f} s)", p->fit_error_servo, p->fit_error_at_ms / 1000.0)
+            : "";
+    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {} units{}{}\n", u.label,
+                       p->keyframes.size(), lsc::kMaxActions,
+                       static_cast<double>(p->duration_ms()) / 1000.0,
+                       compiler::format_units(p->fit_error), where, warned);
+  }
+  const std::size_t errors = d.error_count() + (strict ? d.warning_count() : 0);
+  const std::size_t warnings = strict ? 0 : d.warning_count();
+  return fmt::format("{}: {}{}\n", u.label, plural(errors, "error"),
+                     warnings ? ", " + plural(warnings, "warning") : "");
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
@@ -31,72 +101,41 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string format = "text";
   };
   auto opts = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("check", "Check choreography files for mistakes");
-  cmd->add_option("FILE", opts->files, "Choreography files (.yaml)")->required();
+  CLI::App* cmd = app.add_subcommand("check", "Check choreography (or show) files for mistakes");
+  cmd->add_option("FILE", opts->files, "Choreography files (.yaml), or show files")->required();
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->add_option("--format", opts->format,
                   "text (default), json (an array of diagnostics) or sarif (SARIF 2.1.0)")
       ->check(CLI::IsMember({"text", "json", "sarif"}));
   cmd->callback([&ctx, &result, opts] {
-    if (opts->format != "text") {
-      std::vector<Compiled> compiled;
-      compiled.reserve(opts->files.size());
-      std::vector<CheckedFile> files;
-      ExitCode code = ExitCode::Ok;
-      for (const std::string& path : opts->files) {
-        compiled.push_back(compile_quietly(ctx, path, opts->strict));
-        const Compiled& c = compiled.back();
-        if (c.code == ExitCode::FileError) {
-          code = ExitCode::FileError;
-        } else if (c.code != ExitCode::Ok && code == ExitCode::Ok) {
-          code = ExitCode::InvalidInput;
-        }
-      }
-      for (std::size_t i = 0; i < compiled.size(); ++i) {
-        files.push_back({opts->files[i] == "-" ? kStdinName : opts->files[i], &compiled[i].output});
-      }
-      ctx.out << (opts->format == "json" ? diagnostics_json(files, opts->strict)
-                                         : diagnostics_sarif(files, opts->strict, kVersion));
-      result.code = code;
-      return;
+    std::vector<Unit> units;
+    for (const std::string& given : opts->files) {
+      for (Unit& u : units_of(ctx, given, opts->strict)) units.push_back(std::move(u));
     }
     bool invalid = false;
     bool unreadable = false;
-    for (const std::string& given : opts->files) {
-      Compiled c = compile_and_report(ctx, given, opts->strict);
-      const std::string path = given == "-" ? kStdinName : given;
-      if (c.code == ExitCode::FileError) {
-        unreadable = true;
-        continue;
-      }
-      const compiler::Diagnostics& d = c.output.diagnostics;
-      if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
-        ctx.out << fmt::format(
-            "{}: ok ({}, {}){}\n", path, plural(car->packets.size(), "packet"),
-            compiler::format_seconds(car->duration_ms),
-            d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
-      } else if (const compiler::ServoProgram* p = c.output.servo_program()) {
-        // The group's budget: actions used, duration, and the largest distance between the
-        // compiled motion and the intended curve, with where it is.
-        const std::string where =
-            p->fit_error > 0
-                ? fmt::format(" ({} at {:.3f} s)", p->fit_error_servo, p->fit_error_at_ms / 1000.0)
-                : "";
-        ctx.out << fmt::format(
-            "{}: {}/{} actions, {:.3f} s, fit within {} units{}{}\n", path, p->keyframes.size(),
-            lsc::kMaxActions, static_cast<double>(p->duration_ms()) / 1000.0,
-            compiler::format_units(p->fit_error), where,
-            d.warning_count() ? ", " + plural(d.warning_count(), "warning") : "");
-      } else {
-        invalid = true;
-        const std::size_t errors = d.error_count() + (opts->strict ? d.warning_count() : 0);
-        const std::size_t warnings = opts->strict ? 0 : d.warning_count();
-        ctx.out << fmt::format("{}: {}{}\n", path, plural(errors, "error"),
-                               warnings ? ", " + plural(warnings, "warning") : "");
-      }
+    for (const Unit& u : units) {
+      unreadable = unreadable || u.compiled.code == ExitCode::FileError;
+      invalid = invalid || u.compiled.code == ExitCode::InvalidInput;
     }
     result.code =
         unreadable ? ExitCode::FileError : (invalid ? ExitCode::InvalidInput : ExitCode::Ok);
+    if (opts->format != "text") {
+      std::vector<CheckedFile> files;
+      for (const Unit& u : units) files.push_back({u.path, &u.compiled.output});
+      ctx.out << (opts->format == "json" ? diagnostics_json(files, opts->strict)
+                                         : diagnostics_sarif(files, opts->strict, kVersion));
+      return;
+    }
+    for (const Unit& u : units) {
+      const compiler::CompileOutput& out = u.compiled.output;
+      if (out.read_error) {
+        ctx.err << "seqc: error: " << *out.read_error << "\n";
+        continue;
+      }
+      ctx.err << compiler::render_all(out.diagnostics, out.sources, opts->strict, ctx.color);
+      ctx.out << summary(u, opts->strict);
+    }
   });
 }
 

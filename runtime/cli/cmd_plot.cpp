@@ -1,10 +1,14 @@
 // seqc plot FILE [-o out.svg] [--group N] [--from T] [--to T]: the program as an SVG picture
 // (compiler/backend/plot_svg.hpp). Without -o the SVG goes to stdout.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include "compiler/backend/plot_svg.hpp"
+#include "compiler/backend/svg_text.hpp"
+#include "compiler/lang/show.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
@@ -22,6 +26,61 @@ std::optional<double> window_ms(Context& ctx, const std::string& option, const s
     return std::nullopt;
   }
   return t->unit == compiler::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
+}
+
+std::string plot_program(const compiler::CompileOutput& output, const std::string& name, int group,
+                         backend::PlotOptions options) {
+  if (const compiler::ServoProgram* p = output.servo_program()) {
+    options.title = name + ", group " + std::to_string(group);
+    return backend::plot_servo_program(*p, options);
+  }
+  options.title = name + " (Raspblock)";
+  return backend::plot_car_program(*output.raspblock_program(), options);
+}
+
+// A show: every performer's picture on one time axis (the longest performer's), stacked as
+// nested <svg> elements in one document.
+ExitCode plot_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
+                   backend::PlotOptions options, std::string& svg) {
+  compiler::ShowOutput show = compiler::load_show(path, ctx.files, {strict});
+  if (show.read_error) {
+    ctx.err << "seqc: error: " << *show.read_error << "\n";
+    return ExitCode::FileError;
+  }
+  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
+  for (const compiler::Performer& p : show.performers) {
+    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
+  }
+  if (!show.ok(strict)) return ExitCode::InvalidInput;
+  double end = 0;
+  for (const compiler::Performer& p : show.performers) {
+    if (const auto* s = p.output.servo_program()) end = std::max(end, double(s->duration_ms()));
+    if (const auto* c = p.output.raspblock_program()) end = std::max(end, double(c->duration_ms));
+  }
+  if (!options.from_ms) options.from_ms = 0;
+  if (!options.to_ms) options.to_ms = end;
+  std::string body;
+  double y = 36;
+  for (const compiler::Performer& p : show.performers) {
+    std::string part = plot_program(p.output, p.name + ": " + p.file, p.group, options);
+    const auto h = part.find("height=\"");
+    const double height = std::atof(part.c_str() + h + 8);
+    part.insert(part.find("<svg") + 4, " y=\"" + std::to_string(static_cast<int>(y)) + "\"");
+    body += part;
+    y += height + 10;
+  }
+  svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
+        std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
+        std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
+        backend::svg::escape(name) +
+        "</title>\n<rect width=\"1100\" "
+        "height=\"" +
+        std::to_string(static_cast<int>(y)) +
+        "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
+        "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
+        backend::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
+        " performers, one clock)</text>\n" + body + "</svg>\n";
+  return ExitCode::Ok;
 }
 
 }  // namespace
@@ -60,19 +119,18 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::Usage;
       return;
     }
-    Compiled c = compile_and_report(ctx, o->file, o->strict);
-    result.code = c.code;
-    if (c.code != ExitCode::Ok) return;
     const std::string name = o->file == "-" ? std::string(kStdinName)
                                             : std::filesystem::path(o->file).filename().string();
     std::string svg;
-    if (const compiler::ServoProgram* p = c.output.servo_program()) {
-      options.title = name + ", group " + std::to_string(o->group);
-      svg = backend::plot_servo_program(*p, options);
-    } else if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
-      options.title = name + " (Raspblock)";
-      svg = backend::plot_car_program(*car, options);
+    auto text = o->file == "-" ? Result<std::string>(make_error("stdin")) : ctx.files.read(o->file);
+    if (text && compiler::is_show_text(*text)) {
+      result.code = plot_show(ctx, o->file, name, o->strict, options, svg);
+    } else {
+      Compiled c = compile_and_report(ctx, o->file, o->strict);
+      result.code = c.code;
+      if (c.code == ExitCode::Ok) svg = plot_program(c.output, name, o->group, options);
     }
+    if (result.code != ExitCode::Ok) return;
     if (o->output == "-") {
       ctx.out << svg;
     } else if (auto ok = io::write_file_atomically(o->output, svg); !ok) {

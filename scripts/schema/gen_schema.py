@@ -355,17 +355,53 @@ car_file = {
         "poses": {"additionalProperties": {"propertyNames": {"enum": CAR_OUTPUTS}}},
     }}
 
-schema = {
-    "$schema": "http://json-schema.org/draft-07/schema#",
-    "$id": "https://seqc.invalid/schemas/seqc.schema.json",
-    **doc("seqc choreography", "A robot's motion over time, compiled by seqc (docs/language.md). "
-          "`seqc check` checks everything here and more: limits after relative moves, beats at "
-          "the tempo in force, the action budget."),
+choreography = {
     "type": "object",
     "required": ["robot", "sequence"],
     "properties": TOP,
     "additionalProperties": False,
     "if": is_car, "then": car_file, "else": servo_file,
+}
+definitions["choreography"] = choreography
+
+performer = doc("Performer", "A choreography file (relative to the show file) and the port it "
+                "plays on.", type="object", required=["file"], additionalProperties=False,
+                properties={
+                    "file": doc("File", "The performer's choreography (`arm.yaml`).",
+                                type="string", minLength=1),
+                    "port": doc("Port", "Where it plays: `/dev/ttyUSB0`, `hid`, "
+                                "`/dev/ttyAMA0@115200`, `emu:xarm`, `emu:raspblock`.",
+                                type="string", minLength=1),
+                    "group": doc("Group", "The action group a servo controller stores it in "
+                                 "(0-254, default 0).", type="integer", minimum=0, maximum=254),
+                })
+show = doc("Show", "Several performers started at one instant on one clock (`seqc show`).",
+           type="object", required=["show", "performers"], additionalProperties=False,
+           properties={
+               "show": doc("Show name", "The show's name.", type=["string", "number"]),
+               "description": TOP["description"],
+               "performers": doc("Performers", "`name: {file, port, group}` for each performer.",
+                                 type="object", minProperties=1,
+                                 propertyNames=ref("servoName"),
+                                 additionalProperties=performer),
+           },
+           defaultSnippets=[{"label": "show", "description": "an arm and a car on one clock",
+                             "body": {"show": "${1:duet}", "performers": {
+                                 "arm": {"file": "${2:arm.yaml}", "port": "${3:/dev/ttyUSB0}"},
+                                 "car": {"file": "${4:car.yaml}",
+                                         "port": "${5:/dev/ttyAMA0@115200}"}}}}])
+definitions["show"] = show
+
+schema = {
+    "$schema": "http://json-schema.org/draft-07/schema#",
+    "$id": "https://seqc.invalid/schemas/seqc.schema.json",
+    **doc("seqc choreography", "A robot's motion over time, compiled by seqc (docs/language.md), "
+          "or a show of several (`show:`). `seqc check` checks everything here and more: limits "
+          "after relative moves, beats at the tempo in force, the action budget."),
+    "type": "object",
+    "if": {"required": ["show"]},
+    "then": ref("show"),
+    "else": ref("choreography"),
     "definitions": definitions,
 }
 

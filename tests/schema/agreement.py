@@ -94,8 +94,9 @@ def documentation_problems(schema):
     walk(schema, "schema")
     labels = {s["label"] for d in defs.values() if isinstance(d, dict)
               for s in d.get("defaultSnippets", [])}
-    labels |= {s["label"] for s in schema["properties"]["robot"].get("defaultSnippets", [])}
-    for want in ("move", "repeat", "robot definition", "drive"):
+    labels |= {s["label"] for s in
+               defs["choreography"]["properties"]["robot"].get("defaultSnippets", [])}
+    for want in ("move", "repeat", "robot definition", "drive", "show"):
         if want not in labels:
             problems.append(f"no defaultSnippet '{want}'")
     return problems
