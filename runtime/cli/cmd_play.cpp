@@ -11,6 +11,7 @@
 
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/source/units.hpp"
+#include "runtime/cli/board_port.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/play_progress.hpp"
@@ -30,29 +31,6 @@ struct PlayOptions {
   std::string port;
   bool strict = false;
   bool realtime = false;
-};
-
-// `--port emu:raspblock`: the board emulator in this process, stamped with the play's clock,
-// so a sequence can be tried without hardware or a second terminal.
-class BoardTransport final : public io::Transport {
- public:
-  BoardTransport(emu::RaspblockEmulator& board, io::Clock& clock)
-      : board_(board), clock_(clock), origin_(clock.now()) {}
-  Status write(ByteView bytes) override {
-    board_.receive(bytes, clock_.now() - origin_);
-    return Ok{};
-  }
-  io::ReadResult read(std::span<std::uint8_t>, io::TimePoint deadline) override {
-    clock_.sleep_until(deadline);  // the board never replies
-    return {io::ReadStatus::Timeout, 0, {}};
-  }
-  void discard_input() override {}
-  std::string describe() const override { return "emu:raspblock"; }
-
- private:
-  emu::RaspblockEmulator& board_;
-  io::Clock& clock_;
-  io::TimePoint origin_;
 };
 
 std::string ms_text(io::Duration d) {
@@ -83,34 +61,13 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
                "  hint: --port emu:raspblock plays to the built-in board emulator\n";
     return ExitCode::Usage;
   }
-  auto spec = transport::parse_port(o.port);
-  if (!spec) {
-    ctx.err << "seqc: error: --port: " << spec.error().message << "\n";
-    return ExitCode::Usage;
+  ExitCode open_code = ExitCode::Ok;
+  auto opened = open_board_port(o.port, o.file, ctx, open_code);
+  if (!opened) {
+    ctx.err << "seqc: error: " << opened.error().message << "\n";
+    return open_code;
   }
-
-  emu::RaspblockEmulator board;
-  std::unique_ptr<io::Transport> link;
-  if (spec->kind == transport::PortKind::Emulator) {
-    if (spec->emulator != "raspblock") {
-      ctx.err << "seqc: error: --port " << o.port << " is the servo controller's emulator; "
-              << o.file << " is for the raspblock (use --port emu:raspblock)\n";
-      return ExitCode::Usage;
-    }
-    link = std::make_unique<BoardTransport>(board, ctx.clock);
-  } else if (spec->kind == transport::PortKind::Hid) {
-    ctx.err << "seqc: error: --port " << o.port
-            << " is a USB HID device (the xArm's link); the Raspblock board is reached over a "
-               "serial port at 115200 baud\n";
-    return ExitCode::Usage;
-  } else {
-    auto opened = transport::open_port(*spec, ctx.clock, raspblock::kBaud);
-    if (!opened) {
-      ctx.err << "seqc: error: " << opened.error().message << "\n";
-      return ExitCode::PortUnavailable;
-    }
-    link = std::move(*opened);
-  }
+  std::unique_ptr<io::Transport>& link = opened->link;
 
   std::vector<player::ScheduledFrame> schedule;
   schedule.reserve(frames->size());
@@ -158,9 +115,9 @@ ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOpt
       code = ExitCode::DeviceFailure;
       break;
   }
-  if (spec->kind == transport::PortKind::Emulator && ctx.verbosity >= 0) {
-    ctx.err << "seqc: emu:raspblock received " << board.packets().size() << " packets, "
-            << board.rejections().size() << " rejected\n";
+  if (opened->emulator && ctx.verbosity >= 0) {
+    ctx.err << "seqc: emu:raspblock received " << opened->emulator->packets().size() << " packets, "
+            << opened->emulator->rejections().size() << " rejected\n";
   }
   return code;
 }

@@ -45,6 +45,7 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_export_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_teach_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_plot_command(CLI::App& app, Context& ctx, Outcome& result);
+void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
 
 // For `seqc upload` (cmd_play.cpp): if `output` holds a Raspblock program, explains on `err`
 // that the board has no storage and points to `seqc play`, and returns true.

@@ -1,0 +1,148 @@
+// seqc show end to end: in one process on both built-in emulators (a manual clock, so the start
+// is exact and instant), and across processes with `seqc emulate xarm` and `seqc emulate
+// raspblock` on pseudo-terminals, as a person would run a show without hardware.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli/device_test_util.hpp"
+
+namespace seqc::cli::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(Show, InProcessOnBothEmulatorsUploadsThenStartsTogether) {
+  DeviceHarness h;
+  const std::string dir = std::string(SEQC_SOURCE_DIR) + "/";
+  h.files.add("duet.yaml",
+              "show: duet\n"
+              "performers:\n"
+              "  arm: {file: " +
+                  dir +
+                  "examples/walk.yaml, port: emu:xarm, group: 2}\n"
+                  "  car: {file: " +
+                  dir + "tests/golden/raspblock/small.yaml, port: emu:raspblock}\n");
+  h.files.add(dir + "examples/walk.yaml", slurp_file(dir + "examples/walk.yaml"));
+  h.files.add(dir + "tests/golden/raspblock/small.yaml",
+              slurp_file(dir + "tests/golden/raspblock/small.yaml"));
+  const io::TimePoint before = h.clock.now();
+  const RunResult r = h.run({"show", "duet.yaml"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The arm's group was stored before anything started, then run.
+  ASSERT_TRUE(h.emu.stored_group(2).has_value());
+  EXPECT_EQ(h.emu.stored_group(2)->size(), 29u);
+  EXPECT_EQ(h.emu.playing_group(), std::optional<std::uint8_t>(2));
+  const std::string& err = r.err;
+  const auto uploaded = err.find("seqc: arm: the controller acknowledged 29 actions");
+  const auto started = err.find("seqc: show duet: starting 2 performers at one instant");
+  ASSERT_NE(uploaded, std::string::npos) << err;
+  ASSERT_NE(started, std::string::npos) << err;
+  EXPECT_LT(uploaded, started);
+  // On a manual clock every frame leaves exactly at its deadline.
+  EXPECT_NE(err.find("seqc: arm: GroupRun 2 sent 0.00 ms after the start"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("seqc: car: "), std::string::npos) << err;
+  EXPECT_NE(err.find("seqc: start skew between performers: 0.00 ms"), std::string::npos) << err;
+  EXPECT_GT(h.clock.now() - before, std::chrono::seconds(2));  // the car's stream was played
+}
+
+TEST(Show, NothingStartsWhenAPerformerIsBroken) {
+  DeviceHarness h;
+  h.files.add("bad.yaml",
+              "show: broken\nperformers:\n  arm: {file: arm.yaml, port: emu:xarm}\n"
+              "  car: {file: car.yaml}\n");
+  h.files.add("arm.yaml", "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n");
+  h.files.add("car.yaml", "robot: raspblock\nsequence:\n  - drive: {y: 99}\n    time: 1s\n");
+  const RunResult r = h.run({"show", "bad.yaml"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("car.yaml:3:16: error: 'y' must be -25 to 25, not 99"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(h.received(), "");  // not even the arm was touched
+}
+
+// `seqc emulate DEVICE ARGS...` in the background; returns its pid and the pty it printed.
+pid_t emulate(const std::vector<std::string>& args, const fs::path& err, std::string& pty) {
+  int pipefd[2];
+  if (::pipe(pipefd) != 0) return -1;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(pipefd[1], STDOUT_FILENO);
+    if (std::freopen(err.c_str(), "w", stderr) == nullptr) std::_Exit(126);
+    ::close(pipefd[0]);
+    std::vector<char*> argv{const_cast<char*>("seqc"), const_cast<char*>("emulate")};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(SEQC_BIN, argv.data());
+    std::_Exit(127);
+  }
+  ::close(pipefd[1]);
+  char c = 0;
+  while (::read(pipefd[0], &c, 1) == 1 && c != '\n') pty += c;
+  ::close(pipefd[0]);
+  return pid;
+}
+
+TEST(Show, AcrossProcessesOnPseudoTerminals) {
+  const fs::path tmp =
+      fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp" / ("show-" + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  std::string arm_pty, car_pty;
+  const pid_t arm = emulate({"xarm", "--dump-groups", (tmp / "groups.txt").string()},
+                            tmp / "arm.stderr", arm_pty);
+  const pid_t car =
+      emulate({"raspblock", "--record", (tmp / "car.csv").string()}, tmp / "car.stderr", car_pty);
+  ASSERT_FALSE(arm_pty.empty());
+  ASSERT_FALSE(car_pty.empty());
+  const std::string src = SEQC_SOURCE_DIR;
+  std::ofstream(tmp / "duet.yaml")
+      << "show: duet\nperformers:\n  arm: {file: " << src
+      << "/examples/walk.yaml, port: " << arm_pty << "}\n  car: {file: " << src
+      << "/tests/golden/raspblock/small.yaml, port: " << car_pty << "@115200}\n";
+  const std::string cmd = "'" SEQC_BIN "' show '" + (tmp / "duet.yaml").string() + "' 2>'" +
+                          (tmp / "show.stderr").string() + "'";
+  const int raw = std::system(cmd.c_str());
+  // Stop the emulators once the car's last packet (the stop) is logged.
+  for (int i = 0; i < 2000 && slurp_file(tmp / "car.stderr").find("rocker") == std::string::npos;
+       ++i) {
+    ::usleep(5000);
+  }
+  ::kill(arm, SIGINT);
+  ::kill(car, SIGINT);
+  int status = 0;
+  ::waitpid(arm, &status, 0);
+  ::waitpid(car, &status, 0);
+  const std::string report = slurp_file(tmp / "show.stderr");
+  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << report;
+  EXPECT_NE(report.find("seqc: start skew between performers: "), std::string::npos) << report;
+  // The arm's controller stored group 0 (walk.yaml: 29 actions); the car board got packets.
+  const std::string groups = slurp_file(tmp / "groups.txt");
+  std::vector<std::string> actions;
+  std::istringstream lines(groups);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line[0] != '#') actions.push_back(line);
+  }
+  ASSERT_EQ(actions.size(), 29u) << groups;
+  EXPECT_EQ(actions[0].rfind("0 0 1000 ", 0), 0u) << groups;  // move: home, time: 1s
+  EXPECT_NE(slurp_file(tmp / "car.csv").find("gimbal"), std::string::npos);
+  std::printf("[ measured ] %s", report.substr(report.find("seqc: arm: GroupRun")).c_str());
+  fs::remove_all(tmp);
+}
+
+}  // namespace
+}  // namespace seqc::cli::test
