@@ -33,3 +33,12 @@ function(seqc_test name)
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST
                        PROPERTIES ENVIRONMENT "SEQC_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()
+
+# seqc_binary_test(name SOURCES ... DEPS ...): a seqc_test that runs the built `seqc` (its path
+# in SEQC_BIN), so it is built first.
+function(seqc_binary_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  seqc_test(${name} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS})
+  target_compile_definitions(${name} PRIVATE SEQC_BIN="$<TARGET_FILE:seqc>")
+  add_dependencies(${name} seqc)
+endfunction()

@@ -42,16 +42,9 @@ std::string plot_program(const compiler::CompileOutput& output, const std::strin
 // nested <svg> elements in one document.
 ExitCode plot_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
                    backend::PlotOptions options, std::string& svg) {
-  compiler::ShowOutput show = compiler::load_show(path, ctx.files, {strict});
-  if (show.read_error) {
-    ctx.err << "seqc: error: " << *show.read_error << "\n";
-    return ExitCode::FileError;
-  }
-  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
-  for (const compiler::Performer& p : show.performers) {
-    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
-  }
-  if (!show.ok(strict)) return ExitCode::InvalidInput;
+  ExitCode loaded = ExitCode::Ok;
+  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
+  if (loaded != ExitCode::Ok) return loaded;
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
     if (const auto* s = p.output.servo_program()) end = std::max(end, double(s->duration_ms()));

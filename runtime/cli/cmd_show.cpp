@@ -18,6 +18,7 @@
 #include "compiler/lang/show.hpp"
 #include "runtime/cli/board_port.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/port_open.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/upload/controller_link.hpp"
@@ -155,16 +156,9 @@ ExitCode perform(Context& ctx, std::vector<Stage>& stages) {
 }
 
 ExitCode run_show(Context& ctx, const std::string& path, bool strict) {
-  compiler::ShowOutput show = compiler::load_show(path, ctx.files, {strict});
-  if (show.read_error) {
-    ctx.err << "seqc: error: " << *show.read_error << "\n";
-    return ExitCode::FileError;
-  }
-  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
-  for (const compiler::Performer& p : show.performers) {
-    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
-  }
-  if (!show.ok(strict)) return ExitCode::InvalidInput;
+  ExitCode loaded = ExitCode::Ok;
+  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
+  if (loaded != ExitCode::Ok) return loaded;
 
   std::vector<Stage> stages(show.performers.size());
   for (std::size_t i = 0; i < stages.size(); ++i) {

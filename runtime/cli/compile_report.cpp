@@ -59,4 +59,20 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict) 
   return c;
 }
 
+compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
+                                          ExitCode& code) {
+  compiler::ShowOutput show = compiler::load_show(path, ctx.files, {strict});
+  if (show.read_error) {
+    ctx.err << "seqc: error: " << *show.read_error << "\n";
+    code = ExitCode::FileError;
+    return show;
+  }
+  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
+  for (const compiler::Performer& p : show.performers) {
+    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
+  }
+  code = show.ok(strict) ? ExitCode::Ok : ExitCode::InvalidInput;
+  return show;
+}
+
 }  // namespace seqc::cli

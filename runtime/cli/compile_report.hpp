@@ -7,6 +7,7 @@
 #include <string>
 
 #include "compiler/compile.hpp"
+#include "compiler/lang/show.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
@@ -19,6 +20,11 @@ struct Compiled {
 };
 
 inline constexpr const char* kStdinName = "<stdin>";
+
+// Loads a show file and prints its diagnostics and every performer's (for `seqc show` and
+// `seqc plot`). code: Ok, FileError (the show file cannot be read) or InvalidInput.
+compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
+                                          ExitCode& code);
 
 // Compiles without printing anything (for --format json|sarif).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict);
