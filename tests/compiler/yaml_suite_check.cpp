@@ -1,0 +1,175 @@
+// yaml-suite-check DIR: the YAML test suite's cases (written into DIR by scripts/yaml-suite.sh:
+// ID.yaml, ID.tree with the expected events, ID.fail when the YAML is invalid) through seqc's
+// fast reader and yaml-cpp. Per case: whether the fast reader declined it or gave exactly
+// yaml-cpp's events (anything else is a defect: exit 1), and whether yaml-cpp itself agrees
+// with the suite. Prints one line per case and the counts.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/compiler/yaml_events.hpp"
+
+namespace fs = std::filesystem;
+using namespace seqc::compiler::yaml_detail;
+
+namespace {
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The suite's escaping of scalar values in its event trees.
+std::string escape(const std::string& v) {
+  std::string out;
+  for (char c : v) {
+    switch (c) {
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// yaml-cpp's events of every document as the suite writes them, without styles, anchors and
+// tags (yaml-cpp's event API does not report styles; anchors and tags are compared by neither).
+class SuiteRecorder final : public YAML::EventHandler {
+ public:
+  std::vector<std::string> lines;
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override { lines.push_back("=VAL "); }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { lines.push_back("=ALI"); }
+  void OnAnchor(const YAML::Mark&, const std::string&) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string& value) override {
+    lines.push_back("=VAL " + escape(value));
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    lines.push_back("+SEQ");
+  }
+  void OnSequenceEnd() override { lines.push_back("-SEQ"); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    lines.push_back("+MAP");
+  }
+  void OnMapEnd() override { lines.push_back("-MAP"); }
+};
+
+// The suite's tree in the same terms.
+std::vector<std::string> expected(const std::string& tree) {
+  std::vector<std::string> out;
+  std::istringstream in(tree);
+  for (std::string line; std::getline(in, line);) {
+    line.erase(0, line.find_first_not_of(' '));
+    const std::string head = line.substr(0, 4);
+    if (head == "+STR" || head == "-STR" || head == "+DOC" || head == "-DOC" || line.empty()) {
+      continue;
+    }
+    if (head == "+SEQ" || head == "-SEQ" || head == "+MAP" || head == "-MAP") {
+      out.push_back(head);
+    } else if (head == "=ALI") {
+      out.push_back("=ALI");
+    } else if (head == "=VAL") {
+      std::string rest = line.substr(5);
+      while (!rest.empty() && (rest[0] == '&' || rest[0] == '<')) {  // anchor, tag
+        const auto space = rest.find(' ');
+        rest = space == std::string::npos ? "" : rest.substr(space + 1);
+      }
+      out.push_back("=VAL " + (rest.empty() ? "" : rest.substr(1)));  // drop the style
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: yaml-suite-check DIR\n");
+    return 2;
+  }
+  std::vector<fs::path> cases;
+  for (const auto& e : fs::directory_iterator(argv[1])) {
+    if (e.path().extension() == ".yaml") cases.push_back(e.path());
+  }
+  std::sort(cases.begin(), cases.end());
+  std::map<std::string, int> counts;
+  int defects = 0;
+  for (const fs::path& yaml : cases) {
+    const std::string id = yaml.stem().string();
+    const std::string text = read(yaml);
+    const bool invalid = fs::exists(fs::path(yaml).replace_extension(".fail"));
+    // yaml-cpp on its own, against the suite.
+    SuiteRecorder all;
+    bool cpp_error = false;
+    try {
+      std::istringstream in(text);
+      YAML::Parser parser(in);
+      while (parser.HandleNextDocument(all)) {
+      }
+    } catch (const YAML::Exception&) {
+      cpp_error = true;
+    }
+    std::string cpp;
+    if (invalid) {
+      cpp = cpp_error ? "rejects-invalid" : "ACCEPTS-INVALID";
+    } else if (cpp_error) {
+      cpp = "REJECTS-VALID";
+    } else {
+      cpp = all.lines == expected(read(fs::path(yaml).replace_extension(".tree"))) ? "agrees"
+                                                                                   : "WRONG-TREE";
+    }
+    // The fast reader: declines, or exactly yaml-cpp's events for the one document.
+    std::string fast = "declined";
+    if (auto events = fast_events(text, 64)) {
+      Recorder one;
+      bool error = false;
+      try {
+        std::istringstream in(text);
+        YAML::Parser parser(in);
+        for (int i = 0; i < 2 && parser.HandleNextDocument(one); ++i) {
+        }
+      } catch (const YAML::Exception&) {
+        error = true;
+      } catch (const SecondDocument&) {
+        error = true;
+      }
+      fast = !error && describe(from_fast(*events)) == describe(one.events) ? "same" : "DIFFERS";
+      if (fast == "DIFFERS") ++defects;
+      if (invalid) {
+        fast += "(on-invalid)";
+        ++defects;  // accepting what the suite calls invalid is a defect whatever yaml-cpp says
+      }
+    }
+    ++counts["fast " + fast];
+    ++counts["yaml-cpp " + cpp];
+    std::printf("%s fast=%s yaml-cpp=%s\n", id.c_str(), fast.c_str(), cpp.c_str());
+  }
+  std::printf("%zu cases:", cases.size());
+  for (const auto& [what, n] : counts) std::printf(" %s %d;", what.c_str(), n);
+  std::printf(" fast-reader defects %d\n", defects);
+  return defects == 0 ? 0 : 1;
+}
