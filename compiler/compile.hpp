@@ -26,7 +26,8 @@
 namespace seqc::compiler {
 
 struct CompileOptions {
-  bool strict = false;  // warnings are errors (--strict)
+  bool strict = false;      // warnings are errors (--strict)
+  bool fast_reader = true;  // the YAML fast reader in front of yaml-cpp (see YamlLimits)
 };
 
 enum class RobotKind {

@@ -11,7 +11,9 @@ Result<const LoadedFile*> FileLoader::load(const std::string& path) {
   auto file = std::make_unique<LoadedFile>();
   file->path = path;
   file->file = sources_.add(path, std::move(*text));
-  file->root = load_yaml(sources_, file->file, diags_);
+  YamlLimits limits;
+  limits.fast_reader = fast_reader_;
+  file->root = load_yaml(sources_, file->file, diags_, limits);
   const LoadedFile* result = file.get();
   files_.emplace(path, std::move(file));
   return result;

@@ -33,6 +33,9 @@ struct YamlLimits {
   std::size_t max_bytes = 1 << 20;  // 1 MiB per file
   std::size_t max_depth = 64;
   std::size_t max_nodes = 1 << 20;
+  // The fast reader for plain block YAML (yaml_fast.hpp) in front of yaml-cpp; off means
+  // yaml-cpp reads everything (compile_bench measures both).
+  bool fast_reader = true;
 };
 
 // Parses file `file` of `sources`. Errors (syntax, duplicate keys, anchors/aliases, tags other
