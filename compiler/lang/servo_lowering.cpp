@@ -49,6 +49,9 @@ ServoProgram ServoLowering::run(const LoadedFile& main) {
 
 void ServoLowering::finish(ServoProgram& program) {
   timeline_.end = now_;
+  // A file with mistakes makes no program: fitting it would only cost time (a long, slow curve
+  // took seconds; found by the check fuzzer).
+  if (reporter_.errors_reported() > 0) return;
   FitResult fit = fit_timeline(timeline_);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
   if (needed > lsc::kMaxActions) {

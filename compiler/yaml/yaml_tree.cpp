@@ -302,7 +302,7 @@ class TreeBuilder final : public YAML::EventHandler {
     }
     if (!top.key_index.empty()) top.key_index.emplace(hash, top.node.entries.size());
     top.key_hashes.push_back(hash);
-    top.node.entries.emplace_back(std::move(key), std::move(node));
+    top.node.entries.push_back({std::move(key), std::move(node)});
   }
 
   std::string_view text_;  // the whole file, byte-order mark included

@@ -13,6 +13,8 @@
 
 namespace seqc::compiler {
 
+struct YamlEntry;
+
 struct YamlNode {
   enum class Kind { Null, Scalar, Sequence, Map };
   Kind kind = Kind::Null;
@@ -20,13 +22,20 @@ struct YamlNode {
   std::string scalar;           // Scalar: the value as written (unquoted)
   bool quoted = false;          // Scalar: written in quotes (so "500" is a string, not a number)
   std::vector<YamlNode> items;  // Sequence
-  std::vector<std::pair<YamlNode, YamlNode>> entries;  // Map, in file order, keys unique
+  // Map, in file order, keys unique. (A named pair: std::pair of the type being defined is not
+  // allowed inside it, and clang refuses it; a vector of a declared struct is.)
+  std::vector<YamlEntry> entries;
 
   bool is_map() const { return kind == Kind::Map; }
   bool is_sequence() const { return kind == Kind::Sequence; }
   bool is_scalar() const { return kind == Kind::Scalar; }
   // Map lookup by scalar key; nullptr if absent or not a map.
   const YamlNode* find(std::string_view key) const;
+};
+
+struct YamlEntry {
+  YamlNode first;   // the key
+  YamlNode second;  // the value
 };
 
 struct YamlLimits {
