@@ -4,6 +4,11 @@ namespace seqc::compiler {
 
 void Reporter::report(Severity severity, Location at, std::string message,
                       std::optional<Note> note) {
+  // Something with no place in any file (the built-in `home` pose) is wrong where it is used.
+  if (at.line == 0 && note && note->at.line > 0) {
+    at = note->at;
+    note.reset();
+  }
   auto key = std::make_tuple(static_cast<int>(severity), at.file, at.line, at.column, message);
   if (!seen_.insert(std::move(key)).second) return;
   if (severity == Severity::Error) {

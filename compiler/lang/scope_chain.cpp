@@ -149,9 +149,9 @@ const std::vector<PositionEntry>* ScopeChain::move_entries(
   if (target.is_scalar()) {
     const Pose* pose = find_pose(target, reporter);
     if (pose == nullptr) return nullptr;
-    if (!is_builtin_home(pose)) {
-      note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
-    }
+    // The built-in home has no place in the file: its mistakes are reported at this move
+    // (Reporter::report), so the note is that location.
+    note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
     return &pose->entries;
   }
   if (target.is_map()) {

@@ -36,6 +36,7 @@ ALLOWED = {
     "tests/golden/bad-mirror-without-table.yaml": "mirror used without a table in robot",
     "tests/golden/bad-duplicate-servo-id.yaml": "two servos with one id",
     "tests/golden/bad-servo-in-two-tracks.yaml": "a servo moved in two tracks",
+    "tests/golden/bad-home-outside-limits.yaml": "limits that exclude the profile's home",
     # Time: beats at the tempo in force, sums and positions in time.
     "tests/golden/bad-at-in-the-past.yaml": "an 'at' earlier than the steps before it end",
     "tests/golden/bad-beats-without-tempo.yaml": "beats need a tempo set elsewhere",
