@@ -75,7 +75,6 @@ class ScopeChain {
   // The pose `name` from the innermost file that defines it, else the built-in `home`; reports
   // an unknown name with "did you mean" and returns nullptr.
   const Pose* find_pose(const YamlNode& name, Reporter& reporter);
-  bool is_builtin_home(const Pose* pose) const { return pose == home_.get(); }
 
   // Parses a map of `output: position` entries (`where` says where, for messages), reporting
   // what is wrong with them.
