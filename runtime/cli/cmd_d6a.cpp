@@ -8,25 +8,8 @@
 #include "compiler/lang/d6a_import.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
-namespace {
-
-// Writes `data` to `path` ("-" = stdout), or says why not.
-ExitCode write_output(Context& ctx, const std::string& path, const std::string& data) {
-  if (path == "-") {
-    ctx.out << data;
-    return ExitCode::Ok;
-  }
-  if (auto written = io::write_file_atomically(path, data); !written) {
-    ctx.err << "seqc: error: cannot write '" << path << "': " << written.error().message << "\n";
-    return ExitCode::FileError;
-  }
-  return ExitCode::Ok;
-}
-
-}  // namespace
 
 void add_import_command(CLI::App& app, Context& ctx, Outcome& result) {
   struct Options {

@@ -12,7 +12,6 @@
 #include "compiler/source/units.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -124,12 +123,8 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
       if (c.code == ExitCode::Ok) svg = plot_program(c.output, name, o->group, options);
     }
     if (result.code != ExitCode::Ok) return;
-    if (o->output == "-") {
-      ctx.out << svg;
-    } else if (auto ok = io::write_file_atomically(o->output, svg); !ok) {
-      ctx.err << "seqc: error: cannot write '" << o->output << "': " << ok.error().message << "\n";
-      result.code = ExitCode::FileError;
-    } else {
+    result.code = write_output(ctx, o->output, svg);
+    if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(svg.size()) + " bytes");
     }
   });

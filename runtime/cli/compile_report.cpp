@@ -3,6 +3,8 @@
 #include <iterator>
 #include <ostream>
 
+#include "runtime/io/disk.hpp"
+
 namespace seqc::cli {
 namespace {
 
@@ -57,6 +59,18 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict) 
   }
   ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
   return c;
+}
+
+ExitCode write_output(Context& ctx, const std::string& path, const std::string& data) {
+  if (path == "-") {
+    ctx.out << data;
+    return ExitCode::Ok;
+  }
+  if (auto written = io::write_file_atomically(path, data); !written) {
+    ctx.err << "seqc: error: cannot write '" << path << "': " << written.error().message << "\n";
+    return ExitCode::FileError;
+  }
+  return ExitCode::Ok;
 }
 
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,

@@ -21,6 +21,10 @@ struct Compiled {
 
 inline constexpr const char* kStdinName = "<stdin>";
 
+// Writes what an offline subcommand made to `path` ("-" = stdout; a file atomically), or says
+// on stderr why it could not (FileError).
+ExitCode write_output(Context& ctx, const std::string& path, const std::string& data);
+
 // Loads a show file and prints its diagnostics and every performer's (for `seqc show` and
 // `seqc plot`). code: Ok, FileError (the show file cannot be read) or InvalidInput.
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,

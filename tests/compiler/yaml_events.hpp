@@ -7,6 +7,7 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,30 @@ inline std::vector<Ev> from_fast(const std::vector<FastEvent>& events) {
     out.push_back({e.kind, end ? 0 : static_cast<int>(e.pos), end ? 0 : static_cast<int>(e.line),
                    end ? 0 : static_cast<int>(e.column), std::string(e.value)});
   }
+  return out;
+}
+
+// What yaml-cpp reports for the one document of `text`: its events, or why it gave none
+// (its error, or a second document, which the loader refuses).
+struct YamlCppEvents {
+  std::vector<Ev> events;
+  std::string error;  // "" when yaml-cpp read the text
+};
+
+inline YamlCppEvents yaml_cpp_events(const std::string& text) {
+  Recorder recorder;
+  YamlCppEvents out;
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    for (int i = 0; i < 2 && parser.HandleNextDocument(recorder); ++i) {
+    }
+  } catch (const YAML::Exception& e) {
+    out.error = "yaml-cpp error: " + e.msg;
+  } catch (const SecondDocument&) {
+    out.error = "yaml-cpp saw a second document";
+  }
+  out.events = std::move(recorder.events);
   return out;
 }
 
