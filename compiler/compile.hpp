@@ -26,8 +26,7 @@
 namespace seqc::compiler {
 
 struct CompileOptions {
-  bool strict = false;      // warnings are errors (--strict)
-  bool fast_reader = true;  // the YAML fast reader in front of yaml-cpp (see YamlLimits)
+  bool strict = false;  // warnings are errors (--strict)
 };
 
 enum class RobotKind {

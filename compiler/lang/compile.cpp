@@ -33,7 +33,7 @@ std::uint64_t ServoProgram::duration_ms() const {
 CompileOutput compile_file(const std::string& path, FileReader& files,
                            const CompileOptions& options) {
   CompileOutput out;
-  FileLoader loader(files, out.sources, out.diagnostics, options.fast_reader);
+  FileLoader loader(files, out.sources, out.diagnostics);
   Reporter reporter(out.diagnostics);
   auto main = loader.load(path);
   if (!main) {

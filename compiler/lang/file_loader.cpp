@@ -6,14 +6,23 @@ namespace seqc::compiler {
 
 Result<const LoadedFile*> FileLoader::load(const std::string& path) {
   if (auto it = files_.find(path); it != files_.end()) return it->second.get();
+  const YamlLimits limits;
+  if (const auto bytes = reader_.size(path); bytes && *bytes > limits.max_bytes) {
+    // Refused unread: a 30 MB file costs neither the time nor the memory to read it.
+    auto file = std::make_unique<LoadedFile>();
+    file->path = path;
+    file->file = sources_.add(path, "");
+    diags_.error(Location{file->file, 1, 1}, too_large_message(*bytes, limits.max_bytes));
+    const LoadedFile* result = file.get();
+    files_.emplace(path, std::move(file));
+    return result;
+  }
   Result<std::string> text = reader_.read(path);
   if (!text) return text.error();
   auto file = std::make_unique<LoadedFile>();
   file->path = path;
   file->file = sources_.add(path, std::move(*text));
-  YamlLimits limits;
-  limits.fast_reader = fast_reader_;
-  file->root = load_yaml(sources_, file->file, diags_, limits);
+  file->root = load_yaml(sources_, file->file, diags_);
   const LoadedFile* result = file.get();
   files_.emplace(path, std::move(file));
   return result;

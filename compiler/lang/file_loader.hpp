@@ -27,9 +27,8 @@ struct LoadedFile {
 
 class FileLoader {
  public:
-  FileLoader(FileReader& reader, SourceManager& sources, Diagnostics& diags,
-             bool fast_reader = true)
-      : reader_(reader), sources_(sources), diags_(diags), fast_reader_(fast_reader) {}
+  FileLoader(FileReader& reader, SourceManager& sources, Diagnostics& diags)
+      : reader_(reader), sources_(sources), diags_(diags) {}
 
   // The file at `path` (already resolved), loading it on first use. An error if unreadable.
   Result<const LoadedFile*> load(const std::string& path);
@@ -38,7 +37,6 @@ class FileLoader {
   FileReader& reader_;
   SourceManager& sources_;
   Diagnostics& diags_;
-  bool fast_reader_ = true;
   std::map<std::string, std::unique_ptr<LoadedFile>> files_;
 };
 

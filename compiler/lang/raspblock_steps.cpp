@@ -279,7 +279,29 @@ void RaspblockLowering::wait_step(const YamlNode& step, const YamlNode& value) {
 void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
   const auto repeat = parse_repeat(step, value, reporter_);
   if (!repeat) return;
-  for (long long i = 0; i < repeat->times && !full_; ++i) run_steps(*repeat->body, "'do'");
+  for (long long i = 0; i < repeat->times && !full_; ++i) {
+    const std::size_t errors_before = reporter_.errors_reported();
+    const std::uint64_t t0 = now_ms_;
+    const std::size_t p0 = packets_.size();
+    run_steps(*repeat->body, "'do'");
+    // Further passes would only repeat the same mistakes (and nested repeats never end).
+    if (reporter_.errors_reported() > errors_before || full_) break;
+    if (i > 0) continue;
+    // After one pass the whole repeat's length is known: one that cannot fit fails here,
+    // unexpanded (repeat 65535 nested six deep would otherwise run for hours).
+    const auto rest = static_cast<std::uint64_t>(repeat->times - 1);
+    const std::uint64_t dt = now_ms_ - t0;
+    const std::uint64_t dp = packets_.size() - p0;
+    if (dt > 0 && rest > (kRaspblockMaxStreamMs - std::min(now_ms_, kRaspblockMaxStreamMs)) / dt) {
+      reporter_.error(step.location, "this repeat would make the stream last longer than 24 hours");
+      full_ = true;
+    } else if (dp > 0 && rest > (kRaspblockMaxPackets - packets_.size()) / dp) {
+      reporter_.error(step.location, "this repeat would make the stream need more than " +
+                                         grouped(kRaspblockMaxPackets) +
+                                         " packets; use a coarser 'resolution' or fewer repeats");
+      full_ = true;
+    }
+  }
 }
 
 void RaspblockLowering::include_step(const YamlNode& value) {

@@ -52,6 +52,16 @@ void ServoLowering::finish(ServoProgram& program) {
   // A file with mistakes makes no program: fitting it would only cost time (a long, slow curve
   // took seconds; found by the check fuzzer).
   if (reporter_.errors_reported() > 0) return;
+  if (over_budget_at_) {
+    // Already more actions than a group holds before fitting (each step needs at least its
+    // count): fitting tens of thousands of steps would only cost time.
+    reporter_.error(*over_budget_at_,
+                    "the sequence needs at least " + std::to_string(min_actions_) + "/" +
+                        std::to_string(lsc::kMaxActions) +
+                        " actions; a group holds at most 1,020 (4 blocks of 255), and this "
+                        "step makes action 1,021");
+    return;
+  }
   FitResult fit = fit_timeline(timeline_);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
   if (needed > lsc::kMaxActions) {
@@ -295,8 +305,12 @@ void ServoLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
       break;
     }
     const std::uint64_t before = min_actions_;
+    const std::size_t errors_before = reporter_.errors_reported();
     run_steps(*repeat->body, "'do'");
     per_pass = min_actions_ - before;
+    // A pass with mistakes makes no actions to count, and the passes after it would only repeat
+    // them: 65535 nested six deep would never end (found by hostile_bench).
+    if (reporter_.errors_reported() > errors_before || per_pass == 0) break;
   }
 }
 

@@ -110,6 +110,8 @@ class ServoLowering {
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
   std::uint64_t min_actions_ = 0;
   bool truncated_ = false;
+  // The step that made the count pass the group's limit (then the file is not fitted).
+  std::optional<Location> over_budget_at_;
   std::optional<Location> sequence_at_;
 };
 

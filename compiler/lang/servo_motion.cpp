@@ -274,8 +274,9 @@ bool ServoLowering::claim(std::size_t servo, Location at) {
   return true;
 }
 
-void ServoLowering::count_actions(std::uint64_t n, Location) {
+void ServoLowering::count_actions(std::uint64_t n, Location at) {
   min_actions_ = min_actions_ + n < min_actions_ ? UINT64_MAX : min_actions_ + n;
+  if (min_actions_ > lsc::kMaxActions && !over_budget_at_) over_budget_at_ = at;
 }
 
 bool ServoLowering::check_overshoot(std::size_t servo, const Segment& segment, Location at,

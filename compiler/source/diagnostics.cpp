@@ -83,7 +83,8 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
   if (promoted) out += " [--strict]";
   out += sgr("\033[0m") + '\n';
 
-  if (!known_file || at.line == 0) return out;
+  // No source line to quote: an unknown file, no line, or a file refused unread (empty text).
+  if (!known_file || at.line == 0 || sources.text(at.file).empty()) return out;
   if (at.line > sources.line_count(at.file)) return out;
 
   const std::string number = std::to_string(at.line);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +30,9 @@ class FileReader {
  public:
   virtual ~FileReader() = default;
   virtual Result<std::string> read(const std::string& path) = 0;
+  // The file's size without reading it, where the reader can tell (so a file far over the
+  // loader's limit is refused unread); nullopt otherwise.
+  virtual std::optional<std::uint64_t> size(const std::string& /*path*/) { return std::nullopt; }
 };
 
 // Owns the text of every file read in one compilation so diagnostics can quote source lines.

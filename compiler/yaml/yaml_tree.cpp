@@ -32,7 +32,6 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "compiler/yaml/yaml_fast.hpp"
 #include "compiler/yaml/yaml_prescan.hpp"
 
 namespace seqc::compiler {
@@ -93,34 +92,6 @@ class TreeBuilder final : public YAML::EventHandler {
   }
 
   std::optional<YamlNode> take_root() { return std::move(root_); }
-
-  // Feeds the fast reader's events through the same handlers yaml-cpp's parser would call.
-  void replay(const std::vector<yaml_detail::FastEvent>& events) {
-    using K = yaml_detail::FastEvent::Kind;
-    static const std::string kPlain = "?";  // yaml-cpp's tag for untagged plain nodes
-    OnDocumentStart(events.empty() ? YAML::Mark() : to_mark(events.front()));
-    for (const yaml_detail::FastEvent& e : events) {
-      switch (e.kind) {
-        case K::Null:
-          OnNull(to_mark(e), YAML::NullAnchor);
-          break;
-        case K::Scalar:
-          scalar(to_mark(e), kPlain, e.value);
-          break;
-        case K::SeqStart:
-          open(to_mark(e), kPlain, YamlNode::Kind::Sequence);
-          break;
-        case K::MapStart:
-          open(to_mark(e), kPlain, YamlNode::Kind::Map);
-          break;
-        case K::SeqEnd:
-        case K::MapEnd:
-          close();
-          break;
-      }
-    }
-    OnDocumentEnd();
-  }
 
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (documents_++ == 0) return;
@@ -203,14 +174,6 @@ class TreeBuilder final : public YAML::EventHandler {
       if (entries[it->second].first.scalar == key) return &entries[it->second].first;
     }
     return nullptr;
-  }
-
-  static YAML::Mark to_mark(const yaml_detail::FastEvent& e) {
-    YAML::Mark m;
-    m.pos = static_cast<int>(e.pos);
-    m.line = static_cast<int>(e.line);
-    m.column = static_cast<int>(e.column);
-    return m;
   }
 
   void scalar(const YAML::Mark& mark, const std::string& tag, std::string_view value) {
@@ -329,13 +292,17 @@ std::string parser_message(const YAML::Exception& e, const YamlLimits& limits) {
 
 }  // namespace
 
+std::string too_large_message(std::uint64_t bytes, std::size_t limit) {
+  return "file is " + std::to_string(bytes) + " bytes; the limit is " + std::to_string(limit) +
+         " bytes";
+}
+
 std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t file,
                                   Diagnostics& diags, const YamlLimits& limits) {
   const std::string& text = sources.text(file);
   if (text.size() > limits.max_bytes) {
     diags.error(Location{file, 1, 1} /* the whole file */,
-                "file is " + std::to_string(text.size()) + " bytes; the limit is " +
-                    std::to_string(limits.max_bytes) + " bytes");
+                too_large_message(text.size(), limits.max_bytes));
     return std::nullopt;
   }
   if (auto problem = yaml_detail::check_bytes(text)) {
@@ -347,25 +314,16 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
 
   TreeBuilder builder(text, bom, file, diags, limits);
   try {
-    std::optional<std::vector<yaml_detail::FastEvent>> events;
-    if (limits.fast_reader) events = yaml_detail::fast_events(body, limits.max_depth);
-    if (events) {
-      // The common case; see yaml_fast.hpp. check_flow_depth has nothing to find here: the fast
-      // reader's own depth limit covers flow nesting, and its subset has no brackets that are
-      // text rather than structure.
-      builder.replay(*events);
-    } else {
-      if (auto problem = yaml_detail::check_flow_depth(body, limits.max_depth)) {
-        const std::uint32_t shift = problem->line == 1 ? static_cast<std::uint32_t>(bom) : 0u;
-        diags.error(Location{file, problem->line, problem->column + shift},
-                    std::move(problem->message));
-        return std::nullopt;
-      }
-      std::istringstream in{std::string(body)};
-      YAML::Parser parser(in);
-      // Finding 1: the second document aborts, so this runs at most twice.
-      for (int i = 0; i < 2 && parser.HandleNextDocument(builder); ++i) {
-      }
+    if (auto problem = yaml_detail::check_flow_depth(body, limits.max_depth)) {
+      const std::uint32_t shift = problem->line == 1 ? static_cast<std::uint32_t>(bom) : 0u;
+      diags.error(Location{file, problem->line, problem->column + shift},
+                  std::move(problem->message));
+      return std::nullopt;
+    }
+    std::istringstream in{std::string(body)};
+    YAML::Parser parser(in);
+    // Finding 1: the second document aborts, so this runs at most twice.
+    for (int i = 0; i < 2 && parser.HandleNextDocument(builder); ++i) {
     }
   } catch (const Abort&) {
     return std::nullopt;

@@ -42,10 +42,10 @@ struct YamlLimits {
   std::size_t max_bytes = 1 << 20;  // 1 MiB per file
   std::size_t max_depth = 64;
   std::size_t max_nodes = 1 << 20;
-  // The fast reader for plain block YAML (yaml_fast.hpp) in front of yaml-cpp; off means
-  // yaml-cpp reads everything (compile_bench measures both).
-  bool fast_reader = true;
 };
+
+// "file is N bytes; the limit is M bytes": the error for a file over YamlLimits::max_bytes.
+std::string too_large_message(std::uint64_t bytes, std::size_t limit);
 
 // Parses file `file` of `sources`. Errors (syntax, duplicate keys, anchors/aliases, tags other
 // than the core schema's, several documents, NUL bytes, invalid UTF-8, size/depth/node

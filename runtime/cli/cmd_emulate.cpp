@@ -3,8 +3,10 @@
 // On exit, --record writes what was received and --dump-groups (xarm) the stored groups.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -119,9 +121,11 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   emu::PtyOptions pty_options;
   pty_options.baud = xarm ? config.baud : (o.baud_opt->count() > 0 ? o.baud : raspblock::kBaud);
   if (o.link_opt->count() > 0) pty_options.link = o.link;
-  auto server = emu::PtyServer::open(pty_options);
-  if (!server) {
-    ctx.err << "seqc: error: cannot create a pseudo-terminal: " << server.error().message << "\n";
+  std::optional<emu::PtyServer> server;
+  if (auto opened = emu::PtyServer::open(pty_options); opened) {
+    server.emplace(std::move(*opened));
+  } else {
+    ctx.err << "seqc: error: cannot create a pseudo-terminal: " << opened.error().message << "\n";
     return ExitCode::PortUnavailable;
   }
   ctx.out << server->slave_path() << "\n" << std::flush;
@@ -145,6 +149,32 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
 
   auto stopped =
       server->serve(xarm ? static_cast<emu::PtyDevice&>(xarm_dev) : rasp_dev, ctx.clock, stop);
+  // A hang-up with back-after: the device comes back on a new terminal (--link follows it).
+  while (xarm && stopped && *stopped == emu::PtyServer::Stopped::HangUp &&
+         config.faults.back_after) {
+    ctx.err << "seqc: emulated hang-up at frame " << xarm_emu.frames_received()
+            << " (--faults hangup-at); back in "
+            << std::chrono::duration<double>(*config.faults.back_after).count() << " s\n";
+    ctx.err.flush();
+    const io::TimePoint back = ctx.clock.now() + *config.faults.back_after;
+    while (!stop.load() && ctx.clock.now() < back) {
+      ctx.clock.sleep_until(std::min(back, ctx.clock.now() + std::chrono::milliseconds(50)));
+    }
+    if (stop.load()) break;
+    const io::TimePoint resume = xarm_emu.now() + *config.faults.back_after;
+    server.reset();
+    auto opened = emu::PtyServer::open(pty_options);
+    if (!opened || !xarm_dev.reconnect(resume)) {
+      ctx.err << "seqc: error: cannot serve the device again"
+              << (opened ? std::string() : ": " + opened.error().message) << "\n";
+      return ExitCode::PortUnavailable;
+    }
+    server.emplace(std::move(*opened));
+    ctx.out << server->slave_path() << "\n" << std::flush;
+    ctx.err << "seqc: the device is back on " << server->slave_path() << "\n";
+    ctx.err.flush();
+    stopped = server->serve(xarm_dev, ctx.clock, stop, resume - io::TimePoint{0});
+  }
   ExitCode code = ExitCode::Ok;
   if (!stopped) {
     ctx.err << "seqc: error: " << stopped.error().message << "\n";
@@ -196,8 +226,10 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   opts->faults_opt =
       cmd->add_option("--faults", opts->faults,
                       "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
-                      "keys: drop, corrupt, late, dup (rates 0..1),\n"
-                      "late-by, silent-after, hangup-at, seed");
+                      "keys: drop, corrupt, late, dup, busy, reset (rates 0..1),\n"
+                      "late-by, busy-for, boot-time, silent-after, hangup-at,\n"
+                      "back-after (a hung-up device returns on a new terminal),\n"
+                      "reset-at, seed");
   opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
   opts->link_opt =
       cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");

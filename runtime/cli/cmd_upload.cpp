@@ -124,11 +124,20 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (!r.ok()) {
     ctx.err << "seqc: error: " << r.message << "\n";
     ctx.err << "seqc: " << upload::describe_group_state(r.group_state, group) << "\n";
+    if (r.erase_sent) {
+      ctx.err << "seqc: sent GroupErase for group " << a.group
+              << ": step 5 was sent but never confirmed, so the group is erased rather than "
+                 "left holding a partial download\n";
+    }
+    if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
     return exit_code_for(r.status);
   }
   std::string detail = fmt::format("{}, {:.1f} s", where, secs);
   if (r.retries > 0) detail += ", " + plural(static_cast<std::size_t>(r.retries), "re-send");
   if (r.restarts > 0) detail += ", " + plural(static_cast<std::size_t>(r.restarts), "restart");
+  if (r.reopens > 0) {
+    detail += ", the port came back " + plural(static_cast<std::size_t>(r.reopens), "time");
+  }
   if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it
   ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
           << " into group " << a.group << " (" << detail << ")\n";

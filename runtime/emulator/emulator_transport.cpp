@@ -54,6 +54,19 @@ io::ReadResult EmulatorTransport::read(std::span<std::uint8_t> buffer, io::TimeP
   return io::ReadResult{io::ReadStatus::Timeout, 0, {}};
 }
 
+bool EmulatorTransport::reopen(io::TimePoint deadline) {
+  if (!emu_.hung_up()) return true;
+  const auto back = emu_.back_at();
+  if (!back || *back > deadline) {
+    clock_.sleep_until(deadline);
+    return false;
+  }
+  clock_.sleep_until(*back);
+  inbox_.clear();
+  input_.clear();
+  return emu_.reconnect(clock_.now());
+}
+
 void EmulatorTransport::discard_input() {
   inbox_.clear();
   (void)emu_.take_output(clock_.now());

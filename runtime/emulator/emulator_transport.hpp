@@ -8,6 +8,8 @@
 //   read()   returns output already due; otherwise advances the clock to the next output
 //            byte if that comes by the deadline, else to the deadline -> Timeout. A hung-up
 //            link -> HangUp.
+//   reopen() waits (on the clock) until the emulated device is back after a hang-up, if it
+//            comes back by the deadline (XArmFaults::back_after), and reconnects.
 #pragma once
 
 #include <string>
@@ -28,6 +30,7 @@ class EmulatorTransport final : public io::Transport {
   void discard_input() override;
   std::string describe() const override { return "emu:xarm"; }
   double seconds_per_byte() const override;
+  bool reopen(io::TimePoint deadline) override;
 
  private:
   io::ReadResult deliver(std::span<std::uint8_t> buffer);

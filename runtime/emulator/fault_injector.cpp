@@ -14,7 +14,10 @@ double SplitMix64::unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53
 // The outgoing stream gets its own seed so that adding a reply never changes which incoming
 // frames are dropped.
 FaultInjector::FaultInjector(const XArmFaults& faults)
-    : faults_(faults), in_(faults.seed), out_(faults.seed ^ 0x6a09e667f3bcc908ULL) {}
+    : faults_(faults),
+      in_(faults.seed),
+      out_(faults.seed ^ 0x6a09e667f3bcc908ULL),
+      extra_(faults.seed ^ 0xbb67ae8584caa73bULL) {}
 
 IncomingFault FaultInjector::on_request() {
   IncomingFault f;
@@ -28,6 +31,10 @@ IncomingFault FaultInjector::on_request() {
   f.drop = drop < faults_.drop;
   f.corrupt = !f.drop && corrupt < faults_.corrupt;
   f.corrupt_offset = static_cast<std::size_t>(where * 3.0);
+  const double reset = extra_.unit();
+  const double busy = extra_.unit();
+  f.reset = reset < faults_.reset || (faults_.reset_at && f.number == *faults_.reset_at);
+  f.busy = busy < faults_.busy;
   return f;
 }
 

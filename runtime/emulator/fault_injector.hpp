@@ -31,6 +31,8 @@ struct IncomingFault {
   bool drop = false;
   bool corrupt = false;
   std::size_t corrupt_offset = 0;  // 0..2: which of 55 55 LEN is flipped
+  bool reset = false;              // the controller resets as this frame arrives
+  bool busy = false;               // processing this frame takes busy_for longer
 };
 
 struct OutgoingFault {
@@ -59,6 +61,9 @@ class FaultInjector {
   XArmFaults faults_;
   SplitMix64 in_;
   SplitMix64 out_;
+  // Resets and busy periods draw from a third stream, so adding them to a configuration
+  // leaves the drops, corruptions and reply faults of the same seed unchanged.
+  SplitMix64 extra_;
   std::size_t frames_ = 0;
   bool silent_ = false;
 };

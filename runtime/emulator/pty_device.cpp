@@ -7,6 +7,15 @@ namespace seqc::emu {
 XArmPtyDevice::XArmPtyDevice(XArmEmulator& emu)
     : emu_(emu), input_(emu.config().baud), framer_(emu.config().frame_gap) {}
 
+bool XArmPtyDevice::reconnect(io::TimePoint at) {
+  if (!emu_.reconnect(at)) return false;
+  input_.clear();
+  framer_.reset();
+  frame_ends_.clear();
+  last_arrival_.reset();
+  return true;
+}
+
 void XArmPtyDevice::receive(ByteView bytes, io::TimePoint at) {
   if (emu_.hung_up() || bytes.empty()) return;
   std::vector<RequestFramer::Piece> pieces;

@@ -55,6 +55,9 @@ class XArmPtyDevice final : public PtyDevice {
 
   // Bytes written by the host that have not reached the controller yet.
   bool input_pending() const { return !input_.empty(); }
+  // The host reaches the device again after a hang-up (XArmEmulator::reconnect); bytes that
+  // were on their way are lost. False if the device is not back by `at`.
+  bool reconnect(io::TimePoint at);
 
  private:
   void deliver(io::TimePoint upto);

@@ -113,7 +113,7 @@ void PtyServer::close_fds() {
 }
 
 Result<PtyServer::Stopped> PtyServer::serve(PtyDevice& device, io::Clock& clock,
-                                            const std::atomic<bool>& stop) {
+                                            const std::atomic<bool>& stop, io::Duration resume) {
   if (master_ < 0) return make_error("the pseudo-terminal is closed");
   // The default timer slack (50 us) would make every timed wake-up late by up to a byte time
   // at 115200 baud; this thread's waits are the emulated line's timing, so ask for none.
@@ -126,7 +126,7 @@ Result<PtyServer::Stopped> PtyServer::serve(PtyDevice& device, io::Clock& clock,
       if (slack > 0) ::prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(slack), 0, 0, 0);
     }
   } restore_slack{old_slack};
-  const io::TimePoint origin = clock.now();
+  const io::TimePoint origin = clock.now() - resume;
   auto now = [&] { return clock.now() - origin; };
   Bytes pending;  // due output the master could not take yet
   std::uint8_t buf[4096];

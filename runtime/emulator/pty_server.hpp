@@ -40,7 +40,10 @@ class PtyServer {
 
   const std::string& slave_path() const { return slave_path_; }
 
-  Result<Stopped> serve(PtyDevice& device, io::Clock& clock, const std::atomic<bool>& stop);
+  // The device's times are the clock's since serve() began, plus `resume` (a device served
+  // again after a hang-up continues its own timeline).
+  Result<Stopped> serve(PtyDevice& device, io::Clock& clock, const std::atomic<bool>& stop,
+                        io::Duration resume = io::Duration{0});
 
  private:
   PtyServer() = default;

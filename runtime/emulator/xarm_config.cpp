@@ -13,15 +13,20 @@
 namespace seqc::emu {
 namespace {
 
-constexpr std::array<std::string_view, 8> kKeys = {"seed",    "drop", "corrupt",      "late",
-                                                   "late-by", "dup",  "silent-after", "hangup-at"};
+constexpr std::array<std::string_view, 14> kKeys = {
+    "seed",      "drop",       "corrupt", "late",     "late-by",   "dup",  "silent-after",
+    "hangup-at", "back-after", "reset",   "reset-at", "boot-time", "busy", "busy-for"};
 
 std::string unknown_key_message(std::string_view key) {
   std::string msg = "unknown fault '" + std::string(key) + "'";
   const std::string best =
       compiler::did_you_mean(key, std::vector<std::string>(kKeys.begin(), kKeys.end()));
   if (!best.empty()) msg += "; did you mean '" + best + "'?";
-  msg += " (known: seed, drop, corrupt, late, late-by, dup, silent-after, hangup-at)";
+  msg += " (known:";
+  for (std::size_t i = 0; i < kKeys.size(); ++i) {
+    msg += std::string(i == 0 ? " " : ", ") + std::string(kKeys[i]);
+  }
+  msg += ")";
   return msg;
 }
 
@@ -93,7 +98,8 @@ std::string format_rate(double v) {
 }  // namespace
 
 bool XArmFaults::any() const {
-  return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after || hangup_at;
+  return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after ||
+         hangup_at || reset > 0 || reset_at || busy > 0;
 }
 
 Result<XArmFaults> parse_faults(std::string_view spec) {
@@ -118,17 +124,29 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
       auto v = parse_unsigned(key, value);
       if (!v) return v.error();
       f.seed = *v;
-    } else if (key == "drop" || key == "corrupt" || key == "late" || key == "dup") {
+    } else if (key == "drop" || key == "corrupt" || key == "late" || key == "dup" ||
+               key == "reset" || key == "busy") {
       auto v = parse_rate(key, value);
       if (!v) return v.error();
       (key == "drop"      ? f.drop
        : key == "corrupt" ? f.corrupt
        : key == "late"    ? f.late_ack
+       : key == "reset"   ? f.reset
+       : key == "busy"    ? f.busy
                           : f.duplicate_ack) = *v;
-    } else if (key == "late-by") {
+    } else if (key == "late-by" || key == "boot-time" || key == "busy-for") {
       auto v = parse_duration(key, value);
       if (!v) return v.error();
-      f.late_by = *v;
+      (key == "late-by" ? f.late_by : key == "boot-time" ? f.boot_time : f.busy_for) = *v;
+    } else if (key == "back-after") {
+      auto v = parse_duration(key, value);
+      if (!v) return v.error();
+      f.back_after = *v;
+    } else if (key == "reset-at") {
+      auto v = parse_unsigned(key, value);
+      if (!v) return v.error();
+      if (*v == 0) return make_error("fault 'reset-at': frames count from 1");
+      f.reset_at = static_cast<std::size_t>(*v);
     } else if (key == "silent-after") {
       auto v = parse_unsigned(key, value);
       if (!v) return v.error();
@@ -209,6 +227,16 @@ std::string describe_faults(const XArmFaults& f) {
   if (f.duplicate_ack > 0) add("dup=" + format_rate(f.duplicate_ack));
   if (f.silent_after) add("silent-after=" + std::to_string(*f.silent_after));
   if (f.hangup_at) add("hangup-at=" + std::to_string(*f.hangup_at));
+  if (f.back_after) add("back-after=" + format_duration(*f.back_after));
+  if (f.reset > 0) add("reset=" + format_rate(f.reset));
+  if (f.reset_at) add("reset-at=" + std::to_string(*f.reset_at));
+  if ((f.reset > 0 || f.reset_at) && f.boot_time != defaults.boot_time) {
+    add("boot-time=" + format_duration(f.boot_time));
+  }
+  if (f.busy > 0) add("busy=" + format_rate(f.busy));
+  if (f.busy > 0 && f.busy_for != defaults.busy_for) {
+    add("busy-for=" + format_duration(f.busy_for));
+  }
   if (out.empty()) return "none";
   if (f.seed != defaults.seed) add("seed=" + std::to_string(f.seed));
   return out;

@@ -28,12 +28,26 @@ struct XArmFaults {
   double duplicate_ack = 0;                 // a reply is sent twice
   std::optional<std::size_t> silent_after;  // stop answering after this many frames received
   std::optional<std::size_t> hangup_at;     // hang up (link closes) when frame N (1-based) arrives
+  // After a hang-up the device comes back (the port can be opened again) this much later;
+  // unset = it stays away.
+  std::optional<io::Duration> back_after;
+  // Controller reset (a power dip): the frame that arrives is lost, the controller forgets a
+  // download in progress (its group stays empty), stops playing and is deaf for boot_time,
+  // then answers as after power-on. Per frame (`reset`), or at frame N (`reset_at`).
+  double reset = 0;
+  std::optional<std::size_t> reset_at;
+  io::Duration boot_time = std::chrono::milliseconds(300);
+  // Busy controller: processing a frame takes busy_for longer (its reply comes that much
+  // later and frames arriving meanwhile are dropped, as while erasing flash).
+  double busy = 0;
+  io::Duration busy_for = std::chrono::milliseconds(400);
 
   bool any() const;
 };
 
 // Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
-// hangup-at=500,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
+// hangup-at=500,back-after=2s,reset=0.001,reset-at=300,boot-time=300ms,busy=0.01,
+// busy-for=400ms,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
 // s (a bare number is milliseconds). Unknown keys, rates outside 0..1 and malformed numbers
 // are errors naming the offending item.
 Result<XArmFaults> parse_faults(std::string_view spec);

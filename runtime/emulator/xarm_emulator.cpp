@@ -53,6 +53,7 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
   const IncomingFault fault = faults_.on_request();
   if (fault.hangup) {
     hung_up_ = true;
+    hung_up_at_ = at;
     line_.clear();
     player_.stop();
   }
@@ -67,6 +68,15 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
     received_.push_back(std::move(rec));
     return;
   }
+  if (fault.reset) {
+    // The dip takes the frame with it; the controller boots and is deaf meanwhile.
+    rec.dropped_fault = true;
+    received_.push_back(std::move(rec));
+    ++resets_;
+    power_cycle(at);
+    busy_until_ = at + config_.faults.boot_time;
+    return;
+  }
   lsc::Frame frame{rec.raw[3], Bytes(rec.raw.begin() + 4, rec.raw.end())};
   rec.frame = frame;
   if (at < busy_until_) {
@@ -76,6 +86,7 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
   }
   received_.push_back(std::move(rec));
   Processed p = process(frame, at);
+  if (fault.busy) p.busy += config_.faults.busy_for;
   busy_until_ = at + p.busy;
   for (const auto& reply : p.replies) emit(reply, busy_until_);
 }
@@ -252,6 +263,23 @@ std::uint16_t XArmEmulator::servo_position(std::uint8_t id, io::TimePoint at) co
 bool XArmEmulator::pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at) {
   advance_to(std::max(at, now_));
   return servos_.pose_by_hand(id, position, std::max(at, now_));
+}
+
+std::optional<io::TimePoint> XArmEmulator::back_at() const {
+  if (!hung_up_ || !config_.faults.back_after) return std::nullopt;
+  return hung_up_at_ + *config_.faults.back_after;
+}
+
+bool XArmEmulator::reconnect(io::TimePoint at) {
+  if (!hung_up_) return true;
+  const auto back = back_at();
+  if (!back || at < *back) return false;
+  at = std::max(at, now_);
+  advance_to(at);
+  hung_up_ = false;
+  framer_.reset();
+  line_.clear();
+  return true;
 }
 
 void XArmEmulator::power_cycle(io::TimePoint at) {

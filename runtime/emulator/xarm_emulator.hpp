@@ -39,7 +39,10 @@
 // Faults (XArmFaults): drawn once per framed request and once per outgoing frame, so the same
 // seed and the same input give the same received() and the same output, byte for byte.
 // Silence (silent_after) stops all further output and processing; a hang-up closes the link:
-// nothing is received or sent after it.
+// nothing is received or sent after it, until reconnect() when the faults let the device come
+// back (back_after; the controller kept its power and its state, bytes in flight are lost).
+// A reset (power dip) is power_cycle() as the frame arrives, then boot_time of deafness.
+// A busy fault lengthens one frame's processing by busy_for.
 #pragma once
 
 #include <cstddef>
@@ -93,6 +96,13 @@ class XArmEmulator {
   Bytes take_output(io::TimePoint upto);
 
   bool hung_up() const { return hung_up_; }
+  // When the device can be reached again after a hang-up; nullopt if it stays away.
+  std::optional<io::TimePoint> back_at() const;
+  // The host opens the port again at `at`: true (and the link works again) if the device is
+  // back by then.
+  bool reconnect(io::TimePoint at);
+  // Resets (power dips) injected so far.
+  std::size_t resets() const { return resets_; }
   // Every piece received, in order: frames, unframeable bytes, dropped frames.
   const std::vector<ReceivedFrame>& received() const { return received_; }
   // All bytes ever passed to receive(), concatenated, as the host wrote them.
@@ -140,6 +150,8 @@ class XArmEmulator {
   io::TimePoint now_{0};
   io::TimePoint busy_until_{0};
   bool hung_up_ = false;
+  io::TimePoint hung_up_at_{0};
+  std::size_t resets_ = 0;
   std::vector<ReceivedFrame> received_;
   Bytes received_bytes_;
 };

@@ -26,6 +26,12 @@ Result<std::string> DiskFileReader::read(const std::string& path) {
   return ss.str();
 }
 
+std::optional<std::uint64_t> DiskFileReader::size(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
 Status write_file_atomically(const std::string& path, std::string_view data) {
   const std::string tmp = path + ".seqc-tmp";
   {

@@ -10,6 +10,7 @@ class DiskFileReader final : public compiler::FileReader {
   // Files larger than max_bytes are refused unread, so a huge file cannot exhaust memory.
   explicit DiskFileReader(std::size_t max_bytes = 16u << 20) : max_bytes_(max_bytes) {}
   Result<std::string> read(const std::string& path) override;
+  std::optional<std::uint64_t> size(const std::string& path) override;
 
  private:
   std::size_t max_bytes_;

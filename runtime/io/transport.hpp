@@ -42,6 +42,10 @@ class Transport {
   virtual std::string describe() const = 0;
   // Seconds per byte on the wire (10 bits / baud), or 0 where unknown (HID, unpaced emulator).
   virtual double seconds_per_byte() const { return 0.0; }
+  // After a HangUp: waits until `deadline` for the same device to come back (a cable that
+  // slipped, a board that re-enumerated) and reconnects to it, with the same settings. True
+  // when the link works again. The default cannot reconnect.
+  virtual bool reopen(TimePoint /*deadline*/) { return false; }
 };
 
 }  // namespace seqc::io

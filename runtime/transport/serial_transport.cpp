@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <climits>
 #include <cstring>
+#include <filesystem>
 #include <utility>
 
 #include <fcntl.h>
@@ -18,6 +19,21 @@ namespace seqc::transport {
 namespace {
 
 bool is_hang_up_errno(int e) { return e == EIO || e == ENXIO || e == ENODEV || e == EPIPE; }
+
+// The /dev/serial/by-id entry that names the device at `path` now, or "" (no such entry: not a
+// USB adapter, or udev is not running).
+std::string by_id_name(const std::string& path) {
+  std::error_code ec;
+  const auto device = std::filesystem::canonical(path, ec);
+  if (ec) return "";
+  for (const auto& entry : std::filesystem::directory_iterator("/dev/serial/by-id", ec)) {
+    std::error_code ec2;
+    if (std::filesystem::canonical(entry.path(), ec2) == device && !ec2) {
+      return entry.path().filename().string();
+    }
+  }
+  return "";
+}
 
 // Closes a half-opened port on every early return of open().
 struct FdGuard {
@@ -109,9 +125,38 @@ Result<std::unique_ptr<SerialTransport>> SerialTransport::open(const std::string
 
 SerialTransport::SerialTransport(int fd, std::string path, io::Clock& clock, SerialOptions options,
                                  const termios& saved)
-    : fd_(fd), path_(std::move(path)), clock_(clock), options_(options), saved_(saved) {}
+    : fd_(fd),
+      path_(std::move(path)),
+      clock_(clock),
+      options_(options),
+      saved_(saved),
+      identity_(by_id_name(path_)) {}
+
+bool SerialTransport::reopen(io::TimePoint deadline) {
+  for (;;) {
+    if (reopen_once()) return true;
+    const io::TimePoint now = clock_.now();
+    if (now >= deadline) return false;
+    clock_.sleep_until(std::min(deadline, now + std::chrono::milliseconds(50)));
+  }
+}
+
+bool SerialTransport::reopen_once() {
+  if (!identity_.empty() && by_id_name(path_) != identity_) return false;  // not back, or not it
+  auto again = open(path_, clock_, options_);
+  if (!again) return false;
+  if (fd_ >= 0) {
+    ::flock(fd_, LOCK_UN);
+    ::close(fd_);
+  }
+  fd_ = std::exchange((*again)->fd_, -1);
+  saved_ = (*again)->saved_;
+  hung_up_ = false;
+  return true;
+}
 
 SerialTransport::~SerialTransport() {
+  if (fd_ < 0) return;  // handed over to a reopened transport
   if (!hung_up_) {
     // Restoring the old settings changes the rate under bytes still in the kernel's output
     // buffer; give them their wire time first, bounded so a stuck device cannot hang exit.

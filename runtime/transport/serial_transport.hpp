@@ -6,6 +6,12 @@
 // always sees (even as root), and TIOCEXCL, which makes other programs' open() fail with EBUSY.
 // Either way the second opener fails at once with "PATH is in use by another program".
 // The port's previous termios settings are restored when the transport is destroyed.
+//
+// After a hang-up, reopen() opens the same path again (polling until its deadline) with the
+// same settings, but only the same device: a USB adapter is known by its /dev/serial/by-id name
+// (vendor, product, serial number), taken when the port was first opened; if another adapter
+// takes the path meanwhile, reopen() waits on. Ports without such a name (UARTs, pseudo-
+// terminals, a symlink of the user's) are known by their path.
 #pragma once
 
 #include <cstdint>
@@ -51,6 +57,7 @@ class SerialTransport final : public io::Transport {
   void discard_input() override;
   std::string describe() const override;
   double seconds_per_byte() const override { return 10.0 / options_.baud; }
+  bool reopen(io::TimePoint deadline) override;
 
   const std::string& path() const { return path_; }
 
@@ -62,6 +69,8 @@ class SerialTransport final : public io::Transport {
   // -1 with errno on failure.
   int wait_for(short events, io::TimePoint deadline);
   io::ReadResult hang_up(std::string_view doing) const;
+  // One attempt of reopen().
+  bool reopen_once();
 
   int fd_;
   std::string path_;
@@ -69,6 +78,7 @@ class SerialTransport final : public io::Transport {
   SerialOptions options_;
   termios saved_;
   bool hung_up_ = false;
+  std::string identity_;  // the /dev/serial/by-id name of the device, or ""
 };
 
 }  // namespace seqc::transport

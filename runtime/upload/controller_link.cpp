@@ -156,4 +156,18 @@ void ControllerLink::discard_input() {
   transport_.discard_input();
 }
 
+bool ControllerLink::reopen(io::TimePoint deadline) {
+  decoder_.reset();
+  // In slices, so Ctrl-C ends the wait as it ends any other.
+  for (;;) {
+    if (interrupted()) return false;
+    const io::TimePoint now = clock_.now();
+    if (now >= deadline) return false;
+    if (transport_.reopen(std::min(deadline, now + slice_))) break;
+    if (clock_.now() == now) return false;  // it did not even wait: it cannot reconnect
+  }
+  transport_.discard_input();
+  return true;
+}
+
 }  // namespace seqc::upload

@@ -96,6 +96,9 @@ class ControllerLink {
 
   // Drops everything pending, in the decoder and in the transport.
   void discard_input();
+  // After a HangUp: Transport::reopen, then starts afresh (a frame half-read before the
+  // hang-up is dropped). True when the link works again.
+  bool reopen(io::TimePoint deadline);
   // Drops the start of a frame held in the decoder (after a timeout: a reply whose LEN byte
   // was corrupted upwards would otherwise swallow the replies that follow). Returns the
   // number of bytes dropped.

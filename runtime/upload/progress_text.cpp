@@ -75,6 +75,11 @@ std::string format_retry(const RetryEvent& e) {
          std::to_string(e.max_attempts) + ": " + e.reason;
 }
 
+std::string format_restart(const RestartEvent& e) {
+  return "restarting the download from step 1 (attempt " + std::to_string(e.attempt) + " of " +
+         std::to_string(e.max_attempts) + "): " + e.reason;
+}
+
 ProgressPrinter::ProgressPrinter(std::ostream& err, bool terminal, int verbosity, int columns)
     : err_(err), terminal_(terminal), verbosity_(verbosity), columns_(columns) {}
 
@@ -122,6 +127,10 @@ void ProgressPrinter::on_progress(const UploadProgress& p) {
 
 void ProgressPrinter::on_retry(const RetryEvent& event) {
   if (verbosity_ > 0) message_line(format_retry(event));
+}
+
+void ProgressPrinter::on_restart(const RestartEvent& event) {
+  if (verbosity_ >= 0) message_line(format_restart(event));
 }
 
 void ProgressPrinter::on_note(const std::string& note) {

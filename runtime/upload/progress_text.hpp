@@ -20,6 +20,8 @@ int bar_cells_for(const UploadProgress& p, int columns);
 std::string format_progress_line(const UploadProgress& p);
 // "re-sending step 4 (action 17 of 1020: block 0, index 16), attempt 2 of 5: no ..."
 std::string format_retry(const RetryEvent& e);
+// "restarting the download from step 1 (attempt 2 of 4): the controller refused ..."
+std::string format_restart(const RestartEvent& e);
 
 class ProgressPrinter final : public UploadObserver {
  public:
@@ -30,6 +32,8 @@ class ProgressPrinter final : public UploadObserver {
 
   void on_progress(const UploadProgress& progress) override;
   void on_retry(const RetryEvent& event) override;
+  // Shown at every verbosity but --quiet: the user should know the upload started over.
+  void on_restart(const RestartEvent& event) override;
   void on_note(const std::string& note) override;
   // Ends the bar's line (call before printing the result).
   void finish();

@@ -147,12 +147,14 @@ std::string Uploader::Run::prepare() {
     auto bytes = lsc::encode_serial(r);
     if (!bytes) return "cannot encode the download plan: " + bytes.error().message;
     PlannedFrame f;
+    f.index = frames_.size();
     f.step = step;
     f.bytes = std::move(bytes).value();
     f.is_action = step == 4;
     if (f.is_action) ++result_.actions_total;
     frames_.push_back(std::move(f));
   }
+  double_refusals_.assign(frames_.size(), 0);
   if (frames_.front().step != 1 || frames_.back().step != 5) {
     return "the download plan must start with step 1 and end with step 5";
   }
@@ -187,15 +189,29 @@ std::string Uploader::Run::prepare() {
   return "";
 }
 
-// Probe, stop, download (with restarts), run. Sets fail_ on failure.
+// Probe, stop, download (with restarts and reconnects), run. Sets fail_ on failure.
 auto Uploader::Run::sequence() -> Flow {
   link().discard_input();
+  for (;;) {
+    const Flow f = connect_and_download();
+    if (f == Flow::Ok) break;
+    if (!fail_ || fail_->status != UploadStatus::HangUp) return Flow::Fatal;
+    if (reconnect() != Flow::Ok) return Flow::Fatal;
+  }
+  completed_ = true;
+
+  if (opt().run) start_group();
+  return Flow::Ok;
+}
+
+auto Uploader::Run::connect_and_download() -> Flow {
   if (probe() != Flow::Ok) return Flow::Fatal;
 
   if (send(lsc::encode_serial(lsc::Request{lsc::GroupStop{}}).value(), "stopping the group") !=
       Flow::Ok) {
     return Flow::Fatal;
   }
+  stop_sent_ = true;
   // Boards that answer GroupStop with "group stopped" are busy until then: a barrier sent
   // at once would be dropped. Boards that do not answer cost this short wait once.
   WaitResult stopped = link().wait_for(
@@ -210,23 +226,9 @@ auto Uploader::Run::sequence() -> Flow {
 
   for (;;) {
     const Flow f = download_once();
-    if (f == Flow::Ok) break;
-    if (f == Flow::Fatal) return f;
-    if (result_.restarts >= opt().restarts) {
-      return fatal(UploadStatus::Inconsistent,
-                   "the controller's acknowledgements did not pair up with the frames sent (" +
-                       restart_reason_ + "), after " + std::to_string(result_.restarts + 1) +
-                       " attempts");
-    }
-    ++result_.restarts;
-    note("restarting the download from step 1 (attempt " + std::to_string(result_.restarts + 1) +
-         "): " + restart_reason_);
-    if (barrier(Barrier::Sync, 0) == Flow::Fatal) return Flow::Fatal;
+    if (f != Flow::Restart) return f;
+    if (restart() != Flow::Ok) return Flow::Fatal;
   }
-  completed_ = true;
-
-  if (opt().run) start_group();
-  return Flow::Ok;
 }
 
 auto Uploader::Run::probe() -> Flow {
@@ -277,7 +279,13 @@ void Uploader::Run::start_group() {
       },
       clock().now() + up_.reply_timeout(kProbeBytes, kProbeBytes, false) / 5);
   if (started.ok()) result_.run_reported = true;
-  const Flow f = barrier(Barrier::Sync, 0);
+  const Flow f = started.status == WaitStatus::Interrupted ? fatal(UploadStatus::Interrupted, "")
+                                                           : barrier(Barrier::Sync, 0);
+  if (fail_ && fail_->status == UploadStatus::Interrupted) {
+    // Ctrl-C while the group was starting: the group is stored, but the robot must not move.
+    fail_->message = "interrupted after starting group " + std::to_string(opt().group);
+    return;
+  }
   if (f != Flow::Ok) {
     note("the controller did not answer after GroupRun: " + (fail_ ? fail_->message : ""));
     fail_.reset();
@@ -285,7 +293,8 @@ void Uploader::Run::start_group() {
 }
 
 void Uploader::Run::finish(Flow flow) {
-  if (flow == Flow::Ok && completed_) {
+  if (fail_ && fail_->status == UploadStatus::Interrupted) secure_after_interrupt();
+  if (flow == Flow::Ok && completed_ && !fail_) {
     result_.status = UploadStatus::Completed;
     result_.group_state = GroupState::Stored;
     result_.actions_acknowledged = actions_done_;
@@ -294,7 +303,9 @@ void Uploader::Run::finish(Flow flow) {
   result_.status = fail_ ? fail_->status : UploadStatus::LinkError;
   result_.message = fail_ ? fail_->message : "the upload ended unexpectedly";
   result_.actions_acknowledged = actions_done_;
-  if (committed_unconfirmed_) {
+  if (completed_) {
+    result_.group_state = GroupState::Stored;
+  } else if (committed_unconfirmed_) {
     result_.group_state = GroupState::Uncertain;
   } else if (erased_) {
     result_.group_state = GroupState::Empty;

@@ -28,8 +28,12 @@
 //       outside a barrier, an ack for another step inside a barrier, or any extra ack before
 //       the final barrier's reply that a re-send of step 5 does not explain -- the attempt is
 //       abandoned and the whole download restarts at step 1 (which erases: restarting is
-//       idempotent), at most `restarts` times, then the upload fails. Success is reported
-//       only after an attempt with no such evidence.
+//       idempotent). Success is reported only after an attempt with no such evidence.
+// Restarts: mis-pairing (d), a frame that no re-send got through, a refusal that may come
+// from a controller reset, and a port that hung up and came back all restart the download
+// from step 1, at most `restarts` times in all; each restart is reported to the observer
+// (on_restart) with its reason. When the budget is spent the upload fails with the status of
+// the last cause (Inconsistent, NoAck or Refused).
 //
 // Against each fault:
 //   drop        the frame (or its ack) is lost: deadline, re-send, barrier (c).
@@ -40,7 +44,9 @@
 //               not end the upload.
 //   late ack    arrives after the deadline: the re-sent frame is either stored or, for step 4,
 //               re-acked by the controller as a repeat; whichever ack comes first is taken
-//               (same step, same frame) and the barrier (c) absorbs the other.
+//               (same step, same frame). The other is absorbed by the late-ack guard (acks of
+//               that step are discarded until late_guard after the frame was first sent) and
+//               the barrier (c) after it.
 //   duplicate   drained before the next send (b); if it arrives later and is taken for the
 //               next frame, the real ack of that frame is left over and shows up as a
 //               wrong-step ack, a drained extra ack, or an extra ack at the final barrier (d).
@@ -48,21 +54,32 @@
 //               the sequence, which the controller refuses.
 //   busy-drop   only happens if a frame is sent before the previous one was processed, i.e.
 //               after a mis-paired ack; it is then seen as in "duplicate".
-//   silence     every re-send times out; after `retries` the upload fails (NoAck).
-//   hang-up     the link reports HangUp: the upload ends at once (HangUp), never retried.
+//   silence     every re-send of a frame times out: after `retries` the download restarts
+//               from step 1 (a busy or briefly deaf controller); a controller that stays
+//               silent then fails the restart's first barrier (NoAck).
+//   hang-up     the link reports HangUp: the transport is asked to reopen the same device
+//               (Transport::reopen, waiting up to `reopen_wait`); if it comes back the
+//               download restarts from the probe, else the upload ends (HangUp).
 //   refusal     "<step> xx" with xx != 00 for the frame being waited on: after a barrier the
 //               same frame is sent once more. Accepted then: the first was a corrupted ack.
-//               Refused again: in a clean attempt that is the controller's answer and ends
-//               the upload (Refused, no restart). In an attempt that already re-sent a frame
-//               or saw an extra ack, the refusal may be our own doing (a mis-paired ack let a
-//               frame go out while the controller was busy; it was dropped and the next one
-//               is refused for the gap), so the download restarts (d) instead.
+//               Refused again: for step 1, or for a frame already refused twice in an earlier
+//               attempt, that is the controller's answer (Refused). Otherwise the refusal may
+//               be our own doing (a mis-paired ack let a frame go out while the controller was
+//               busy; it was dropped and the next one is refused for the gap) or a controller
+//               reset (below), so the download restarts.
+//   reset       a power dip mid-download: the controller forgets the download in progress and
+//               answers as after boot, so it refuses the next step 2-5 frame (no download is
+//               open). That is the refusal above: the download restarts from step 1.
 //   reordering  the emulator (and perhaps a real board) may send a late ack after a later
 //               reply, so a barrier cannot absorb it; it is then taken as a later frame's
 //               ack and shows up as the gap refusal above -> restart. Reply margins are
 //               chosen longer than ordinary lateness, so this needs a very late ack.
 //   Ctrl-C      the interrupt flag is polled between frames and in every wait slice (<= 100 ms
-//               of the link's clock): Interrupted.
+//               of the link's clock): Interrupted. Before returning, the controller is put in a
+//               known state: GroupStop if a group may be playing (GroupRun was sent, or the
+//               upload had not yet stopped the group that was playing), and GroupErase of the
+//               group if step 5 was sent but its storing was not confirmed, so a group written
+//               only in part is never left looking complete (UploadResult says which was sent).
 // Group state when an upload ends early: before step 1 was acknowledged the group is
 // unchanged (or, if step 1 was sent, possibly erased); after it, the group is empty: the
 // controller only makes it valid at step 5.
@@ -86,7 +103,14 @@ namespace seqc::upload {
 struct UploadOptions {
   std::uint8_t group = 0;  // must match the plan's group
   int retries = 4;         // re-sends of one frame after its first attempt
-  int restarts = 2;        // whole-download restarts after evidence of mis-pairing
+  int restarts = 3;        // whole-download restarts, all causes together (see above)
+  // How long a port that hung up is given to come back (Transport::reopen).
+  io::Duration reopen_wait = std::chrono::seconds(10);
+  // The late-ack guard: after a frame was re-sent for want of an acknowledgement, its first
+  // sending may still be acknowledged late, after the barrier's reply, where it would be
+  // taken for the next frame's. Until this long after the first sending, acknowledgements of
+  // that step are discarded before the next frame goes out.
+  io::Duration late_guard = std::chrono::seconds(1);
   // Added to the wire time of a frame and its reply to give the reply's deadline.
   io::Duration reply_margin = std::chrono::milliseconds(500);
   // Step 1's margin: the controller erases the group's flash before it acknowledges.
@@ -131,6 +155,12 @@ struct UploadProgress {
   int attempt = 1;          // 1 + restarts so far
 };
 
+struct RestartEvent {
+  int attempt = 2;  // the attempt about to be made
+  int max_attempts = 0;
+  std::string reason;  // "the controller refused step 4 (...) twice"
+};
+
 struct RetryEvent {
   std::string what;  // "step 4 (block 0, action 17)", "barrier", "probe"
   int attempt = 2;   // the attempt about to be made (2 = first re-send)
@@ -143,6 +173,8 @@ class UploadObserver {
   virtual ~UploadObserver() = default;
   virtual void on_progress(const UploadProgress& /*progress*/) {}
   virtual void on_retry(const RetryEvent& /*event*/) {}
+  // The download starts again from step 1 (or from the probe, after the port came back).
+  virtual void on_restart(const RestartEvent& /*event*/) {}
   // Restarts, stale acks discarded, notifications, skipped frames: for verbose output.
   virtual void on_note(const std::string& /*note*/) {}
 };
@@ -156,9 +188,13 @@ struct UploadResult {
   std::optional<std::uint16_t> battery_mv;  // from the probe
   int retries = 0;                          // re-sends of frames and barriers, all attempts
   int restarts = 0;                         // whole-download restarts
+  int reopens = 0;                          // times the port hung up and came back
   std::size_t stale_acks = 0;               // acks discarded by barriers and drains
   bool run_sent = false;
   bool run_reported = false;  // the controller announced the group started
+  // Interrupted: what was sent to leave the controller in a known state.
+  bool stop_sent = false;   // GroupStop: no group is playing
+  bool erase_sent = false;  // GroupErase of the group: step 5 was sent but not confirmed
   io::Duration elapsed{0};
   LinkStats link;
 

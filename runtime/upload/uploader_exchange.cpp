@@ -129,14 +129,16 @@ auto Uploader::Run::download_once() -> Flow {
   actions_done_ = 0;
   frames_done_ = 0;
   suspect_ = false;
+  step5_sent_ = false;
+  restart_status_ = UploadStatus::Inconsistent;
   progress();
   bool need_barrier = false;
   int prev_step = 0;
   bool step5_resent = false;
   for (const PlannedFrame& frame : frames_) {
     if (link().interrupted()) return fatal(UploadStatus::Interrupted, "interrupted");
-    Flow f = need_barrier ? barrier(Barrier::AfterResend, prev_step, prev_step)
-                          : drain_before(prev_step, frame.step);
+    Flow f = need_barrier ? late_ack_guard(prev_step) : drain_before(prev_step, frame.step);
+    if (f == Flow::Ok && need_barrier) f = barrier(Barrier::AfterResend, prev_step, prev_step);
     if (f != Flow::Ok) return f;
     bool resent = false;
     f = exchange(frame, resent);
@@ -150,12 +152,36 @@ auto Uploader::Run::download_once() -> Flow {
   }
   committed_unconfirmed_ = true;
   erased_ = false;
-  if (!need_barrier) {
-    if (const Flow d = drain_before(5, 5); d != Flow::Ok) return d;
+  if (const Flow d = need_barrier ? late_ack_guard(5) : drain_before(5, 5); d != Flow::Ok) {
+    return d;
   }
   const Flow f = barrier(Barrier::Final, step5_resent ? 5 : -1, 5);
   if (f == Flow::Restart) restart_reason_ += " (after step 5)";
   return f;
+}
+
+auto Uploader::Run::late_ack_guard(int step) -> Flow {
+  if (clock().now() >= guard_until_) return Flow::Ok;
+  std::string mispaired;
+  WaitResult w = link().wait_for(
+      [&](const lsc::Reply& r) {
+        const auto* ack = std::get_if<lsc::GroupDownloadAck>(&r);
+        if (ack == nullptr) return Verdict::Skip;
+        ++result_.stale_acks;
+        if (ack->step == step) {
+          note("discarded a late acknowledgement: " + lsc::describe(r));
+        } else if (mispaired.empty()) {
+          mispaired = "an extra " + lsc::describe(r);
+        }
+        return Verdict::Consume;
+      },
+      guard_until_);
+  if (w.status != WaitStatus::Timeout) return wait_failure(w, "waiting for late acknowledgements");
+  if (!mispaired.empty()) {
+    restart_reason_ = mispaired + " arrived while waiting for late acknowledgements";
+    return Flow::Restart;
+  }
+  return Flow::Ok;
 }
 
 io::Duration Uploader::Run::min_wire_time(std::size_t bytes) {
@@ -182,18 +208,21 @@ auto Uploader::Run::exchange(const PlannedFrame& frame, bool& resent) -> Flow {
   resent = false;
   int sends = 0;
   int timeouts = 0;
+  io::TimePoint first_sent{0};
   for (;;) {
     if (link().interrupted()) return fatal(UploadStatus::Interrupted, "interrupted");
     const io::TimePoint sent_at = clock().now();
     if (send(frame.bytes, "sending " + frame.what) != Flow::Ok) return Flow::Fatal;
-    ++sends;
+    if (sends++ == 0) first_sent = sent_at;
     if (open) step1_unanswered_ = true;
+    if (frame.step == 5) step5_sent_ = true;
     std::string mispaired;
     WaitResult w = await_ack(frame, sent_at, timeout, mispaired);
     if (w.ok()) {
       if (!mispaired.empty()) {
         ++result_.stale_acks;
         restart_reason_ = mispaired;
+        restart_status_ = UploadStatus::Inconsistent;
         return Flow::Restart;
       }
       const auto& ack = std::get<lsc::GroupDownloadAck>(w.reply);
@@ -206,18 +235,23 @@ auto Uploader::Run::exchange(const PlannedFrame& frame, bool& resent) -> Flow {
         return Flow::Ok;
       }
       if (refused_once) {
-        if (suspect_before_refusal) {
-          // Earlier in this attempt an acknowledgement may have been taken for the wrong
-          // frame; a frame sent too early is dropped by the busy controller and the next
-          // one is then refused for the gap. That refusal is ours, not the controller's
-          // verdict: start again from step 1.
-          restart_reason_ = "the controller refused " + frame.what + " (status " +
-                            hex2(ack.status) +
-                            ") twice, after a re-send or an extra acknowledgement";
-          return Flow::Restart;
+        const std::string refused = "the controller refused " + frame.what + " (status " +
+                                    hex2(ack.status) + ", twice in a row)";
+        // Step 1 refused, or this frame refused the same way in an earlier attempt too: the
+        // controller means it.
+        if (frame.step == 1 || double_refusals_[frame.index]++ > 0) {
+          return fatal(UploadStatus::Refused, refused);
         }
-        return fatal(UploadStatus::Refused, "the controller refused " + frame.what + " (status " +
-                                                hex2(ack.status) + ", twice in a row)");
+        // Otherwise the refusal may be ours -- earlier in this attempt an acknowledgement
+        // was taken for the wrong frame, one sent too early was dropped by the busy
+        // controller and this one is refused for the gap -- or the controller reset and
+        // forgot the download: either way, start again from step 1.
+        restart_reason_ = refused + "; it may have restarted (a power dip forgets a download)" +
+                          (suspect_before_refusal
+                               ? ", or an earlier acknowledgement was taken for the wrong frame"
+                               : "");
+        restart_status_ = UploadStatus::Refused;
+        return Flow::Restart;
       }
       suspect_before_refusal = suspect_;
       refused_once = true;
@@ -232,13 +266,17 @@ auto Uploader::Run::exchange(const PlannedFrame& frame, bool& resent) -> Flow {
     }
     if (w.status != WaitStatus::Timeout) return wait_failure(w, "waiting for " + frame.what);
     if (++timeouts >= max_attempts()) {
-      return fatal(UploadStatus::NoAck, "the controller did not acknowledge " + frame.what + " (" +
-                                            std::to_string(sends) + " attempts, " +
-                                            seconds_text(timeout) + " each)");
+      // A controller that is busy or briefly deaf may take a fresh start; one that is gone
+      // fails the restart's first barrier.
+      restart_reason_ = "the controller did not acknowledge " + frame.what + " (" +
+                        std::to_string(sends) + " attempts, " + seconds_text(timeout) + " each)";
+      restart_status_ = UploadStatus::NoAck;
+      return Flow::Restart;
     }
     retry(frame.what, sends + 1, "no acknowledgement within " + seconds_text(timeout));
     resent = true;
     suspect_ = true;
+    guard_until_ = std::max(guard_until_, first_sent + opt().late_guard);
   }
 }
 

@@ -1,7 +1,9 @@
 // One upload in progress (private to the uploader): the state of the handshake and the rules
-// from uploader.hpp. uploader.cpp holds the run's sequence (probe, steps, restarts, GroupRun,
-// the final verdict); uploader_exchange.cpp holds the exchange of one frame with its
-// acknowledgement and the barriers that re-pair requests and replies.
+// from uploader.hpp. uploader.cpp holds the run's sequence (probe, steps, GroupRun, the final
+// verdict); uploader_exchange.cpp holds the exchange of one frame with its acknowledgement and
+// the barriers that re-pair requests and replies; uploader_recovery.cpp holds what happens
+// when an attempt fails: restarts, reconnecting a port that hung up, and the known state an
+// interrupted upload leaves behind.
 #pragma once
 
 #include <cmath>
@@ -36,6 +38,7 @@ inline std::string hex2(unsigned v) {
 }
 
 struct PlannedFrame {
+  std::size_t index = 0;  // in the plan
   int step = 0;
   Bytes bytes;
   std::string what;
@@ -89,8 +92,20 @@ class Uploader::Run final : public LinkObserver {
   // Checks the plan and encodes every frame; returns an error message or "".
   std::string prepare();
 
-  // Probe, stop, download (with restarts), run. Sets fail_ on failure.
+  // Probe, stop, download (with restarts and reconnects), run. Sets fail_ on failure.
   Flow sequence();
+  // Probe, GroupStop, then the download with its restarts.
+  Flow connect_and_download();
+
+  // uploader_recovery.cpp. After download_once returned Restart (restart_reason_ and
+  // restart_status_ say why): within the budget, tells the observer and re-synchronises;
+  // else fails with the last cause.
+  Flow restart();
+  // After a HangUp (fail_): within the budget, waits for the port to come back.
+  Flow reconnect();
+  // Interrupted: GroupStop / GroupErase as uploader.hpp describes.
+  void secure_after_interrupt();
+  void announce_restart(const std::string& reason);
 
   Flow probe();
 
@@ -110,6 +125,10 @@ class Uploader::Run final : public LinkObserver {
 
   // Steps 1..5 once.
   Flow download_once();
+
+  // The late-ack guard (UploadOptions::late_guard): until guard_until_, acks of `step` are
+  // discarded; an ack of another step is evidence of mis-pairing (Restart).
+  Flow late_ack_guard(int step);
 
   io::Duration min_wire_time(std::size_t bytes);
 
@@ -148,10 +167,18 @@ class Uploader::Run final : public LinkObserver {
           return Verdict::Consume;
         },
         sent_at + timeout);
+    if (w.status == WaitStatus::Timeout && early && ++early_only_ < 2) {
+      // Nothing followed the early ack. Either this frame was lost and the early ack was a
+      // duplicate of the previous one, or the link is faster than its baud rate. Re-sending
+      // is safe in both cases (the controller acknowledges a repeat again), so the first time
+      // it counts as no acknowledgement.
+      discard_early(*early);
+      return w;
+    }
     if (w.status == WaitStatus::Timeout && early) {
-      // Nothing followed the early ack: this link answers faster than its baud rate allows
-      // (an unpaced pseudo-terminal, a bridge reporting a nominal rate), so the early ack was
-      // the real one. Stop holding acks for the rest of the upload.
+      // Again: this link answers faster than its baud rate allows (an unpaced pseudo-terminal,
+      // a bridge reporting a nominal rate), so the early ack was the real one. Stop holding
+      // acks for the rest of the upload.
       wire_check_ = false;
       suspect_ = true;
       note("acknowledgements arrive sooner than " + link().transport().describe() +
@@ -178,6 +205,8 @@ class Uploader::Run final : public LinkObserver {
   io::TimePoint start_{0};
   std::optional<Fail> fail_;
   std::string restart_reason_;
+  UploadStatus restart_status_ = UploadStatus::Inconsistent;  // if the budget runs out
+  std::vector<int> double_refusals_;  // per frame: attempts in which it was refused twice
   std::size_t actions_done_ = 0;
   std::size_t frames_done_ = 0;
   bool completed_ = false;
@@ -185,11 +214,15 @@ class Uploader::Run final : public LinkObserver {
   bool erased_ = false;                 // step 1 acknowledged since the last step 5
   bool committed_unconfirmed_ = false;  // step 5 acknowledged, final barrier not passed
   bool step1_unanswered_ = false;       // step 1 sent and not (yet) answered
+  bool stop_sent_ = false;              // this upload's GroupStop went out
+  bool step5_sent_ = false;             // step 5 went out in the current attempt
+  io::TimePoint guard_until_{0};        // see late_ack_guard
   // This attempt re-sent a frame or saw an extra acknowledgement, so a refusal may be the
   // consequence of a mis-paired acknowledgement rather than the controller's verdict.
   bool suspect_ = false;
   // Whether acks are checked against the time the wire needs (see await_ack).
   bool wire_check_ = true;
+  int early_only_ = 0;  // waits in which only an early ack came
 };
 
 }  // namespace seqc::upload

@@ -27,9 +27,9 @@ TEST(Validation, OneOverTheBudgetIsReportedWithTheCount) {
   auto out = compile_text(repeat_file(1020));
   EXPECT_FALSE(out.program);
   EXPECT_EQ(messages(out),
-            std::vector<std::string>{
-                "7:9 error: the sequence needs 1021/1020 actions; a group holds at most 1,020 (4 "
-                "blocks of 255), and this step makes action 1,021"});
+            std::vector<std::string>{"7:9 error: the sequence needs at least 1021/1020 actions; a "
+                                     "group holds at most 1,020 (4 "
+                                     "blocks of 255), and this step makes action 1,021"});
 }
 
 TEST(Validation, HugeNestedRepeatsAreCountedNotExpanded) {

@@ -41,6 +41,18 @@ TEST(ProgressText, Retry) {
             "acknowledgement within 0.536 s");
 }
 
+TEST(ProgressPrinter, RestartsAreShownUnlessQuiet) {
+  std::ostringstream normal, quiet;
+  ProgressPrinter n(normal, false, 0), q(quiet, false, -1);
+  const RestartEvent e{2, 4, "the port hung up; the device came back on /dev/ttyUSB0"};
+  n.on_restart(e);
+  q.on_restart(e);
+  EXPECT_EQ(normal.str(),
+            "upload: restarting the download from step 1 (attempt 2 of 4): the port hung up; the "
+            "device came back on /dev/ttyUSB0\n");
+  EXPECT_EQ(quiet.str(), "");
+}
+
 TEST(ProgressPrinter, PlainLinesEveryTenthAndRetriesOnlyWhenVerbose) {
   std::ostringstream quiet, verbose;
   ProgressPrinter q(quiet, false, 0), v(verbose, false, 1);

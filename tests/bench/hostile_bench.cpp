@@ -1,0 +1,277 @@
+// hostile_bench: the hostile-input catalogue through `seqc check`, as a user would meet it.
+// Every input must end in a located error ("FILE:LINE:COL: error: ...") within 100 ms and
+// 64 MiB.
+//
+// The catalogue: every file in tests/compiler/hostile/ (NUL bytes, invalid UTF-8, !!binary,
+// duplicate keys, a lone ',', cycles, tags, ...), and generated here: an alias bomb, a cyclic
+// alias, 200,000-deep flow nesting, 3,000-deep block nesting (compact sequences; and nested maps
+// as deep as 1 MiB allows), a 30 MB line, 200,000 steps (too big for a file) and as many steps
+// as 1 MiB holds, repeat 65535 nested six deep, numbers of 5,000 digits (position, time, tempo,
+// repeat count), a file that includes itself, two that include each other, an include chain
+// deeper than the limit, and what the check fuzzer found (a slow tempo that makes fitting walk
+// a long curve, in a file with a mistake).
+//
+// Method: the files are written to --dir (default /tmp/seqc-hostile). Each is checked by a
+// separate `seqc check FILE` process (fork + exec, stdout and stderr to a file); wall time is
+// CLOCK_MONOTONIC around fork..wait4 (process start-up included), memory is wait4's ru_maxrss
+// (peak RSS of that process alone). Best wall of --runs runs (default 3), largest RSS. The exit
+// status must be 1 (invalid input) and stderr must hold a located error. Prints one row per
+// input, the worst time and memory, and whether every input met the targets.
+//
+// Usage: hostile_bench [--runs N] [--dir DIR]
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Texts are made when the case runs, in a child of their own (see main).
+struct Case {
+  std::string name;  // the file checked: DIR/name.yaml
+  std::function<std::string()> text;
+  std::vector<std::pair<std::string, std::string>> extra;  // other files it needs
+};
+
+Case fixed(std::string name, std::string text,
+           std::vector<std::pair<std::string, std::string>> extra = {}) {
+  return {std::move(name), [t = std::move(text)] { return t; }, std::move(extra)};
+}
+
+std::string repeat(const std::string& s, std::size_t n) {
+  std::string out;
+  out.reserve(s.size() * n);
+  for (std::size_t i = 0; i < n; ++i) out += s;
+  return out;
+}
+
+const std::string kHead = "name: hostile\nrobot: xarm\n";
+
+std::vector<Case> generated() {
+  std::vector<Case> c;
+  {
+    std::string bomb = kHead + "poses:\n  l0: &l0 {base: 1}\n";
+    for (int i = 1; i <= 9; ++i) {
+      bomb += "  l" + std::to_string(i) + ": &l" + std::to_string(i) + " [" +
+              repeat("*l" + std::to_string(i - 1) + ", ", 8) + "*l" + std::to_string(i - 1) + "]\n";
+    }
+    c.push_back(fixed("alias_bomb", bomb + "sequence:\n  - move: l0\n    time: 1s\n"));
+  }
+  c.push_back(fixed("cyclic_alias", kHead + "poses: &p\n  a: *p\nsequence: []\n"));
+  c.push_back(
+      {"flow_200k_deep",
+       [] { return kHead + "sequence: " + repeat("[", 200000) + repeat("]", 200000) + "\n"; },
+       {}});
+  c.push_back(fixed("block_3k_deep", kHead + "sequence:\n  " + repeat("- ", 3000) + "x\n"));
+  {
+    std::string maps = kHead + "poses:\n";
+    for (int d = 0; d < 1400; ++d)
+      maps += std::string(static_cast<std::size_t>(d + 1), ' ') + "a:\n";
+    c.push_back(fixed("block_maps_1400_deep", maps));
+  }
+  c.push_back({"line_30mb", [] { return "name: " + std::string(30u << 20, 'x') + "\n"; }, {}});
+  c.push_back(
+      {"steps_200k",
+       [] { return kHead + "sequence:\n" + repeat("  - {move: home, time: 20ms}\n", 200000); },
+       {}});
+  c.push_back(
+      {"steps_35k",
+       [] { return kHead + "sequence:\n" + repeat("  - {move: home, time: 20ms}\n", 35000); },
+       {}});
+  {
+    // Six nested repeats around: valid moves (the action budget), relative moves from an
+    // unknown position (an error in every pass), and for the car, waits (the 24-hour limit).
+    const auto nest = [](const std::string& head, const std::string& body) {
+      std::string out = head + "sequence:\n";
+      std::string indent = "  ";
+      for (int d = 0; d < 6; ++d) {
+        out += indent + "- repeat: 65535\n" + indent + "  do:\n";
+        indent += "    ";
+      }
+      std::string b = body;
+      for (std::size_t at = 0; (at = b.find('|', at)) != std::string::npos;)
+        b.replace(at, 1, indent);
+      return out + b;
+    };
+    c.push_back(fixed("repeat_65535_six_deep",
+                      nest(kHead,
+                           "|- move: {base: 100}\n|  time: 20ms\n|- move: {base: 200}\n"
+                           "|  time: 20ms\n")));
+    c.push_back(fixed("repeat_65535_six_deep_errors",
+                      nest(kHead,
+                           "|- move: {base: +1}\n|  time: 20ms\n|- move: {base: -1}\n"
+                           "|  time: 20ms\n")));
+    c.push_back(fixed("repeat_65535_six_deep_car",
+                      nest("name: hostile\nrobot: raspblock\n", "|- wait: 1ms\n")));
+  }
+  const std::string digits = "1" + std::string(4999, '7');
+  c.push_back(fixed("number_5000_digits_position",
+                    kHead + "sequence:\n  - move: {base: " + digits + "}\n    time: 1s\n"));
+  c.push_back(fixed("number_5000_digits_time",
+                    kHead + "sequence:\n  - move: home\n    time: " + digits + "ms\n"));
+  c.push_back(fixed("number_5000_digits_tempo",
+                    kHead + "tempo: " + digits + "\nsequence:\n  - move: home\n    time: 1b\n"));
+  c.push_back(
+      fixed("number_5000_digits_repeat", kHead + "sequence:\n  - repeat: " + digits +
+                                             "\n    do:\n      - move: home\n        time: 1s\n"));
+  c.push_back(fixed("self_include", kHead + "sequence:\n  - include: self_include.yaml\n"));
+  c.push_back(fixed("mutual_include", kHead + "sequence:\n  - include: mutual_b.yaml\n",
+                    {{"mutual_b.yaml", "sequence:\n  - include: mutual_include.yaml\n"}}));
+  {
+    Case chain = fixed("include_chain_20", kHead + "sequence:\n  - include: chain1.yaml\n");
+    for (int i = 1; i < 20; ++i) {
+      chain.extra.push_back({"chain" + std::to_string(i) + ".yaml",
+                             "sequence:\n  - include: chain" + std::to_string(i + 1) + ".yaml\n"});
+    }
+    chain.extra.push_back({"chain20.yaml", "sequence:\n  - move: home\n    time: 1s\n"});
+    c.push_back(chain);
+  }
+  // Slow tempo: ten bars of eased moves at 1 beat per minute (about 33 minutes of curve).
+  // Found by the check fuzzer: half an hour of eased curves (tempo 1) with one mistake at the
+  // end. Fitting them took seconds; a file with mistakes is no longer fitted.
+  c.push_back(fixed("slow_tempo_curves_and_a_mistake",
+                    kHead + "tempo: 1\nsequence:\n  - move: {base: 500}\n    time: 1s\n" +
+                        repeat("  - move: {base: +100}\n    time: 1b\n    ease: sine-in-out\n"
+                               "  - move: {base: -100}\n    time: 1b\n    ease: sine-in-out\n",
+                               15) +
+                        "  - move: {bsae: 10}\n    time: 1s\n"));
+  return c;
+}
+
+struct Run {
+  double ms = 0;
+  long rss_kib = 0;
+  int status = -1;
+};
+
+Run run_check(const char* seqc, const std::string& file, const std::string& out) {
+  timespec a{}, b{};
+  clock_gettime(CLOCK_MONOTONIC, &a);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(seqc, seqc, "check", file.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage ru{};
+  wait4(pid, &status, 0, &ru);
+  clock_gettime(CLOCK_MONOTONIC, &b);
+  Run r;
+  r.ms = static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 +
+         static_cast<double>(b.tv_nsec - a.tv_nsec) / 1e6;
+  r.rss_kib = ru.ru_maxrss;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 3;
+  std::string dir = "/tmp/seqc-hostile";
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
+      runs = std::max(1, std::atoi(argv[++i]));
+    } else if (std::strcmp(argv[i], "--dir") == 0 && i + 1 < argc) {
+      dir = argv[++i];
+    } else {
+      std::fprintf(stderr, "usage: hostile_bench [--runs N] [--dir DIR]\n");
+      return 2;
+    }
+  }
+  fs::create_directories(dir);
+  std::vector<Case> cases;
+  for (const auto& e :
+       fs::directory_iterator(std::string(SEQC_SOURCE_DIR) + "/tests/compiler/hostile")) {
+    if (e.path().extension() == ".yaml") {
+      cases.push_back(fixed("file_" + e.path().stem().string(), read(e.path().string())));
+    }
+  }
+  std::sort(cases.begin(), cases.end(),
+            [](const Case& x, const Case& y) { return x.name < y.name; });
+  for (Case& c : generated()) cases.push_back(std::move(c));
+
+  const std::regex located(R"((^|\n)[^\n:]+\.yaml:[0-9]+:[0-9]+: error: )");
+  double worst_ms = 0;
+  long worst_kib = 0;
+  std::string worst_ms_name, worst_kib_name;
+  int failures = 0;
+  std::printf("%-32s %10s %9s %9s  %s\n", "input", "bytes", "ms", "MiB", "first error");
+  for (const Case& c : cases) {
+    const std::string file = dir + "/" + c.name + ".yaml";
+    // Made and written in a child, so this process never holds the big texts (a child forked
+    // from it would count them in its peak RSS).
+    if (const pid_t maker = fork(); maker == 0) {
+      std::ofstream(file, std::ios::binary) << c.text();
+      _exit(0);
+    } else {
+      waitpid(maker, nullptr, 0);
+    }
+    const auto bytes = static_cast<std::size_t>(fs::file_size(file));
+    for (const auto& [name, text] : c.extra)
+      std::ofstream(dir + "/" + name, std::ios::binary) << text;
+    const std::string out = dir + "/" + c.name + ".out";
+    Run best;
+    best.ms = 1e18;
+    for (int r = 0; r < runs; ++r) {
+      const Run one = run_check(SEQC_BIN, file, out);
+      best.ms = std::min(best.ms, one.ms);
+      best.rss_kib = std::max(best.rss_kib, one.rss_kib);
+      best.status = one.status;
+    }
+    const std::string text = read(out);
+    std::smatch m;
+    const bool has_error = std::regex_search(text, m, located);
+    std::string first =
+        has_error
+            ? text.substr(static_cast<std::size_t>(m.position(0)) + (m[1].length() > 0 ? 1 : 0))
+            : text;
+    first = first.substr(0, first.find('\n'));
+    if (first.size() > 90) first = first.substr(0, 87) + "...";
+    const bool ok = best.status == 1 && has_error && best.ms <= 100 && best.rss_kib <= 64 * 1024;
+    if (!ok) ++failures;
+    std::printf("%-32s %10zu %9.1f %9.1f  %s%s\n", c.name.c_str(), bytes, best.ms,
+                static_cast<double>(best.rss_kib) / 1024.0, first.c_str(),
+                ok ? "" : ("   <-- NOT MET (exit " + std::to_string(best.status) + ")").c_str());
+    if (best.ms > worst_ms) {
+      worst_ms = best.ms;
+      worst_ms_name = c.name;
+    }
+    if (best.rss_kib > worst_kib) {
+      worst_kib = best.rss_kib;
+      worst_kib_name = c.name;
+    }
+  }
+  std::printf(
+      "\n%zu inputs; worst time %.1f ms (%s), worst peak RSS %.1f MiB (%s); targets (located "
+      "error, <= 100 ms, <= 64 MiB): %s\n",
+      cases.size(), worst_ms, worst_ms_name.c_str(), static_cast<double>(worst_kib) / 1024.0,
+      worst_kib_name.c_str(), failures == 0 ? "met by every input" : "NOT met");
+  std::printf(
+      "method: one `seqc check FILE` process per run, best wall of %d runs "
+      "(CLOCK_MONOTONIC around fork..wait4, start-up included), peak RSS from wait4\n",
+      runs);
+  return 0;
+}
