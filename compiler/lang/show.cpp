@@ -16,6 +16,12 @@ bool ShowOutput::ok(bool strict) const {
   return !performers.empty();
 }
 
+bool is_show_file(FileReader& files, const std::string& path) {
+  if (const auto bytes = files.size(path); bytes && *bytes > YamlLimits{}.max_bytes) return false;
+  const auto text = files.read(path);
+  return text && is_show_text(*text);
+}
+
 bool is_show_text(const std::string& text) {
   std::istringstream in(text);
   std::string line;
@@ -63,8 +69,9 @@ ShowOutput load_show(const std::string& path, FileReader& files, const CompileOp
     reporter.check_keys(value, {"file", "port", "group"}, "in a performer");
     const YamlNode* f = value.find("file");
     if (f == nullptr || !f->is_scalar() || f->scalar.empty()) {
-      reporter.error(value.location, "performer '" + p.name + "' needs a 'file': its "
-                                     "choreography, e.g. 'file: arm.yaml'");
+      reporter.error(value.location, "performer '" + p.name +
+                                         "' needs a 'file': its "
+                                         "choreography, e.g. 'file: arm.yaml'");
       continue;
     }
     if (const YamlNode* port = value.find("port"); port != nullptr && port->is_scalar()) {
@@ -83,8 +90,8 @@ ShowOutput load_show(const std::string& path, FileReader& files, const CompileOp
     p.file = resolve_include(path, f->scalar);
     p.output = compile_file(p.file, files, options);
     if (p.output.read_error) {
-      reporter.error(f->location, "cannot read performer '" + p.name + "': " +
-                                      *p.output.read_error);
+      reporter.error(f->location,
+                     "cannot read performer '" + p.name + "': " + *p.output.read_error);
     }
     show.performers.push_back(std::move(p));
   }

@@ -23,7 +23,7 @@ struct Performer {
   std::string file;  // as resolved from the show file's folder
   std::string port;  // "" when the show file gives none
   int group = 0;
-  Location at;       // the performer's entry in the show file
+  Location at;  // the performer's entry in the show file
   CompileOutput output;
 };
 
@@ -39,6 +39,9 @@ struct ShowOutput {
 
 // Whether `text` is a show file (a top-level `show:` key), cheaply, before loading it.
 bool is_show_text(const std::string& text);
+// Whether the file at `path` is a show file; a file over the loader's size limit is not read
+// (it is no show, and compiling it reports the limit).
+bool is_show_file(FileReader& files, const std::string& path);
 
 ShowOutput load_show(const std::string& path, FileReader& files,
                      const CompileOptions& options = {});

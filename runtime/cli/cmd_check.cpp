@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "compiler/lang/show.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/cli/check_formats.hpp"
-#include "compiler/lang/show.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/version.hpp"
@@ -36,7 +36,7 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict) 
   std::vector<Unit> out;
   const std::string shown = given == "-" ? kStdinName : given;
   if (given != "-") {
-    if (auto text = ctx.files.read(given); text && compiler::is_show_text(*text)) {
+    if (compiler::is_show_file(ctx.files, given)) {
       compiler::ShowOutput show = compiler::load_show(given, ctx.files, {strict});
       Unit self{shown, shown, {}, true, show.performers.size()};
       self.compiled.output.sources = std::move(show.sources);

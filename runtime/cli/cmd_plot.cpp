@@ -114,8 +114,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     const std::string name = o->file == "-" ? std::string(kStdinName)
                                             : std::filesystem::path(o->file).filename().string();
     std::string svg;
-    auto text = o->file == "-" ? Result<std::string>(make_error("stdin")) : ctx.files.read(o->file);
-    if (text && compiler::is_show_text(*text)) {
+    if (o->file != "-" && compiler::is_show_file(ctx.files, o->file)) {
       result.code = plot_show(ctx, o->file, name, o->strict, options, svg);
     } else {
       Compiled c = compile_and_report(ctx, o->file, o->strict);

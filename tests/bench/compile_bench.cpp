@@ -59,7 +59,8 @@ double compile_in_process(const std::string& yaml, int runs) {
       std::fprintf(stderr, "compile_bench: the maximal program did not compile in-process\n");
       std::exit(1);
     }
-    ms.push_back((b.tv_sec - a.tv_sec) * 1e3 + (b.tv_nsec - a.tv_nsec) / 1e6);
+    ms.push_back(static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 +
+                 static_cast<double>(b.tv_nsec - a.tv_nsec) / 1e6);
   }
   std::sort(ms.begin(), ms.end());
   return ms[ms.size() / 2];

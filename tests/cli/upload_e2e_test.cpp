@@ -24,78 +24,11 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "tests/cli/upload_e2e_util.hpp"
 
 namespace {
 
-const std::string kSeqc = SEQC_BIN;
-const std::string kWalk = std::string(SEQC_SOURCE_DIR) + "/examples/walk.yaml";
-
-pid_t spawn(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
-}
-
-int wait_exit(pid_t pid) {
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
-
-// The unsigned number after `"key": ` at or after `from` in `text` (-1 if absent); `from`
-// moves past it.
-long json_number(const std::string& text, const std::string& key, std::size_t& from) {
-  const std::string needle = "\"" + key + "\":";
-  const auto at = text.find(needle, from);
-  if (at == std::string::npos) return -1;
-  std::size_t i = at + needle.size();
-  while (i < text.size() && text[i] == ' ') ++i;
-  const std::size_t start = i;
-  while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
-  from = i;
-  return i > start ? std::stol(text.substr(start, i - start)) : -1;
-}
-
-// The actions `seqc compile --emit json` says group `group` gets, one per keyframe (each
-// keyframe line: {"start_ms": .., "time_ms": T, ..., "targets": [{.., "id": I, "position": P},
-// ...]}), in the --dump-groups form "GROUP INDEX TIME ID=POS ...".
-std::vector<std::string> compiled_actions(const std::string& json, int group) {
-  std::vector<std::string> out;
-  for (const auto& l : lines(json)) {
-    if (l.find("\"start_ms\":") == std::string::npos) continue;
-    std::size_t pos = 0;
-    std::string action = std::to_string(group) + " " + std::to_string(out.size()) + " " +
-                         std::to_string(json_number(l, "time_ms", pos));
-    for (long id; (id = json_number(l, "id", pos)) >= 0;) {
-      action += " " + std::to_string(id) + "=" + std::to_string(json_number(l, "position", pos));
-    }
-    out.push_back(action);
-  }
-  return out;
-}
+using namespace seqc::e2e;
 
 class UploadE2E : public ::testing::Test {
  protected:
