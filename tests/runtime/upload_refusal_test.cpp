@@ -32,11 +32,7 @@ TEST(Uploader, RefusalMidwayRestartsFromStep1) {
   const std::size_t a = k1020.action(100);
   s.refuse = {a, a + 2};
   Outcome o = run_upload(s);
-  expect_consistent(o);
-  EXPECT_EQ(o.result.status, UploadStatus::Completed) << o.result.message;
-  EXPECT_EQ(o.result.restarts, 1);
-  ASSERT_TRUE(o.stored.has_value());
-  EXPECT_EQ(*o.stored, o.actions);
+  expect_completed_after(o, 1);
 }
 
 TEST(Uploader, RefusalMidwayWithoutRestartsLeftLeavesTheGroupEmpty) {

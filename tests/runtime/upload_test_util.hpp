@@ -95,4 +95,13 @@ inline void expect_consistent(const Outcome& o) {
 
 inline const Numbers k1020{4, 1020};
 
+// The upload completed after exactly `restarts` restarts and stored the plan.
+inline void expect_completed_after(const Outcome& o, int restarts) {
+  expect_consistent(o);
+  EXPECT_EQ(o.result.status, UploadStatus::Completed) << o.result.message;
+  EXPECT_EQ(o.result.restarts, restarts);
+  ASSERT_TRUE(o.stored.has_value());
+  EXPECT_EQ(*o.stored, o.actions);
+}
+
 }  // namespace seqc::upload
