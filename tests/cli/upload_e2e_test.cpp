@@ -43,23 +43,14 @@ class UploadE2E : public ::testing::Test {
         {kSeqc, "emulate", "xarm", "--link", link_, "--record", record_, "--dump-groups", groups_},
         dir_ + "/emu.out", dir_ + "/emu.err");
     ASSERT_GT(emulator_, 0);
-    struct stat st {};
-    for (int i = 0; i < 200 && lstat(link_.c_str(), &st) != 0; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ASSERT_EQ(lstat(link_.c_str(), &st), 0) << slurp(dir_ + "/emu.err");
+    ASSERT_TRUE(wait_for_path(link_, 200)) << slurp(dir_ + "/emu.err");
   }
   void TearDown() override {
     if (emulator_ > 0) stop_emulator();
     std::string cmd = "rm -rf '" + dir_ + "'";
     (void)std::system(cmd.c_str());
   }
-  int stop_emulator() {
-    kill(emulator_, SIGINT);
-    const int rc = wait_exit(emulator_);
-    emulator_ = -1;
-    return rc;
-  }
+  int stop_emulator() { return stop_with_sigint(emulator_); }
   int run(const std::vector<std::string>& args, std::string* out = nullptr,
           std::string* err = nullptr) {
     static int n = 0;
@@ -92,10 +83,7 @@ TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   ASSERT_EQ(stop_emulator(), 0);
 
   // What the controller stored, as the separate emulator process wrote it on exit.
-  std::vector<std::string> stored;
-  for (const auto& l : lines(slurp(groups_))) {
-    if (!l.empty() && l[0] != '#') stored.push_back(l);
-  }
+  const std::vector<std::string> stored = stored_actions(slurp(groups_));
   const std::vector<std::string> compiled = compiled_actions(json, 0);
   ASSERT_EQ(compiled.size(), 29u) << json;
   EXPECT_EQ(stored, compiled);
@@ -136,10 +124,7 @@ TEST_F(UploadE2E, StoredGroupMatchesAHandWrittenGroup) {
   std::string out, err;
   ASSERT_EQ(run({kSeqc, "upload", file, "--port", link_, "--group", "3"}, &out, &err), 0) << err;
   ASSERT_EQ(stop_emulator(), 0);
-  std::vector<std::string> stored;
-  for (const auto& l : lines(slurp(groups_))) {
-    if (!l.empty() && l[0] != '#') stored.push_back(l);
-  }
+  const std::vector<std::string> stored = stored_actions(slurp(groups_));
   const std::vector<std::string> expected = {
       "3 0 1000 1=200 6=800",
       "3 1 250 4=300",

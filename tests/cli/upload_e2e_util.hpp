@@ -4,13 +4,17 @@
 #pragma once
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 extern char** environ;
@@ -83,6 +87,33 @@ inline std::vector<std::string> compiled_actions(const std::string& json, int gr
       action += " " + std::to_string(id) + "=" + std::to_string(json_number(l, "position", pos));
     }
     out.push_back(action);
+  }
+  return out;
+}
+
+// Waits (polling every 10 ms, at most `tries` times) until `path` exists: `seqc emulate --link`
+// has made its terminal.
+inline bool wait_for_path(const std::string& path, int tries) {
+  struct stat st {};
+  for (int i = 0; i < tries && lstat(path.c_str(), &st) != 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return lstat(path.c_str(), &st) == 0;
+}
+
+// Stops `seqc emulate` as Ctrl-C would; its exit status. `pid` becomes -1.
+inline int stop_with_sigint(pid_t& pid) {
+  kill(pid, SIGINT);
+  const int rc = wait_exit(pid);
+  pid = -1;
+  return rc;
+}
+
+// The actions of a --dump-groups file, without its '#' header lines.
+inline std::vector<std::string> stored_actions(const std::string& dump) {
+  std::vector<std::string> out;
+  for (const auto& l : lines(dump)) {
+    if (!l.empty() && l[0] != '#') out.push_back(l);
   }
   return out;
 }

@@ -23,15 +23,6 @@ namespace {
 
 using namespace seqc::e2e;
 
-// The --dump-groups file without its '#' header lines.
-std::vector<std::string> stored_actions(const std::string& text) {
-  std::vector<std::string> out;
-  for (const auto& l : lines(text)) {
-    if (!l.empty() && l[0] != '#') out.push_back(l);
-  }
-  return out;
-}
-
 class UploadRecoveryE2E : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -52,18 +43,9 @@ class UploadRecoveryE2E : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     emulator_ = spawn(args, dir_ + "/emu.out", dir_ + "/emu.err");
     ASSERT_GT(emulator_, 0);
-    struct stat st {};
-    for (int i = 0; i < 500 && lstat(link_.c_str(), &st) != 0; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ASSERT_EQ(lstat(link_.c_str(), &st), 0) << slurp(dir_ + "/emu.err");
+    ASSERT_TRUE(wait_for_path(link_, 500)) << slurp(dir_ + "/emu.err");
   }
-  int stop_emulator() {
-    kill(emulator_, SIGINT);
-    const int rc = wait_exit(emulator_);
-    emulator_ = -1;
-    return rc;
-  }
+  int stop_emulator() { return stop_with_sigint(emulator_); }
 
   std::string dir_, link_, groups_;
   pid_t emulator_ = -1;
