@@ -135,7 +135,7 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
 
   emu::XArmEmulator xarm_emu(config);
   emu::RaspblockEmulator rasp_emu;
-  emu::XArmPtyDevice xarm_dev(xarm_emu);
+  emu::ControllerPtyDevice xarm_dev(xarm_emu);
   emu::RaspblockPtyDevice rasp_dev(rasp_emu, &ctx.err);
   if (xarm) {
     ctx.err << "seqc: emulating an xArm controller on " << server->slave_path() << " ("

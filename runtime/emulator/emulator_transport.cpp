@@ -4,16 +4,16 @@
 
 namespace seqc::emu {
 
-EmulatorTransport::EmulatorTransport(XArmEmulator& emulator, io::ManualClock& clock)
-    : emu_(emulator), clock_(clock), input_(emulator.config().baud) {}
+EmulatorTransport::EmulatorTransport(ControllerDevice& emulator, io::ManualClock& clock)
+    : emu_(emulator), clock_(clock), input_(emulator.baud()) {}
 
 double EmulatorTransport::seconds_per_byte() const {
-  const auto baud = emu_.config().baud;
+  const auto baud = emu_.baud();
   return baud == 0 ? 0.0 : 10.0 / baud;
 }
 
 Status EmulatorTransport::write(ByteView bytes) {
-  if (emu_.hung_up()) return make_error("emu:xarm: the link has hung up");
+  if (emu_.hung_up()) return make_error(emu_.port_name() + ": the link has hung up");
   const io::TimePoint arrived = input_.push(bytes, clock_.now());
   clock_.sleep_until(arrived);
   for (const InputLine::Arrival& a : input_.take(arrived)) {
@@ -35,7 +35,7 @@ io::ReadResult EmulatorTransport::read(std::span<std::uint8_t> buffer, io::TimeP
   if (buffer.empty()) return io::ReadResult{io::ReadStatus::Error, 0, "empty read buffer"};
   while (true) {
     if (!inbox_.empty()) return deliver(buffer);
-    if (emu_.hung_up()) return io::ReadResult{io::ReadStatus::HangUp, 0, "emu:xarm hung up"};
+    if (emu_.hung_up()) return io::ReadResult{io::ReadStatus::HangUp, 0, emu_.port_name() + " hung up"};
     Bytes due = emu_.take_output(clock_.now());
     if (!due.empty()) {
       inbox_ = std::move(due);

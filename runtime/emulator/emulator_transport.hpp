@@ -1,5 +1,6 @@
-// io::Transport over an in-process XArmEmulator sharing a ManualClock ("emu:xarm"), so the
-// uploader's real code runs against the emulated controller in emulated time.
+// io::Transport over an in-process emulated controller (XArmEmulator "emu:xarm", Lsc6Emulator
+// "emu:lsc6") sharing a ManualClock, so the uploader's real code runs against it in emulated
+// time.
 //   write()  puts the bytes on the same receive line model as the pty server (InputLine at the
 //            emulator's baud: byte k of a write at t arrives at t + (k+1) x 10 bits / baud),
 //            advances the clock until the last of them has arrived, as if the host waited for
@@ -15,7 +16,7 @@
 #include <string>
 
 #include "runtime/emulator/serial_line.hpp"
-#include "runtime/emulator/xarm_emulator.hpp"
+#include "runtime/emulator/controller_device.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 
@@ -23,19 +24,19 @@ namespace seqc::emu {
 
 class EmulatorTransport final : public io::Transport {
  public:
-  EmulatorTransport(XArmEmulator& emulator, io::ManualClock& clock);
+  EmulatorTransport(ControllerDevice& emulator, io::ManualClock& clock);
 
   Status write(ByteView bytes) override;
   io::ReadResult read(std::span<std::uint8_t> buffer, io::TimePoint deadline) override;
   void discard_input() override;
-  std::string describe() const override { return "emu:xarm"; }
+  std::string describe() const override { return emu_.port_name(); }
   double seconds_per_byte() const override;
   bool reopen(io::TimePoint deadline) override;
 
  private:
   io::ReadResult deliver(std::span<std::uint8_t> buffer);
 
-  XArmEmulator& emu_;
+  ControllerDevice& emu_;
   io::ManualClock& clock_;
   InputLine input_;  // the host's bytes on their way to the controller
   Bytes inbox_;      // output taken from the emulator but not yet read

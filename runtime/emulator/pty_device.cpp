@@ -4,10 +4,10 @@
 
 namespace seqc::emu {
 
-XArmPtyDevice::XArmPtyDevice(XArmEmulator& emu)
-    : emu_(emu), input_(emu.config().baud), framer_(emu.config().frame_gap) {}
+ControllerPtyDevice::ControllerPtyDevice(ControllerDevice& emu)
+    : emu_(emu), input_(emu.baud()), framer_(emu.frame_gap()) {}
 
-bool XArmPtyDevice::reconnect(io::TimePoint at) {
+bool ControllerPtyDevice::reconnect(io::TimePoint at) {
   if (!emu_.reconnect(at)) return false;
   input_.clear();
   framer_.reset();
@@ -16,7 +16,7 @@ bool XArmPtyDevice::reconnect(io::TimePoint at) {
   return true;
 }
 
-void XArmPtyDevice::receive(ByteView bytes, io::TimePoint at) {
+void ControllerPtyDevice::receive(ByteView bytes, io::TimePoint at) {
   if (emu_.hung_up() || bytes.empty()) return;
   std::vector<RequestFramer::Piece> pieces;
   for (std::uint8_t b : bytes) {
@@ -31,7 +31,7 @@ void XArmPtyDevice::receive(ByteView bytes, io::TimePoint at) {
   deliver(at);  // unpaced (baud 0): at once
 }
 
-void XArmPtyDevice::deliver(io::TimePoint upto) {
+void ControllerPtyDevice::deliver(io::TimePoint upto) {
   for (const InputLine::Arrival& a : input_.take(upto)) {
     if (emu_.hung_up()) break;
     emu_.receive(a.bytes, a.at);
@@ -45,7 +45,7 @@ void XArmPtyDevice::deliver(io::TimePoint upto) {
   if (input_.empty()) last_arrival_.reset();
 }
 
-std::optional<io::TimePoint> XArmPtyDevice::next_output_at() const {
+std::optional<io::TimePoint> ControllerPtyDevice::next_output_at() const {
   std::optional<io::TimePoint> next = emu_.next_message_end_at();
   auto earliest = [&next](std::optional<io::TimePoint> t) {
     if (t && (!next || *t < *next)) next = t;
@@ -55,7 +55,7 @@ std::optional<io::TimePoint> XArmPtyDevice::next_output_at() const {
   return next;
 }
 
-Bytes XArmPtyDevice::take_output(io::TimePoint upto) {
+Bytes ControllerPtyDevice::take_output(io::TimePoint upto) {
   deliver(upto);
   return emu_.take_output(upto);
 }

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <vector>
 
+#include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
@@ -31,7 +32,7 @@ class PtyDevice {
   virtual bool hung_up() const = 0;
 };
 
-// The servo controller behind a pty. A pty has no line rate: whatever the host writes is
+// A servo controller (xArm or LSC-6 firmware) behind a pty. A pty has no line rate: whatever the host writes is
 // readable at once. The device puts the host's bytes on an InputLine at the emulator's baud,
 // so each byte reaches the controller after its wire time (byte k of a write at t at
 // t + (k+1) x 10 bits / baud, queued behind bytes still on the line) and a frame is processed
@@ -45,9 +46,9 @@ class PtyDevice {
 // when the last byte of the next reply is due. Output is handed over in whole messages: no
 // byte earlier than its due time, the message when its last byte is due (as a UART's receive
 // FIFO or a USB adapter hands a short reply to the host in one piece).
-class XArmPtyDevice final : public PtyDevice {
+class ControllerPtyDevice final : public PtyDevice {
  public:
-  explicit XArmPtyDevice(XArmEmulator& emu);
+  explicit ControllerPtyDevice(ControllerDevice& emu);
   void receive(ByteView bytes, io::TimePoint at) override;
   std::optional<io::TimePoint> next_output_at() const override;
   Bytes take_output(io::TimePoint upto) override;
@@ -55,14 +56,14 @@ class XArmPtyDevice final : public PtyDevice {
 
   // Bytes written by the host that have not reached the controller yet.
   bool input_pending() const { return !input_.empty(); }
-  // The host reaches the device again after a hang-up (XArmEmulator::reconnect); bytes that
+  // The host reaches the device again after a hang-up (ControllerDevice::reconnect); bytes that
   // were on their way are lost. False if the device is not back by `at`.
   bool reconnect(io::TimePoint at);
 
  private:
   void deliver(io::TimePoint upto);
 
-  XArmEmulator& emu_;
+  ControllerDevice& emu_;
   InputLine input_;
   RequestFramer framer_;                       // the controller's cut of the queued bytes
   std::vector<io::TimePoint> frame_ends_;      // arrival of queued bytes that complete a frame

@@ -27,7 +27,7 @@
 // `times` loops ends (times = 0 loops forever).
 //
 // Timing: receive() is the moment bytes reach the controller; their wire time from the host
-// is modelled in front of it by an InputLine (serial_line.hpp), in XArmPtyDevice and
+// is modelled in front of it by an InputLine (serial_line.hpp), in ControllerPtyDevice and
 // EmulatorTransport alike. A frame is processed when its last byte arrives and keeps the
 // controller busy for command_time (flash_erase_time for step 1 and GroupErase,
 // flash_write_time for step 4); a frame arriving while busy is dropped silently
@@ -50,6 +50,7 @@
 #include <optional>
 #include <vector>
 
+#include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/group_player.hpp"
 #include "runtime/emulator/group_store.hpp"
@@ -77,30 +78,33 @@ struct ReceivedFrame {
   bool dropped_fault = false;       // lost, corrupted, unanswered or hung up by a fault
 };
 
-class XArmEmulator {
+class XArmEmulator final : public ControllerDevice {
  public:
   explicit XArmEmulator(XArmConfig config = {});
 
   // Bytes arrive, all at `at` (a time before the emulator's present counts as the present).
   // Ignored once hung up.
-  void receive(ByteView bytes, io::TimePoint at);
+  void receive(ByteView bytes, io::TimePoint at) override;
   // Runs emulated time up to `t`: motion, playback, notifications.
-  void advance_to(io::TimePoint t);
+  void advance_to(io::TimePoint t) override;
   // When the next output byte is due (a lower bound while a group notification is pending:
   // the caller advances to it and asks again). nullopt when nothing will come.
-  std::optional<io::TimePoint> next_output_at() const;
+  std::optional<io::TimePoint> next_output_at() const override;
   // When the last byte of the next message out is due (for a caller that hands output over
   // in whole messages); the same lower bound as next_output_at() for a pending notification.
-  std::optional<io::TimePoint> next_message_end_at() const;
+  std::optional<io::TimePoint> next_message_end_at() const override;
   // Advances to `upto` and returns the output bytes due at or before it.
-  Bytes take_output(io::TimePoint upto);
+  Bytes take_output(io::TimePoint upto) override;
 
-  bool hung_up() const { return hung_up_; }
+  bool hung_up() const override { return hung_up_; }
   // When the device can be reached again after a hang-up; nullopt if it stays away.
-  std::optional<io::TimePoint> back_at() const;
+  std::optional<io::TimePoint> back_at() const override;
   // The host opens the port again at `at`: true (and the link works again) if the device is
   // back by then.
-  bool reconnect(io::TimePoint at);
+  bool reconnect(io::TimePoint at) override;
+  std::uint32_t baud() const override { return config_.baud; }
+  io::Duration frame_gap() const override { return config_.frame_gap; }
+  std::string port_name() const override { return "emu:xarm"; }
   // Resets (power dips) injected so far.
   std::size_t resets() const { return resets_; }
   // Every piece received, in order: frames, unframeable bytes, dropped frames.

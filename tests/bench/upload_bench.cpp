@@ -142,7 +142,7 @@ int bench(std::uint32_t baud, std::size_t count) {
   config.flash_erase_time = io::Duration{0};
   config.flash_write_time = io::Duration{0};
   emu::XArmEmulator emulator(config);
-  emu::XArmPtyDevice xarm(emulator);
+  emu::ControllerPtyDevice xarm(emulator);
   TimedDevice device(xarm);
   auto server = emu::PtyServer::open(emu::PtyOptions{baud, std::nullopt});
   if (!server) {

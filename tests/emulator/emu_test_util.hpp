@@ -36,7 +36,7 @@ inline io::TimePoint at_ms(std::int64_t ms) { return io::TimePoint{std::chrono::
 
 // Sends `request` at `t`, then collects everything the emulator sends until it has nothing
 // more scheduled by `t + window`; `t` ends at the time the last byte came (or unchanged).
-inline Bytes exchange(XArmEmulator& emu, const Bytes& request, io::TimePoint& t,
+inline Bytes exchange(ControllerDevice& emu, const Bytes& request, io::TimePoint& t,
                       io::Duration window = std::chrono::seconds(1)) {
   emu.receive(request, t);
   Bytes out;

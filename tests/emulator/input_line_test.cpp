@@ -1,5 +1,5 @@
 // The receive half of the emulated UART (InputLine) and the xArm behind it on a pty
-// (XArmPtyDevice), in emulated time: the host's bytes reach the controller one byte time
+// (ControllerPtyDevice), in emulated time: the host's bytes reach the controller one byte time
 // apart, a frame is processed only when its last byte has arrived, and the in-process
 // EmulatorTransport follows the same model.
 #include <gtest/gtest.h>
@@ -59,9 +59,9 @@ XArmConfig paced_9600() {
   return config;
 }
 
-TEST(XArmPtyDevice, AFrameIsProcessedOnlyAfterItsLastByteArrived) {
+TEST(ControllerPtyDevice, AFrameIsProcessedOnlyAfterItsLastByteArrived) {
   XArmEmulator emu(paced_9600());
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   // The whole GetBatteryVoltage frame is written at once at 0.
   device.receive(hex("55 55 02 0f"), at_ms(0));
   EXPECT_TRUE(emu.received_bytes().empty()) << "nothing has crossed the wire yet";
@@ -85,9 +85,9 @@ TEST(XArmPtyDevice, AFrameIsProcessedOnlyAfterItsLastByteArrived) {
   EXPECT_FALSE(device.next_output_at());
 }
 
-TEST(XArmPtyDevice, BackToBackWritesQueueOnTheLine) {
+TEST(ControllerPtyDevice, BackToBackWritesQueueOnTheLine) {
   XArmEmulator emu(paced_9600());
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   // Two frames written 1 ms apart: the second cannot start before the first is through.
   device.receive(hex("55 55 02 0f"), at_ms(0));
   device.receive(hex("55 55 05 15 02 01 06"), at_ms(1));
@@ -97,9 +97,9 @@ TEST(XArmPtyDevice, BackToBackWritesQueueOnTheLine) {
   EXPECT_EQ(emu.received()[1].at, at_ms(0) + 11 * kByte9600);
 }
 
-TEST(XArmPtyDevice, WakesWhenEachFrameIsInNotAtEveryByte) {
+TEST(ControllerPtyDevice, WakesWhenEachFrameIsInNotAtEveryByte) {
   XArmEmulator emu(paced_9600());
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   // Garbage, then two frames in one write: the first frame is in after 6 bytes.
   device.receive(hex("00 01 55 55 02 0f 55 55 05 15 02 01 06"), at_ms(0));
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 6 * kByte9600);
@@ -118,9 +118,9 @@ TEST(XArmPtyDevice, WakesWhenEachFrameIsInNotAtEveryByte) {
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 24 * kByte9600) << "11 bytes of positions";
 }
 
-TEST(XArmPtyDevice, AnUnfinishedFrameStillReachesTheController) {
+TEST(ControllerPtyDevice, AnUnfinishedFrameStillReachesTheController) {
   XArmEmulator emu(paced_9600());
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   device.receive(hex("55 55 02"), at_ms(0));
   EXPECT_EQ(device.next_output_at(), at_ms(0) + 3 * kByte9600) << "the last queued byte";
   (void)device.take_output(at_ms(0) + 3 * kByte9600);
@@ -128,20 +128,20 @@ TEST(XArmPtyDevice, AnUnfinishedFrameStillReachesTheController) {
   EXPECT_FALSE(device.next_output_at());
 }
 
-TEST(XArmPtyDevice, UnpacedDeliversOnReceive) {
+TEST(ControllerPtyDevice, UnpacedDeliversOnReceive) {
   XArmEmulator emu;  // baud 0
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   device.receive(hex("55 55 02 0f"), at_ms(3));
   ASSERT_EQ(emu.received().size(), 1u);
   EXPECT_EQ(emu.received()[0].at, at_ms(3));
   EXPECT_EQ(hex_of(device.take_output(at_ms(3))), "55 55 04 0f 4c 1d");
 }
 
-TEST(XArmPtyDevice, HangUpDropsWhatIsStillOnTheLine) {
+TEST(ControllerPtyDevice, HangUpDropsWhatIsStillOnTheLine) {
   XArmConfig config = paced_9600();
   config.faults.hangup_at = 1;
   XArmEmulator emu(config);
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   device.receive(hex("55 55 02 0f 55 55 02 0f"), at_ms(0));
   (void)device.take_output(at_ms(0) + 4 * kByte9600);
   EXPECT_TRUE(device.hung_up());
@@ -151,10 +151,10 @@ TEST(XArmPtyDevice, HangUpDropsWhatIsStillOnTheLine) {
 
 // The same request through EmulatorTransport on a ManualClock and through the pty device
 // reaches the controller at the same emulated time and is answered at the same time.
-TEST(XArmPtyDevice, SameTimelineAsEmulatorTransport) {
+TEST(ControllerPtyDevice, SameTimelineAsEmulatorTransport) {
   const Bytes request = hex("55 55 05 15 02 01 06");
   XArmEmulator via_pty(paced_9600());
-  XArmPtyDevice device(via_pty);
+  ControllerPtyDevice device(via_pty);
   device.receive(request, at_ms(20));
   io::TimePoint t = at_ms(20);
   Bytes pty_reply;

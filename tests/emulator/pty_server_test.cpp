@@ -106,7 +106,7 @@ TEST(PtyServer, XArmRoundTripThroughTheSlaveTty) {
     ASSERT_TRUE(server.ok()) << server.error().message;
     EXPECT_EQ(std::filesystem::read_symlink(link).string(), server->slave_path());
 
-    XArmPtyDevice device(emu);
+    ControllerPtyDevice device(emu);
     {
       Served served(*server, device);
       const int fd = open_raw(link);
@@ -134,7 +134,7 @@ TEST(PtyServer, XArmAnswersNoSoonerThanBothDirectionsTakeOnTheWire) {
   XArmConfig config;
   config.baud = 9600;
   XArmEmulator emu(config);
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   Served served(*server, device);
   const int fd = open_raw(server->slave_path());
   ASSERT_GE(fd, 0);
@@ -154,7 +154,7 @@ TEST(PtyServer, HangUpClosesTheLink) {
   XArmConfig config;
   config.faults.hangup_at = 2;
   XArmEmulator emu(config);
-  XArmPtyDevice device(emu);
+  ControllerPtyDevice device(emu);
   Served served(*server, device);
   const int fd = open_raw(server->slave_path());
   ASSERT_GE(fd, 0);
