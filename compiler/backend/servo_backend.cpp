@@ -13,8 +13,39 @@ std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program) 
   return actions;
 }
 
+bool uses_lsc6_dialect(const compiler::ServoProgram& program) {
+  return program.robot.profile == "lsc-6";
+}
+
+namespace {
+
+Result<std::vector<PlannedFrame>> plan_lsc6(const compiler::ServoProgram& program,
+                                            std::uint8_t group) {
+  std::vector<lsc6::PlannedAction> actions;
+  for (const compiler::Keyframe& k : program.keyframes) {
+    lsc6::PlannedAction a{k.time_ms, {}};
+    for (const lsc::ServoTarget& t : k.targets) a.servos.push_back({t.id, t.position});
+    actions.push_back(std::move(a));
+  }
+  auto plan = lsc6::plan_download(group, actions);
+  if (!plan) return plan.error();
+  std::vector<PlannedFrame> out;
+  for (std::size_t i = 0; i < plan->size(); ++i) {
+    lsc6::Request request{(*plan)[i]};
+    auto frame = lsc6::encode(request);
+    if (!frame) return frame.error();
+    auto serial = lsc::encode_serial(*frame);
+    if (!serial) return serial.error();
+    out.push_back(PlannedFrame{std::move(request), std::move(*frame), std::move(*serial), i});
+  }
+  return out;
+}
+
+}  // namespace
+
 Result<std::vector<PlannedFrame>> plan_download(const compiler::ServoProgram& program,
                                                 std::uint8_t group) {
+  if (uses_lsc6_dialect(program)) return plan_lsc6(program, group);
   const std::vector<lsc::GroupAction> actions = to_actions(program);
   auto plan = lsc::plan_group_download(group, actions);
   if (!plan) return plan.error();
@@ -27,7 +58,9 @@ Result<std::vector<PlannedFrame>> plan_download(const compiler::ServoProgram& pr
     auto serial = lsc::encode_serial(*frame);
     if (!serial) return serial.error();
     PlannedFrame p{std::move(request), std::move(*frame), std::move(*serial), std::nullopt};
-    if (lsc::group_download_step(p.request) == 4) p.keyframe = next_action++;
+    if (lsc::group_download_step(std::get<lsc::Request>(p.request)) == 4) {
+      p.keyframe = next_action++;
+    }
     out.push_back(std::move(p));
   }
   return out;

@@ -1,5 +1,7 @@
 #include "compiler/lang/profiles.hpp"
 
+#include "runtime/protocol/lsc6_messages.hpp"
+
 namespace seqc::compiler {
 namespace {
 
@@ -31,6 +33,10 @@ const std::vector<RobotProfile>& profiles() {
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
       {"lsc-32", RobotKind::ServoController, 0, 31, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
+      // LSC-6 / LeArm: six PWM outputs that its firmware numbers 1-6 (docs/protocol/lsc-6.md);
+      // uploads use that board's own dialect.
+      {"lsc-6", RobotKind::ServoController, 1, 6, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+       "ch", kRatedDegreesPerSecond * 2000.0 / 180.0, lsc6::kMaxActions},
       // Yahboom Raspblock car board: servos 1-4 at 500-2500 us; its gimbal and rocker are
       // outputs of the board itself (lang/raspblock_lowering.cpp).
       {"raspblock", RobotKind::Raspblock, 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
@@ -79,6 +85,18 @@ RobotInfo robot_from_profile(const RobotProfile& profile) {
     robot.servos.push_back(std::move(s));
   }
   return robot;
+}
+
+std::size_t group_capacity(const RobotProfile* profile) {
+  return profile != nullptr ? profile->max_actions : lsc::kMaxActions;
+}
+
+std::string group_capacity_text(const RobotProfile* profile) {
+  if (group_capacity(profile) == lsc::kMaxActions) {
+    return "a group holds at most 1,020 (4 blocks of 255)";
+  }
+  return "a group on the " + std::string(profile->name) + " holds at most " +
+         std::to_string(profile->max_actions);
 }
 
 }  // namespace seqc::compiler

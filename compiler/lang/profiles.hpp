@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
+#include "runtime/protocol/group_download.hpp"
 
 namespace seqc::compiler {
 
@@ -33,6 +34,8 @@ struct RobotProfile {
   // The stock servo's rated speed, device units per second: every servo's default max_speed
   // (0: none).
   double rated_speed = 0;
+  // Actions one stored group holds on this controller.
+  std::size_t max_actions = lsc::kMaxActions;
 };
 
 const RobotProfile* find_profile(std::string_view name);
@@ -42,5 +45,10 @@ std::string profile_list();
 
 // The RobotInfo a profile describes before any per-file servo definitions.
 RobotInfo robot_from_profile(const RobotProfile& profile);
+
+// The number of actions a group holds for `profile` (lsc::kMaxActions for an unknown name), and
+// the phrase that says so in messages: "a group holds at most 1,020 (4 blocks of 255)".
+std::size_t group_capacity(const RobotProfile* profile);
+std::string group_capacity_text(const RobotProfile* profile);
 
 }  // namespace seqc::compiler

@@ -55,23 +55,24 @@ void ServoLowering::finish(ServoProgram& program) {
   if (over_budget_at_) {
     // Already more actions than a group holds before fitting (each step needs at least its
     // count): fitting tens of thousands of steps would only cost time.
-    reporter_.error(*over_budget_at_,
-                    "the sequence needs at least " + std::to_string(min_actions_) + "/" +
-                        std::to_string(lsc::kMaxActions) +
-                        " actions; a group holds at most 1,020 (4 blocks of 255), and this "
-                        "step makes action 1,021");
+    reporter_.error(*over_budget_at_, "the sequence needs at least " +
+                                          std::to_string(min_actions_) + "/" +
+                                          std::to_string(capacity()) + " actions; " +
+                                          group_capacity_text(robot_.profile) +
+                                          ", and this step makes action " +
+                                          std::to_string(capacity() + 1));
     return;
   }
   FitResult fit = fit_timeline(timeline_);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
-  if (needed > lsc::kMaxActions) {
-    const Location at = fit.actions.size() > lsc::kMaxActions ? fit.actions[lsc::kMaxActions].source
-                                                              : fit.actions.back().source;
+  if (needed > capacity()) {
+    const Location at =
+        fit.actions.size() > capacity() ? fit.actions[capacity()].source : fit.actions.back().source;
     reporter_.error(at, "the sequence needs " + std::string(truncated_ ? "at least " : "") +
-                            std::to_string(needed) + "/" + std::to_string(lsc::kMaxActions) +
-                            " actions; a group holds at most 1,020 (4 blocks of 255), and this "
-                            "step makes action 1,021");
-    fit.actions.resize(std::min<std::size_t>(fit.actions.size(), lsc::kMaxActions));
+                            std::to_string(needed) + "/" + std::to_string(capacity()) +
+                            " actions; " + group_capacity_text(robot_.profile) +
+                            ", and this step makes action " + std::to_string(capacity() + 1));
+    fit.actions.resize(std::min<std::size_t>(fit.actions.size(), capacity()));
   } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
     reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
   }
@@ -296,7 +297,7 @@ void ServoLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
   if (!repeat) return;
   std::uint64_t per_pass = 0;
   for (long long i = 0; i < repeat->times; ++i) {
-    if (i > 0 && min_actions_ > lsc::kMaxActions) {  // already too long: count, do not expand
+    if (i > 0 && min_actions_ > capacity()) {  // already too long: count, do not expand
       const auto rest = static_cast<std::uint64_t>(repeat->times - i);
       min_actions_ = saturating_add(min_actions_, per_pass > 0 && rest > UINT64_MAX / per_pass
                                                       ? UINT64_MAX

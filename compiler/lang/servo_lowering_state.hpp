@@ -17,6 +17,7 @@
 #include "compiler/compile.hpp"
 #include "compiler/lang/file_loader.hpp"
 #include "compiler/lang/positions.hpp"
+#include "compiler/lang/profiles.hpp"
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
 #include "compiler/lang/scope_chain.hpp"
@@ -93,6 +94,9 @@ class ServoLowering {
     Location at;
     std::vector<std::size_t> servos;  // moved so far, in order
   };
+
+  // Actions one group holds on the robot's controller.
+  std::size_t capacity() const { return group_capacity(robot_.profile); }
 
   const Robot& robot_;
   FileLoader& loader_;

@@ -103,7 +103,7 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   std::optional<long long> steps;
   const YamlNode* steps_node = step.find("steps");
   if (steps_node != nullptr) {
-    steps = parse_integer(*steps_node, 1, lsc::kMaxActions, "'steps'", reporter_);
+    steps = parse_integer(*steps_node, 1, static_cast<long long>(capacity()), "'steps'", reporter_);
     ok = ok && steps.has_value();
   }
   std::optional<double> step_tolerance;
@@ -276,7 +276,7 @@ bool ServoLowering::claim(std::size_t servo, Location at) {
 
 void ServoLowering::count_actions(std::uint64_t n, Location at) {
   min_actions_ = min_actions_ + n < min_actions_ ? UINT64_MAX : min_actions_ + n;
-  if (min_actions_ > lsc::kMaxActions && !over_budget_at_) over_budget_at_ = at;
+  if (min_actions_ > capacity() && !over_budget_at_) over_budget_at_ = at;
 }
 
 bool ServoLowering::check_overshoot(std::size_t servo, const Segment& segment, Location at,

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "compiler/lang/profiles.hpp"
 #include "compiler/lang/show.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/cli/check_formats.hpp"
@@ -82,7 +83,8 @@ std::string summary(const Unit& u, bool strict) {
             ? fmt::format(" ({} at {:.3f} s)", p->fit_error_servo, p->fit_error_at_ms / 1000.0)
             : "";
     return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {} units{}{}\n", u.label,
-                       p->keyframes.size(), lsc::kMaxActions,
+                       p->keyframes.size(),
+                       compiler::group_capacity(compiler::find_profile(p->robot.profile)),
                        static_cast<double>(p->duration_ms()) / 1000.0,
                        compiler::format_units(p->fit_error), where, warned);
   }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "compiler/backend/listing.hpp"
+#include "runtime/cli/group_dialect.hpp"
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/cli/commands.hpp"
@@ -74,9 +75,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     }
     std::string text;
     if (opts->dry_run) {
-      std::vector<lsc::Request> requests;
-      for (const backend::PlannedFrame& f : *plan) requests.push_back(f.request);
-      text = upload_session_hex(requests, group, false, 1);
+      text = dialect_for(*plan)->session_hex(group, false, 1);
     } else if (opts->emit == "hex") {
       text = backend::render_hex(*plan);
     } else if (opts->emit == "listing") {

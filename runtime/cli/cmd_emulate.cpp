@@ -1,6 +1,7 @@
-// `seqc emulate xarm|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
+// `seqc emulate xarm|lsc6|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
 // path is the one line on stdout; progress and the Raspblock's state changes go to stderr.
-// On exit, --record writes what was received and --dump-groups (xarm) the stored groups.
+// On exit, --record writes what was received and --dump-groups (xarm, lsc6) the stored groups.
+// The LSC-6 board is served by emulate_lsc6.cpp.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/emulate_lsc6.hpp"
 #include "runtime/emulator/group_dump.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
@@ -83,6 +85,20 @@ std::string xarm_record(const emu::XArmEmulator& emu) {
 }
 
 ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
+  if (o.device == "lsc6") {
+    if (!o.positions.empty()) {
+      ctx.err << "seqc: error: --positions applies to the xarm emulator only\n";
+      return ExitCode::Usage;
+    }
+    Lsc6EmulateArgs args;
+    if (o.baud_opt->count() > 0) args.baud = o.baud;
+    args.options = o.faults;
+    if (o.seed_opt->count() > 0) args.seed = o.seed;
+    if (o.link_opt->count() > 0) args.link = o.link;
+    if (o.record_opt->count() > 0) args.record = o.record;
+    if (o.dump_groups_opt->count() > 0) args.dump_groups = o.dump_groups;
+    return run_emulate_lsc6(args, ctx);
+  }
   const bool xarm = o.device == "xarm";
   if (!xarm && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
     ctx.err << "seqc: error: --faults and --seed apply to the xarm emulator only (the Raspblock "
@@ -217,19 +233,23 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       "emulate",
       "Serve an emulated device on a pseudo-terminal until Ctrl-C (exit 0). Prints the\n"
       "terminal's path on stdout; point `seqc upload --port` (or any program) at it.");
-  cmd->add_option("device", opts->device, "xarm (servo controller) or raspblock (car board)")
+  cmd->add_option("device", opts->device,
+                  "xarm (servo controller), lsc6 (LSC-6 / LeArm board) or raspblock (car board)")
       ->required()
-      ->check(CLI::IsMember({"xarm", "raspblock"}));
+      ->check(CLI::IsMember({"xarm", "lsc6", "raspblock"}));
   opts->baud_opt =
       cmd->add_option("--baud", opts->baud,
-                      "xarm: line rate both ways (10 bits per byte), 0 = unpaced\n(default 9600)");
+                      "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "
+                      "9600)");
   opts->faults_opt =
       cmd->add_option("--faults", opts->faults,
                       "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
                       "keys: drop, corrupt, late, dup, busy, reset (rates 0..1),\n"
                       "late-by, busy-for, boot-time, silent-after, hangup-at,\n"
                       "back-after (a hung-up device returns on a new terminal),\n"
-                      "reset-at, seed");
+                      "reset-at, seed\n"
+                      "lsc6: drop, seed, no-run-reply, no-finish (firmware copies\n"
+                      "that never answer Run or never announce the end of a run)");
   opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
   opts->link_opt =
       cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");
@@ -238,7 +258,7 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       "On exit, write what was received as CSV\n(xarm: every frame; raspblock: state timeline)");
   opts->dump_groups_opt =
       cmd->add_option("--dump-groups", opts->dump_groups,
-                      "xarm: on exit, write every valid stored group, one action\n"
+                      "xarm, lsc6: on exit, write every valid stored group, one action\n"
                       "per line: GROUP INDEX TIME_MS ID=POSITION ...");
   cmd->add_option("--positions", opts->positions,
                   "xarm: servo positions at power-on, ID=POSITION,... e.g. 1=300,2=650\n"

@@ -10,6 +10,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/lsc6_commands.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -60,6 +61,9 @@ ExitCode run_group(Context& ctx, const RunOptions& o) {
     }
     times = static_cast<std::uint16_t>(o.times);
   }
+  if (is_lsc6_board(o.device.profile(), o.device.port)) {
+    return lsc6_run(ctx, o.device, *group, times);
+  }
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::GroupRun{*group, times})) return ExitCode::DeviceFailure;
     const std::string how = o.forever ? "looping until `seqc group stop`"
@@ -80,6 +84,7 @@ struct StopOptions {
 };
 
 ExitCode stop_group(Context& ctx, const StopOptions& o) {
+  if (is_lsc6_board(o.device.profile(), o.device.port)) return lsc6_stop(ctx, o.device);
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.tell(lsc::GroupStop{})) return ExitCode::DeviceFailure;
     std::string which;
@@ -96,11 +101,18 @@ ExitCode stop_group(Context& ctx, const StopOptions& o) {
 struct EraseOptions {
   DeviceOptions device;
   std::string group;
+  bool all = false;
 };
 
 ExitCode erase_group(Context& ctx, const EraseOptions& o) {
-  auto target = parse_group_target(o.group);
+  if (o.all && !o.group.empty()) return usage_error(ctx, "give GROUP or --all, not both");
+  if (!o.all && o.group.empty()) return usage_error(ctx, "give a GROUP to erase, or --all");
+  auto target = o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true})
+                      : parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
+  if (is_lsc6_board(o.device.profile(), o.device.port)) {
+    return lsc6_erase(ctx, o.device, target->all);
+  }
   return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
     if (!s.ask<lsc::GroupErased>(lsc::GroupErase{target->group}, "the erase confirmation")) {
       return ExitCode::DeviceFailure;
@@ -151,7 +163,9 @@ void add_group_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto erase = std::make_shared<EraseOptions>();
   CLI::App* erase_cmd =
       group->add_subcommand("erase", "Erase a stored group, or all of them (GroupErase)");
-  erase_cmd->add_option("GROUP", erase->group, "Group number 0-254, or `all`")->required();
+  erase_cmd->add_option("GROUP", erase->group, "Group number 0-254, or `all`");
+  erase_cmd->add_flag("--all", erase->all,
+                      "Erase every group (the only erase an LSC-6 board has)");
   add_device_options(*erase_cmd, erase->device);
   erase_cmd->callback([erase, &ctx, &result] { result.code = erase_group(ctx, *erase); });
 

@@ -12,6 +12,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/lsc6_commands.hpp"
 #include "runtime/cli/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
@@ -100,8 +101,13 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
     summary += (summary.empty() ? "" : ", ") + servo_label(t->id, *robot) + " to " +
                std::to_string(t->position);
   }
-  return tell_on_controller(ctx, o.device, move,
-                            "moving " + summary + " over " + compiler::format_seconds(*ms) + "\n");
+  const std::string said = "moving " + summary + " over " + compiler::format_seconds(*ms);
+  if (is_lsc6_board(o.device.profile(), o.device.port)) {
+    lsc6::Move lsc6_move_request{*ms, {}};
+    for (const auto& e : move.servos) lsc6_move_request.servos.push_back({e.id, *e.position});
+    return lsc6_move(ctx, o.device, lsc6_move_request, said);
+  }
+  return tell_on_controller(ctx, o.device, move, said + "\n");
 }
 
 // ---- mode ----------------------------------------------------------------------------------

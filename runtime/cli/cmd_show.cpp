@@ -18,6 +18,7 @@
 #include "compiler/lang/show.hpp"
 #include "runtime/cli/board_port.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/group_dialect.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/port_open.hpp"
 #include "runtime/player/player.hpp"
@@ -86,18 +87,17 @@ bool upload_stage(Context& ctx, Stage& stage) {
     ctx.err << "seqc: error: " << p.name << ": " << planned.error().message << "\n";
     return false;
   }
-  std::vector<lsc::Request> plan;
-  for (const auto& f : *planned) plan.push_back(f.request);
+  const std::unique_ptr<GroupDialect> dialect = dialect_for(std::move(planned).value());
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: " << p.name << ": uploading " << p.output.servo_program()->keyframes.size()
             << " actions into group " << p.group << " on " << stage.transport->describe() << "\n";
   }
-  upload::ControllerLink link(*stage.transport, *stage.controller->clock, ctx.interrupted);
   upload::UploadOptions options;
   options.group = static_cast<std::uint8_t>(p.group);
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
-  const upload::UploadResult r = upload::Uploader(link, options, &progress).upload(plan);
+  const upload::UploadResult r = dialect->upload(*stage.transport, *stage.controller->clock,
+                                                  ctx.interrupted, options, &progress);
   progress.finish();
   if (!r.ok()) {
     ctx.err << "seqc: error: " << p.name << ": " << r.message << "\n";

@@ -11,13 +11,11 @@
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/group_dialect.hpp"
 #include "runtime/cli/port_open.hpp"
-#include "runtime/cli/session_text.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/upload/controller_link.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
-#include "runtime/upload/uploader.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -67,13 +65,12 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     ctx.err << "seqc: error: " << a.file << ": " << planned.error().message << "\n";
     return ExitCode::InvalidInput;
   }
-  std::vector<lsc::Request> plan;
-  for (const auto& f : *planned) plan.push_back(f.request);
+  const std::unique_ptr<GroupDialect> dialect = dialect_for(std::move(planned).value());
   const std::size_t actions = program->keyframes.size();
 
   if (a.dry_run) {
-    ctx.out << upload_session_hex(plan, group, a.run,
-                                  static_cast<std::uint16_t>(a.forever ? 0 : a.times));
+    ctx.out << dialect->session_hex(group, a.run,
+                                    static_cast<std::uint16_t>(a.forever ? 0 : a.times));
     if (ctx.verbosity >= 0)
       ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
               << "; nothing was sent\n";
@@ -103,7 +100,6 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     transport = trace.get();
   }
 
-  upload::ControllerLink link(*transport, clock, ctx.interrupted);
   upload::UploadOptions options;
   options.group = group;
   options.retries = a.retries;
@@ -113,10 +109,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
                                    ctx.terminal_columns);
   if (ctx.verbosity > 0) {
     ctx.err << "upload: " << plural(actions, "action") << " into group " << a.group << " on "
-            << transport->describe() << "\n";
+            << transport->describe() << " (" << dialect->board() << " dialect)\n";
   }
-  upload::Uploader uploader(link, options, &progress);
-  const upload::UploadResult r = uploader.upload(plan);
+  const upload::UploadResult r =
+      dialect->upload(*transport, clock, ctx.interrupted, options, &progress);
   progress.finish();
 
   const double secs = std::chrono::duration<double>(r.elapsed).count();
@@ -148,7 +144,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
       ctx.err << "seqc: group " << a.group << " started (" << times << ")\n";
     } else {
       ctx.err << "seqc: asked the controller to run group " << a.group << " (" << times
-              << "); it did not report starting it\n";
+              << "); " << dialect->unconfirmed_run() << "\n";
     }
   }
   return ExitCode::Ok;
@@ -162,8 +158,8 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
       "upload", "Compile a file and store it in an action group of the servo controller");
   cmd->add_option("FILE", a->file, "Choreography file (.yaml)")->required();
   cmd->add_option("--port", a->port,
-                  "Device: /dev/ttyUSB0[@BAUD], hid, emu:xarm[?FAULTS] (default: the one "
-                  "controller found)");
+                  "Device: /dev/ttyUSB0[@BAUD], hid, emu:xarm[?FAULTS], emu:lsc6[?OPTIONS] "
+                  "(default: the one controller found)");
   cmd->add_option("--group", a->group, "Action group to store it in (0-254, default 0)")
       ->check(CLI::Range(0, 254));
   CLI::Option* run = cmd->add_flag("--run", a->run, "Start the group once it is stored");

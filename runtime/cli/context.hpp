@@ -10,6 +10,7 @@
 
 namespace seqc::emu {
 class XArmEmulator;
+class Lsc6Emulator;
 }
 
 namespace seqc::cli {
@@ -29,6 +30,8 @@ struct Context {
   // several commands can share it. Its time is xarm_clock's.
   emu::XArmEmulator* xarm_emulator = nullptr;
   io::ManualClock* xarm_clock = nullptr;
+  // The same for emu:lsc6 (its time is also xarm_clock's).
+  emu::Lsc6Emulator* lsc6_emulator = nullptr;
   // From the environment, read once in main: NO_COLOR set and non-empty, and the terminal's
   // width in columns (0 when stderr is not a terminal).
   bool no_color_env = false;

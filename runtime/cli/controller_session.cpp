@@ -7,6 +7,7 @@
 
 #include "compiler/source/units.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/lsc6_commands.hpp"
 #include "runtime/cli/port_open.hpp"
 
 namespace seqc::cli {
@@ -20,7 +21,23 @@ const char* kCheckHint = "check that the controller is powered and connected, an
 
 }  // namespace
 
+std::string DeviceOptions::profile() const {
+  if (robot_option != nullptr) {
+    return robot_option->count() > 0 ? robot_option->as<std::string>() : std::string();
+  }
+  return robot;
+}
+
 void add_device_options(CLI::App& cmd, DeviceOptions& options) {
+  const CLI::App* parent = cmd.get_parent();
+  options.command = parent != nullptr && parent->get_parent() != nullptr
+                        ? parent->get_name() + " " + cmd.get_name()
+                        : cmd.get_name();
+  options.robot_option = cmd.get_option_no_throw("--robot");
+  if (options.robot_option == nullptr) {
+    cmd.add_option("--robot", options.robot,
+                   "Robot profile; lsc-6 selects the LSC-6 board's own dialect");
+  }
   cmd.add_option("--port", options.port, "Port, as for `seqc upload` (default: the connected one)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
       ->capture_default_str();
@@ -28,7 +45,8 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
   cmd.add_option("--robot", profile,
-                 "Robot profile (xarm, bus, lsc-16, lsc-32): allows servo names");
+                 "Robot profile (xarm, bus, lsc-16, lsc-32, lsc-6): allows servo names; lsc-6 "
+                 "selects the LSC-6 board's own dialect");
 }
 
 void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {
@@ -154,6 +172,8 @@ bool ControllerSession::tell(const lsc::Request& request) {
 }
 
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body) {
+  // Everything that reaches here needs a command or an answer the LSC-6 firmware lacks.
+  if (is_lsc6_board(options.profile(), options.port)) return refuse_on_lsc6(ctx, options.command);
   auto timeout = parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
   PortOpenResult opened = open_controller_port(options.port, ctx);

@@ -32,6 +32,12 @@ namespace seqc::cli {
 struct DeviceOptions {
   std::string port;  // empty: find the one connected controller
   std::string timeout = "1s";
+  std::string robot;                      // --robot, when the command has no other use for it
+  const CLI::Option* robot_option = nullptr;  // the command's own --robot, when it has one
+  std::string command;                    // "group speed", "battery": for messages
+
+  // The --robot profile given ("" if none): `lsc-6` selects that board's dialect.
+  std::string profile() const;
 };
 void add_device_options(CLI::App& cmd, DeviceOptions& options);
 // --robot PROFILE, for commands that accept servo names.

@@ -18,11 +18,34 @@ PortOpenResult failure(ExitCode code, std::string message) {
   return r;
 }
 
+PortOpenResult open_lsc6(const transport::PortSpec& spec, Context& ctx) {
+  OpenedPort port;
+  if (ctx.lsc6_emulator != nullptr && ctx.xarm_clock != nullptr) {
+    port.transport = std::make_unique<emu::EmulatorTransport>(*ctx.lsc6_emulator, *ctx.xarm_clock);
+    port.clock = ctx.xarm_clock;
+  } else {
+    emu::Lsc6Config config;
+    if (auto ok = emu::apply_lsc6_options(spec.emulator_options, config); !ok) {
+      return failure(ExitCode::Usage,
+                     "--port " + transport::format_port(spec) + ": " + ok.error().message);
+    }
+    port.emulated_clock = std::make_unique<io::ManualClock>();
+    port.lsc6_emulator = std::make_unique<emu::Lsc6Emulator>(config);
+    port.transport =
+        std::make_unique<emu::EmulatorTransport>(*port.lsc6_emulator, *port.emulated_clock);
+    port.clock = port.emulated_clock.get();
+  }
+  PortOpenResult r;
+  r.port = std::move(port);
+  return r;
+}
+
 PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
+  if (spec.emulator == "lsc6") return open_lsc6(spec, ctx);
   if (spec.emulator != "xarm") {
     return failure(ExitCode::Usage, "--port emu:" + spec.emulator +
                                         ": this command talks to the servo controller; use "
-                                        "emu:xarm");
+                                        "emu:xarm or emu:lsc6");
   }
   if (ctx.xarm_emulator != nullptr && ctx.xarm_clock != nullptr) {
     // The caller's emulator (Context::xarm_emulator); its own config holds any faults.

@@ -2,6 +2,7 @@
 // command that talks to the servo controller (upload, group, battery, servo, ...).
 //
 //   --port emu:xarm[?FAULTS]  an in-process XArmEmulator (FAULTS as `seqc emulate --faults`),
+//   --port emu:lsc6[?OPTS]    or Lsc6Emulator (OPTS as `seqc emulate lsc6 --faults`),
 //                             driven through EmulatorTransport on a ManualClock: the command
 //                             runs in emulated time and finishes at once
 //   --port PATH / hid / ...   transport::open_port with ctx.clock (real time), 9600 baud by
@@ -18,6 +19,7 @@
 
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
+#include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
@@ -30,8 +32,10 @@ struct OpenedPort {
   // emu:xarm only: the emulated controller and its clock (tests look at what it stored).
   std::unique_ptr<io::ManualClock> emulated_clock;
   std::unique_ptr<emu::XArmEmulator> emulator;
+  // emu:lsc6 only: the emulated LSC-6 board.
+  std::unique_ptr<emu::Lsc6Emulator> lsc6_emulator;
 
-  bool emulated() const { return emulator != nullptr; }
+  bool emulated() const { return emulator != nullptr || lsc6_emulator != nullptr; }
 };
 
 struct PortFailure {

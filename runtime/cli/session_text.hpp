@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/protocol/lsc6_messages.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 
 namespace seqc::cli {
@@ -15,5 +16,9 @@ namespace seqc::cli {
 // run_times: 0 plays until stopped; ignored without run.
 std::string upload_session_hex(const std::vector<lsc::Request>& plan, std::uint8_t group, bool run,
                                std::uint16_t run_times);
+
+// The same for an LSC-6 board: Stop, one DownloadAction per action, and with a run Run.
+std::string lsc6_session_hex(const std::vector<lsc6::DownloadAction>& plan, std::uint8_t group,
+                             bool run, std::uint16_t run_times);
 
 }  // namespace seqc::cli

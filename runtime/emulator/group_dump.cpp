@@ -24,4 +24,23 @@ std::string dump_groups(const XArmEmulator& emu) {
   return out;
 }
 
+std::string dump_groups(const Lsc6Emulator& emu) {
+  std::string out =
+      "# seqc emulate lsc6: stored groups\n"
+      "# group index time_ms id=position ...\n";
+  for (std::size_t g = 0; g < lsc6::kGroups; ++g) {
+    const auto actions = emu.stored_group(static_cast<std::uint8_t>(g));
+    if (!actions) continue;
+    for (std::size_t i = 0; i < actions->size(); ++i) {
+      const lsc6::PlannedAction& a = (*actions)[i];
+      out += std::to_string(g) + " " + std::to_string(i) + " " + std::to_string(a.time_ms);
+      for (const lsc6::Target& s : a.servos) {
+        out += " " + std::to_string(s.channel) + "=" + std::to_string(s.pulse_us);
+      }
+      out += "\n";
+    }
+  }
+  return out;
+}
+
 }  // namespace seqc::emu

@@ -15,10 +15,14 @@
 
 #include <string>
 
+#include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 
 namespace seqc::emu {
 
 std::string dump_groups(const XArmEmulator& emu);
+// The same for an LSC-6 board ("# seqc emulate lsc6: stored groups"): every group whose action
+// count is not 0, each action as the player would read it from flash.
+std::string dump_groups(const Lsc6Emulator& emu);
 
 }  // namespace seqc::emu

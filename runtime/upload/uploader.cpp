@@ -47,6 +47,10 @@ std::string describe_group_state(GroupState state, std::uint8_t group) {
              "upload again";
     case GroupState::Stored:
       return g + " holds the acknowledged actions";
+    case GroupState::OldCount:
+      return g +
+             " keeps its old action count over actions that were erased or only partly "
+             "rewritten (running it stops at the first erased action); upload again";
   }
   return g;
 }

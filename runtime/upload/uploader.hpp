@@ -139,6 +139,7 @@ enum class GroupState {
   Empty,        // step 1 was acknowledged; the group is erased until a step 5 arrives
   Uncertain,    // step 5 was acknowledged, but pairing was not confirmed afterwards
   Stored,       // Completed: the controller acknowledged every action
+  OldCount,     // LSC-6: the group's actions were erased, its old action count stays
 };
 
 // One sentence about the group's state, e.g. "group 0 is now empty".

@@ -56,15 +56,15 @@ TEST(Backend, FullGroupPacksIntoExactlyFourBlocks) {
   auto plan = plan_download(p, 0);
   ASSERT_TRUE(plan) << plan.error().message;
   ASSERT_EQ(plan->size(), 1u + 4u + 1u + 1020u + 1u);
-  const auto& open = std::get<lsc::GroupDownloadOpen>((*plan)[0].request);
+  const auto& open = std::get<lsc::GroupDownloadOpen>(std::get<lsc::Request>((*plan)[0].request));
   EXPECT_EQ(open.block_counts, (std::vector<std::uint8_t>{255, 255, 255, 255}));
   for (int b = 0; b < 4; ++b) {
-    const auto& size = std::get<lsc::GroupDownloadSize>((*plan)[1 + b].request);
+    const auto& size = std::get<lsc::GroupDownloadSize>(std::get<lsc::Request>((*plan)[1 + b].request));
     EXPECT_EQ(size.block, b);
     EXPECT_EQ(size.count, 255);
   }
-  EXPECT_EQ(std::get<lsc::GroupDownloadBlocks>((*plan)[5].request).block_count, 4);
-  const auto& last = std::get<lsc::GroupDownloadAction>((*plan)[1025].request);
+  EXPECT_EQ(std::get<lsc::GroupDownloadBlocks>(std::get<lsc::Request>((*plan)[5].request)).block_count, 4);
+  const auto& last = std::get<lsc::GroupDownloadAction>(std::get<lsc::Request>((*plan)[1025].request));
   EXPECT_EQ(last.block, 3);
   EXPECT_EQ(last.index, 254);
 }
