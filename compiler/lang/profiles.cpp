@@ -92,11 +92,18 @@ std::size_t group_capacity(const RobotProfile* profile) {
 }
 
 std::string group_capacity_text(const RobotProfile* profile) {
-  if (group_capacity(profile) == lsc::kMaxActions) {
-    return "a group holds at most 1,020 (4 blocks of 255)";
-  }
-  return "a group on the " + std::string(profile->name) + " holds at most " +
-         std::to_string(profile->max_actions);
+  // Counts in messages carry thousands separators: "action 1,021".
+  auto count = [](std::size_t n) {
+    std::string digits = std::to_string(n);
+    for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(i, ",");
+    return digits;
+  };
+  const std::size_t cap = group_capacity(profile);
+  const std::string holds = cap == lsc::kMaxActions
+                                ? "a group holds at most 1,020 (4 blocks of 255)"
+                                : "a group on the " + std::string(profile->name) +
+                                      " holds at most " + count(cap);
+  return holds + ", and this step makes action " + count(cap + 1);
 }
 
 }  // namespace seqc::compiler

@@ -1,4 +1,4 @@
-// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32) means before the file's own
+// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32, lsc-6) means before the file's own
 // servo definitions are applied.
 //
 // This table is where a new robot kind plugs in: add a RobotKind (compile.hpp), a profile row
@@ -47,7 +47,8 @@ std::string profile_list();
 RobotInfo robot_from_profile(const RobotProfile& profile);
 
 // The number of actions a group holds for `profile` (lsc::kMaxActions for an unknown name), and
-// the phrase that says so in messages: "a group holds at most 1,020 (4 blocks of 255)".
+// the end of the message for a sequence that needs one more: "a group holds at most 1,020 (4
+// blocks of 255), and this step makes action 1,021".
 std::size_t group_capacity(const RobotProfile* profile);
 std::string group_capacity_text(const RobotProfile* profile);
 

@@ -58,9 +58,7 @@ void ServoLowering::finish(ServoProgram& program) {
     reporter_.error(*over_budget_at_, "the sequence needs at least " +
                                           std::to_string(min_actions_) + "/" +
                                           std::to_string(capacity()) + " actions; " +
-                                          group_capacity_text(robot_.profile) +
-                                          ", and this step makes action " +
-                                          std::to_string(capacity() + 1));
+                                          group_capacity_text(robot_.profile));
     return;
   }
   FitResult fit = fit_timeline(timeline_);
@@ -70,8 +68,7 @@ void ServoLowering::finish(ServoProgram& program) {
         fit.actions.size() > capacity() ? fit.actions[capacity()].source : fit.actions.back().source;
     reporter_.error(at, "the sequence needs " + std::string(truncated_ ? "at least " : "") +
                             std::to_string(needed) + "/" + std::to_string(capacity()) +
-                            " actions; " + group_capacity_text(robot_.profile) +
-                            ", and this step makes action " + std::to_string(capacity() + 1));
+                            " actions; " + group_capacity_text(robot_.profile));
     fit.actions.resize(std::min<std::size_t>(fit.actions.size(), capacity()));
   } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
     reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");

@@ -17,7 +17,7 @@
 
 namespace seqc::cli {
 
-// The servos a `--robot PROFILE` names (xarm, lsc-16, lsc-32); nullopt for "" (no profile:
+// The servos a `--robot PROFILE` names (xarm, lsc-16, lsc-32, lsc-6); nullopt for "" (no profile:
 // servos are plain ids 0..255 and positions plain 0..65535 values).
 Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile);
 

@@ -34,6 +34,8 @@ PROFILES = {
                "0-180deg, home 1500"),
     "lsc-32": (0, 31, 500, 2500, 1500, "LSC-32 PWM channels 0-31 (ch0..ch31), 500-2500 us over "
                "0-180deg, home 1500"),
+    "lsc-6": (1, 6, 500, 2500, 1500, "LSC-6 / LeArm PWM channels 1-6 (ch1..ch6), 500-2500 us "
+              "over 0-180deg, home 1500; a group holds 255 actions"),
     "raspblock": (1, 4, 500, 2500, 1500, "the Yahboom Raspblock car board: rocker (drive), "
                   "gimbal (pan, tilt) and servos 1-4, streamed live"),
 }
@@ -165,7 +167,7 @@ robot_object = doc(
            for p in PROFILES])
 robot_object["defaultSnippets"] = [{
     "label": "robot definition", "description": "a profile with named servos and a mirror table",
-    "body": {"profile": "${1|lsc-16,lsc-32,xarm|}",
+    "body": {"profile": "${1|lsc-16,lsc-32,lsc-6,xarm|}",
              "servos": {"${2:left_arm}": {"id": 0, "min": 600, "max": 2400},
                         "${3:right_arm}": {"id": 1, "min": 600, "max": 2400}},
              "mirror": {"${2:left_arm}": "${3:right_arm}"}}}]
@@ -308,7 +310,7 @@ pid = doc("PID", "Raspblock only: PID settings sent once before the first step; 
 
 TOP = {
     "robot": doc("Robot", "The robot this file is for: a built-in profile (`xarm`, `lsc-16`, "
-                 "`lsc-32`, `raspblock`) or `{profile, servos, mirror}`.",
+                 "`lsc-32`, `lsc-6`, `raspblock`) or `{profile, servos, mirror}`.",
                  type=["string", "object"],
                  allOf=[{"if": {"type": "string"}, "then": ref("profile")},
                         {"if": {"type": "object"}, "then": ref("robotObject")}],

@@ -182,7 +182,7 @@ TEST(D6a, RowsThatCannotBeActionsAreErrorsWithTheirRow) {
             "row 2 (Index 2): Servo3 is 1200, outside xarm's 0-1000");
   EXPECT_EQ(
       compiler::choreography_from_d6a(*table, {"bad", "bad.d6a", "raspblock"}).error().message,
-      "--robot raspblock: not a servo controller profile (xarm, bus, lsc-16, lsc-32, "
+      "--robot raspblock: not a servo controller profile (xarm, bus, lsc-16, lsc-32, lsc-6, "
       "raspblock)");
 }
 
