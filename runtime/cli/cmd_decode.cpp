@@ -1,37 +1,27 @@
-// seqc decode FILE.hex|-: frames back into an action table; exit 1 if anything is inconsistent.
+// seqc decode FILE|- [--from FORMAT]: what seqc wrote or recorded (compile hex, --dry-run,
+// --trace, the emulators' --record, Raspblock packets, either servo-controller dialect) back
+// into a readable table; exit 1 if anything is inconsistent.
 #include <iterator>
 #include <sstream>
 #include <string>
 
-#include "compiler/backend/decode.hpp"
+#include "compiler/backend/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/protocol/bytes.hpp"
 
 namespace seqc::cli {
-namespace {
-
-// '#' starts a comment that runs to the end of the line, so a listing's hex lines can be
-// pasted with notes and `seqc upload --dry-run` ("55 55 02 07  # GroupStop") reads back.
-std::string strip_comments(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  std::string out;
-  while (std::getline(in, line)) {
-    out += line.substr(0, line.find('#')) + "\n";
-  }
-  return out;
-}
-
-}  // namespace
-
 void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto file = std::make_shared<std::string>();
+  auto from = std::make_shared<std::string>("auto");
   CLI::App* cmd = app.add_subcommand(
-      "decode", "Decode servo controller frames (hex) into a readable action table");
-  cmd->add_option("FILE", *file,
-                  "Hex frames, as `seqc compile --emit hex` writes them; - for stdin")
-      ->required();
-  cmd->callback([&ctx, &result, file] {
+      "decode",
+      "Decode what seqc writes or records (frames, traces, emulator records) into a table");
+  cmd->add_option("FILE", *file, "The file; - for stdin")->required();
+  cmd->add_option("--from", *from,
+                  "auto (default: told apart by content), hex (xArm/LSC-16/LSC-32\n"
+                  "frames), lsc6, raspblock, trace or record")
+      ->check(CLI::IsMember({"auto", "hex", "lsc6", "raspblock", "trace", "record"}));
+  cmd->callback([&ctx, &result, file, from] {
     std::string text;
     if (*file == "-") {
       if (ctx.in == nullptr) {
@@ -49,13 +39,8 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
       }
       text = std::move(*read);
     }
-    auto bytes = parse_hex(strip_comments(text));
-    if (!bytes) {
-      ctx.err << "seqc: error: " << *file << ": " << bytes.error().message << "\n";
-      result.code = ExitCode::InvalidInput;
-      return;
-    }
-    backend::DecodeResult decoded = backend::decode_frames(*bytes);
+    backend::DecodeResult decoded =
+        backend::decode_text(text, backend::parse_decode_format(*from).value());
     ctx.out << decoded.table;
     if (!decoded.issues.empty()) {
       ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size() << " inconsistenc"

@@ -1,0 +1,335 @@
+#include "compiler/backend/decode_formats.hpp"
+
+#include <fmt/format.h>
+
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "runtime/protocol/lsc6_messages.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/protocol/lsc_stream.hpp"
+#include "runtime/protocol/raspblock.hpp"
+
+namespace seqc::backend {
+namespace {
+
+std::vector<std::string> split_lines(std::string_view text) {
+  std::vector<std::string> out;
+  std::istringstream in{std::string(text)};
+  for (std::string l; std::getline(in, l);) {
+    if (!l.empty() && l.back() == '\r') l.pop_back();
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// A line without its '#' comment and, for the Raspblock's timed listing, without the leading
+// "<N> ms" column.
+std::string hex_part(std::string_view line) {
+  std::string_view s = trim(line.substr(0, line.find('#')));
+  const std::size_t ms = s.find(" ms ");
+  if (ms != std::string_view::npos && s.substr(0, ms).find_first_not_of("0123456789 ") ==
+                                          std::string_view::npos) {
+    s = trim(s.substr(ms + 4));
+  }
+  return std::string(s);
+}
+
+Bytes hex_bytes(std::string_view text, std::vector<std::string>& errors) {
+  Bytes out;
+  for (const std::string& line : split_lines(text)) {
+    auto bytes = parse_hex(hex_part(line));
+    if (!bytes) {
+      errors.push_back(bytes.error().message + " in '" + line + "'");
+      continue;
+    }
+    out.insert(out.end(), bytes->begin(), bytes->end());
+  }
+  return out;
+}
+
+// LSC-6 when a frame has CMD 25 (its download), the xArm dialect otherwise.
+bool looks_lsc6(ByteView bytes) {
+  lsc::FrameDecoder frames;
+  frames.feed(bytes);
+  while (auto f = frames.next()) {
+    if (f->cmd == 0x19) return true;
+  }
+  return false;
+}
+
+bool is_trace_line(std::string_view line) { return trim(line).starts_with("t="); }
+constexpr std::string_view kRecordHeader = "time_s,status,bytes,message";
+
+// Describes every whole frame in `bytes` as `describe` says; frames that do not decode, and
+// bytes outside frames, are issues.
+struct FrameText {
+  std::vector<std::string> messages;
+  std::vector<std::string> problems;
+};
+FrameText describe_frames(lsc::FrameDecoder& frames, ByteView bytes,
+                          const std::function<Result<std::string>(const lsc::Frame&)>& describe) {
+  FrameText out;
+  const std::size_t skipped = frames.skipped_bytes();
+  frames.feed(bytes);
+  while (auto f = frames.next()) {
+    auto text = describe(*f);
+    if (text) {
+      out.messages.push_back(*text);
+    } else {
+      out.problems.push_back(text.error().message);
+    }
+  }
+  if (frames.skipped_bytes() != skipped) {
+    out.problems.push_back(
+        fmt::format("{} byte(s) are not part of any frame", frames.skipped_bytes() - skipped));
+  }
+  return out;
+}
+
+using Describe = std::function<Result<std::string>(const lsc::Frame&)>;
+Describe request_describer(bool lsc6) {
+  if (lsc6) {
+    return [](const lsc::Frame& f) -> Result<std::string> {
+      auto r = lsc6::decode_request(f);
+      if (!r) return r.error();
+      return lsc6::describe(*r);
+    };
+  }
+  return [](const lsc::Frame& f) -> Result<std::string> {
+    auto r = lsc::decode_request(f);
+    if (!r) return r.error();
+    return lsc::describe(*r);
+  };
+}
+Describe reply_describer(bool lsc6) {
+  if (lsc6) {
+    return [](const lsc::Frame& f) -> Result<std::string> {
+      auto r = lsc6::decode_reply(f);
+      if (!r) return r.error();
+      return lsc6::describe(*r);
+    };
+  }
+  return [](const lsc::Frame& f) -> Result<std::string> {
+    auto r = lsc::decode_reply(f);
+    if (!r) return r.error();
+    return lsc::describe(*r);
+  };
+}
+
+class TextTable {
+ public:
+  void row(const std::string& text) { out_.table += text + "\n"; }
+  void issue(const std::string& where, const std::string& message) {
+    out_.table += "! " + where + ": " + message + "\n";
+    out_.issues.push_back(where + ": " + message);
+  }
+  DecodeResult finish(const std::string& summary) {
+    out_.table += fmt::format("# {}, {} issue(s)\n", summary, out_.issues.size());
+    return std::move(out_);
+  }
+  DecodeResult& result() { return out_; }
+
+ private:
+  DecodeResult out_;
+};
+
+DecodeResult decode_trace(std::string_view text) {
+  const std::vector<std::string> lines = split_lines(text);
+  Bytes all;
+  for (const std::string& l : lines) {
+    if (!is_trace_line(l)) continue;
+    const std::size_t dir = l.find_first_of("<>");
+    if (dir == std::string::npos) continue;
+    if (auto b = parse_hex(trim(std::string_view(l).substr(dir + 1)))) {
+      all.insert(all.end(), b->begin(), b->end());
+    }
+  }
+  const bool lsc6 = looks_lsc6(all);
+  TextTable t;
+  t.row(fmt::format("# trace, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
+  lsc::FrameDecoder sent, received;
+  const Describe req = request_describer(lsc6), rep = reply_describer(lsc6);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string_view l = trim(lines[i]);
+    if (!is_trace_line(l)) continue;
+    const std::string time(l.substr(0, l.find(' ')));
+    const std::size_t dir = l.find_first_of("<>#");
+    if (dir == std::string_view::npos) continue;
+    const std::string_view rest = trim(l.substr(dir + 1));
+    if (l[dir] == '#') {
+      t.row(time + " # " + std::string(rest));
+      continue;
+    }
+    if (rest == "hang-up") {
+      t.row(time + " < hang-up");
+      continue;
+    }
+    auto bytes = parse_hex(rest);
+    if (!bytes) {
+      t.issue(fmt::format("line {}", i + 1), bytes.error().message);
+      continue;
+    }
+    const bool out = l[dir] == '>';
+    FrameText ft = describe_frames(out ? sent : received, *bytes, out ? req : rep);
+    for (const std::string& m : ft.messages) {
+      ++n;
+      t.row(time + (out ? " > " : " < ") + m);
+    }
+    for (const std::string& p : ft.problems) t.issue(fmt::format("line {}", i + 1), p);
+  }
+  return t.finish(fmt::format("{} frame(s)", n));
+}
+
+// The first three fields of a record line (time, status, bytes: none holds a comma).
+struct RecordLine {
+  std::string time, status, bytes;
+};
+std::optional<RecordLine> record_fields(const std::string& l) {
+  const std::size_t a = l.find(',');
+  const std::size_t b = a == std::string::npos ? a : l.find(',', a + 1);
+  const std::size_t c = b == std::string::npos ? b : l.find(',', b + 1);
+  if (c == std::string::npos) return std::nullopt;
+  return RecordLine{l.substr(0, a), l.substr(a + 1, b - a - 1), l.substr(b + 1, c - b - 1)};
+}
+
+DecodeResult decode_record(std::string_view text) {
+  const std::vector<std::string> lines = split_lines(text);
+  Bytes all;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = record_fields(lines[i]);
+    if (!f) continue;
+    if (auto bytes = parse_hex(f->bytes)) all.insert(all.end(), bytes->begin(), bytes->end());
+  }
+  const bool lsc6 = looks_lsc6(all);
+  TextTable t;
+  t.row(fmt::format("# emulator record, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
+  const Describe req = request_describer(lsc6);
+  std::size_t n = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    if (trim(lines[i]).empty()) continue;
+    const auto f = record_fields(lines[i]);
+    if (!f) {
+      t.issue(fmt::format("line {}", i + 1), "not a record line (time_s,status,bytes,message)");
+      continue;
+    }
+    auto bytes = parse_hex(f->bytes);
+    if (!bytes) {
+      t.issue(fmt::format("line {}", i + 1), bytes.error().message);
+      continue;
+    }
+    ++n;
+    lsc::FrameDecoder frames;
+    FrameText ft = describe_frames(frames, *bytes, req);
+    std::string what = ft.messages.empty() ? to_hex(*bytes) : ft.messages.front();
+    if (ft.messages.empty() && !ft.problems.empty()) what += " (" + ft.problems.front() + ")";
+    t.row(fmt::format("{} {:<8} {}", f->time, f->status, what));
+  }
+  return t.finish(fmt::format("{} record(s)", n));
+}
+
+DecodeResult decode_raspblock(std::string_view text) {
+  TextTable t;
+  t.row(fmt::format("{:<7} {:>8}  {}", "packet", "time_ms", "message"));
+  raspblock::PacketDecoder packets;
+  std::size_t n = 0;
+  for (const std::string& line : split_lines(text)) {
+    const std::string_view s = trim(std::string_view(line).substr(0, line.find('#')));
+    std::string time = "-";
+    const std::size_t ms = s.find(" ms ");
+    if (ms != std::string_view::npos) time = std::string(trim(s.substr(0, ms)));
+    auto bytes = parse_hex(hex_part(line));
+    if (!bytes) {
+      t.issue("line", bytes.error().message);
+      continue;
+    }
+    packets.feed(*bytes);
+    while (auto p = packets.next()) {
+      ++n;
+      if (*p) {
+        t.row(fmt::format("{:<7} {:>8}  {}", n, time, raspblock::describe(**p)));
+      } else {
+        t.issue(fmt::format("packet {}", n), p->error().message);
+      }
+    }
+  }
+  if (packets.skipped_bytes() > 0) {
+    t.issue("input", fmt::format("{} byte(s) are not part of any packet", packets.skipped_bytes()));
+  }
+  return t.finish(fmt::format("Raspblock: {} packet(s)", n));
+}
+
+}  // namespace
+
+Result<DecodeFormat> parse_decode_format(std::string_view name) {
+  for (DecodeFormat f : {DecodeFormat::Auto, DecodeFormat::Hex, DecodeFormat::Lsc6,
+                         DecodeFormat::Raspblock, DecodeFormat::Trace, DecodeFormat::Record}) {
+    if (name == to_string(f)) return f;
+  }
+  return make_error("unknown format '" + std::string(name) +
+                    "'; expected auto, hex, lsc6, raspblock, trace or record");
+}
+
+const char* to_string(DecodeFormat format) {
+  switch (format) {
+    case DecodeFormat::Auto:
+      return "auto";
+    case DecodeFormat::Hex:
+      return "hex";
+    case DecodeFormat::Lsc6:
+      return "lsc6";
+    case DecodeFormat::Raspblock:
+      return "raspblock";
+    case DecodeFormat::Trace:
+      return "trace";
+    case DecodeFormat::Record:
+      return "record";
+  }
+  return "?";
+}
+
+DecodeFormat detect_format(std::string_view text) {
+  const std::vector<std::string> lines = split_lines(text);
+  for (const std::string& l : lines) {
+    if (l == kRecordHeader) return DecodeFormat::Record;
+    if (is_trace_line(l)) return DecodeFormat::Trace;
+  }
+  std::vector<std::string> errors;
+  const Bytes bytes = hex_bytes(text, errors);
+  if (bytes.size() >= 2 && bytes[0] == 0xff && bytes[1] == 0xfe) return DecodeFormat::Raspblock;
+  return looks_lsc6(bytes) ? DecodeFormat::Lsc6 : DecodeFormat::Hex;
+}
+
+DecodeResult decode_text(std::string_view text, DecodeFormat format) {
+  if (format == DecodeFormat::Auto) format = detect_format(text);
+  switch (format) {
+    case DecodeFormat::Trace:
+      return decode_trace(text);
+    case DecodeFormat::Record:
+      return decode_record(text);
+    case DecodeFormat::Raspblock:
+      return decode_raspblock(text);
+    default:
+      break;
+  }
+  std::vector<std::string> errors;
+  const Bytes bytes = hex_bytes(text, errors);
+  DecodeResult r =
+      format == DecodeFormat::Lsc6 ? decode_lsc6_frames(bytes) : decode_frames(bytes);
+  for (const std::string& e : errors) {
+    r.table += "! input: " + e + "\n";
+    r.issues.push_back("input: " + e);
+  }
+  return r;
+}
+
+}  // namespace seqc::backend

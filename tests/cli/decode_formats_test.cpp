@@ -1,0 +1,82 @@
+// `seqc decode` reads everything seqc writes or records, told apart by content or named with
+// --from: the inputs in tests/cli/data are written by hand (see the comments in them); the
+// tables are goldens in tests/cli/golden (SEQC_UPDATE_GOLDEN=1 rewrites them; review by eye).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+#include "tests/cli/seqc_run.hpp"
+
+namespace seqc::testing {
+namespace {
+
+struct Case {
+  const char* input;
+  const char* golden;
+  int status;
+};
+
+class DecodeFormats : public ::testing::TestWithParam<Case> {};
+
+TEST_P(DecodeFormats, MatchesGolden) {
+  const Case& c = GetParam();
+  SeqcRun r = seqc(kSource, std::string("decode tests/cli/data/") + c.input);
+  EXPECT_EQ(r.status, c.status) << r.err;
+  expect_golden(kCliGolden / (std::string("decode-") + c.golden + ".stdout"), r.out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Inputs, DecodeFormats,
+                         ::testing::Values(Case{"lsc6-upload.hex", "lsc6-upload", 0},
+                                           Case{"lsc6-broken.hex", "lsc6-broken", 1},
+                                           Case{"upload.trace", "trace", 0},
+                                           Case{"lsc6-record.csv", "lsc6-record", 0},
+                                           Case{"car.hex", "car", 0}),
+                         [](const auto& info) {
+                           std::string name = info.param.golden;
+                           for (char& ch : name) ch = ch == '-' ? '_' : ch;
+                           return name;
+                         });
+
+// stdout of `seqc compile --dry-run FILE | seqc decode -`, run by the shell as a person would.
+std::string dry_run_decoded(const std::string& file, int& status) {
+  const std::string cmd = "cd '" + kSource.string() + "' && '" SEQC_BIN "' compile --dry-run " +
+                          file + " | '" SEQC_BIN "' decode -";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::string out;
+  if (pipe == nullptr) return out;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
+  const int raw = ::pclose(pipe);
+  status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+TEST(Decode, ADryRunReadsBackThroughAPipe) {
+  // Both dialects: the xArm's walk and the LSC-6 arm; every frame decodes, nothing is flagged.
+  int status = -1;
+  const std::string walk = dry_run_decoded("examples/walk.yaml", status);
+  EXPECT_EQ(status, 0) << walk;
+  // probe, stop, barrier, steps 1-3, 29 actions, step 5, barrier
+  EXPECT_NE(walk.find("# 37 frame(s), 29 action(s), 8 s total, 0 issue(s)"), std::string::npos)
+      << walk;
+  const std::string arm = dry_run_decoded("examples/learm.yaml", status);
+  EXPECT_EQ(status, 0) << arm;
+  // Stop and 42 actions
+  EXPECT_NE(arm.find("# LSC-6: 43 frame(s), 42 action(s), 7.5 s total, 0 issue(s)"),
+            std::string::npos)
+      << arm;
+}
+
+TEST(Decode, FromForcesAFormat) {
+  // Read as the xArm dialect, CMD 25 is no request of it: every download frame is flagged.
+  SeqcRun r = seqc(kSource, "decode --from hex tests/cli/data/lsc6-upload.hex");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("cannot decode 55 55 0b 19"), std::string::npos) << r.out;
+  SeqcRun bad = seqc(kSource, "decode --from csv tests/cli/data/lsc6-upload.hex");
+  EXPECT_EQ(bad.status, 2);
+}
+
+}  // namespace
+}  // namespace seqc::testing
