@@ -12,6 +12,9 @@
 namespace seqc::cli {
 namespace {
 
+// The servo controllers' UART rate (docs/protocol/servo-controller.md, Framing).
+constexpr std::uint32_t kEmulatedBaud = 9600;
+
 PortOpenResult failure(ExitCode code, std::string message) {
   PortOpenResult r;
   r.failure = PortFailure{code, std::move(message)};
@@ -57,6 +60,9 @@ PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
     return r;
   }
   emu::XArmConfig config;
+  // Paced like the real line (and `seqc emulate xarm`), so times and rates are the wire's;
+  // `emu:xarm?baud=0` runs unpaced.
+  config.baud = kEmulatedBaud;
   if (auto ok = emu::apply_emulator_options(spec.emulator_options, config); !ok) {
     return failure(ExitCode::Usage,
                    "--port " + transport::format_port(spec) + ": " + ok.error().message);

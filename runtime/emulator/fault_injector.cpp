@@ -44,6 +44,11 @@ OutgoingFault FaultInjector::on_reply() {
   f.duplicate = out_.unit() < faults_.duplicate_ack;
   f.corrupt = out_.unit() < faults_.corrupt;
   f.corrupt_where = out_.unit();
+  // Drawn only when asked for, so the other faults' draws stay as they were for a given seed.
+  if (faults_.split > 0) {
+    f.split = out_.unit() < faults_.split;
+    f.split_where = out_.unit();
+  }
   return f;
 }
 

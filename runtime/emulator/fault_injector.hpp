@@ -40,6 +40,8 @@ struct OutgoingFault {
   bool duplicate = false;
   bool corrupt = false;
   double corrupt_where = 0;  // [0, 1): position in the frame, scaled by its length
+  bool split = false;        // handed to the host in two pieces
+  double split_where = 0;    // [0, 1): where, scaled by the frame's length
 };
 
 class FaultInjector {

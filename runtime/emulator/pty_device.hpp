@@ -43,9 +43,12 @@ class PtyDevice {
 // Wake-ups (next_output_at) are kept to the moments that matter, not one per byte: when a
 // queued byte completes a frame (found by cutting the queued bytes with a RequestFramer of
 // the device's own, exactly as the controller will), when the last queued byte arrives, and
-// when the last byte of the next reply is due. Output is handed over in whole messages: no
-// byte earlier than its due time, the message when its last byte is due (as a UART's receive
-// FIFO or a USB adapter hands a short reply to the host in one piece).
+// when the last byte of the next reply is due. Output is handed over a message at a time: no
+// byte earlier than its due time, the message when its last byte is due (as a USB adapter
+// usually hands a short reply to the host in one piece). Real adapters sometimes flush part of
+// a reply when their latency timer runs out, so the host must take replies split across
+// reads: the emulator's `split` fault queues a reply as two messages, which this device hands
+// over in two writes.
 class ControllerPtyDevice final : public PtyDevice {
  public:
   explicit ControllerPtyDevice(ControllerDevice& emu);

@@ -13,9 +13,10 @@
 namespace seqc::emu {
 namespace {
 
-constexpr std::array<std::string_view, 14> kKeys = {
-    "seed",      "drop",       "corrupt", "late",     "late-by",   "dup",  "silent-after",
-    "hangup-at", "back-after", "reset",   "reset-at", "boot-time", "busy", "busy-for"};
+constexpr std::array<std::string_view, 16> kKeys = {
+    "seed",         "drop",      "corrupt",    "late",  "late-by",  "dup",
+    "silent-after", "hangup-at", "back-after", "reset", "reset-at", "boot-time",
+    "busy",         "busy-for",  "frame-gap",  "split"};
 
 std::string unknown_key_message(std::string_view key) {
   std::string msg = "unknown fault '" + std::string(key) + "'";
@@ -99,7 +100,7 @@ std::string format_rate(double v) {
 
 bool XArmFaults::any() const {
   return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after ||
-         hangup_at || reset > 0 || reset_at || busy > 0;
+         hangup_at || reset > 0 || reset_at || busy > 0 || frame_gap.count() > 0 || split > 0;
 }
 
 Result<XArmFaults> parse_faults(std::string_view spec) {
@@ -125,7 +126,7 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
       if (!v) return v.error();
       f.seed = *v;
     } else if (key == "drop" || key == "corrupt" || key == "late" || key == "dup" ||
-               key == "reset" || key == "busy") {
+               key == "reset" || key == "busy" || key == "split") {
       auto v = parse_rate(key, value);
       if (!v) return v.error();
       (key == "drop"      ? f.drop
@@ -133,11 +134,15 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
        : key == "late"    ? f.late_ack
        : key == "reset"   ? f.reset
        : key == "busy"    ? f.busy
+       : key == "split"   ? f.split
                           : f.duplicate_ack) = *v;
-    } else if (key == "late-by" || key == "boot-time" || key == "busy-for") {
+    } else if (key == "late-by" || key == "boot-time" || key == "busy-for" || key == "frame-gap") {
       auto v = parse_duration(key, value);
       if (!v) return v.error();
-      (key == "late-by" ? f.late_by : key == "boot-time" ? f.boot_time : f.busy_for) = *v;
+      (key == "late-by"     ? f.late_by
+       : key == "boot-time" ? f.boot_time
+       : key == "busy-for"  ? f.busy_for
+                            : f.frame_gap) = *v;
     } else if (key == "back-after") {
       auto v = parse_duration(key, value);
       if (!v) return v.error();
@@ -198,6 +203,13 @@ Status apply_emulator_options(std::string_view spec, XArmConfig& config) {
     if (comma == std::string_view::npos) comma = spec.size();
     const std::string item(spec.substr(pos, comma - pos));
     pos = comma + 1;
+    if (item.starts_with("baud=")) {
+      auto baud = parse_unsigned("baud", std::string_view(item).substr(5));
+      if (!baud || *baud > 4000000)
+        return make_error("'" + item + "': baud is 0 (unpaced) to 4000000");
+      config.baud = static_cast<std::uint32_t>(*baud);
+      continue;
+    }
     std::string& into = !item.empty() && item[0] >= '0' && item[0] <= '9' ? positions : faults;
     into += (into.empty() ? "" : ",") + item;
   }
@@ -237,6 +249,8 @@ std::string describe_faults(const XArmFaults& f) {
   if (f.busy > 0 && f.busy_for != defaults.busy_for) {
     add("busy-for=" + format_duration(f.busy_for));
   }
+  if (f.frame_gap.count() > 0) add("frame-gap=" + format_duration(f.frame_gap));
+  if (f.split > 0) add("split=" + format_rate(f.split));
   if (out.empty()) return "none";
   if (f.seed != defaults.seed) add("seed=" + std::to_string(f.seed));
   return out;

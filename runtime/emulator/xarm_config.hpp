@@ -41,13 +41,21 @@ struct XArmFaults {
   // later and frames arriving meanwhile are dropped, as while erasing flash).
   double busy = 0;
   io::Duration busy_for = std::chrono::milliseconds(400);
+  // Not the firmware's behaviour (it waits for the rest of a frame however long): the request
+  // parser discards a partial frame when the next byte comes more than frame_gap after the one
+  // before, so a LEN corrupted upwards cannot swallow the frames that follow. 0 = off.
+  io::Duration frame_gap{0};
+  // Replies reach the host in two pieces, split at a random point, as a USB-serial adapter
+  // flushes part of a reply when its latency timer runs out (the second piece follows once its
+  // bytes are due). Per reply.
+  double split = 0;
 
   bool any() const;
 };
 
 // Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
 // hangup-at=500,back-after=2s,reset=0.001,reset-at=300,boot-time=300ms,busy=0.01,
-// busy-for=400ms,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
+// busy-for=400ms,frame-gap=20ms,split=0.1,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
 // s (a bare number is milliseconds). Unknown keys, rates outside 0..1 and malformed numbers
 // are errors naming the offending item.
 Result<XArmFaults> parse_faults(std::string_view spec);
@@ -61,8 +69,8 @@ using ServoPositions = std::vector<std::pair<std::uint8_t, std::uint16_t>>;
 Result<ServoPositions> parse_positions(std::string_view spec);
 
 struct XArmConfig;
-// The options `--port emu:xarm?...` takes: the fault items of parse_faults and servo positions
-// (numeric keys: "1=300,drop=0.01"). Applies them to `config`.
+// The options `--port emu:xarm?...` takes: the fault items of parse_faults, servo positions
+// (numeric keys: "1=300,drop=0.01") and baud=N (0 = unpaced). Applies them to `config`.
 Status apply_emulator_options(std::string_view spec, XArmConfig& config);
 
 struct XArmConfig {
@@ -83,10 +91,6 @@ struct XArmConfig {
   std::uint8_t servo_temperature_c = 32;  // what BusServoInfoRead reports
   ServoPositions initial_positions;       // power-on positions other than home
 
-  // Modelling choice (not from the document): the request parser discards a partial frame
-  // when the next byte arrives more than frame_gap after the previous one, so a corrupted LEN
-  // cannot swallow the frames that follow. 0 disables the rule.
-  io::Duration frame_gap = std::chrono::milliseconds(20);
 };
 
 }  // namespace seqc::emu

@@ -24,7 +24,7 @@ std::optional<lsc::Frame> reply_frame(const lsc::Reply& reply) {
 XArmEmulator::XArmEmulator(XArmConfig config)
     : config_(config),
       faults_(config.faults),
-      framer_(config.frame_gap),
+      framer_(config.faults.frame_gap),
       line_(config.baud),
       servos_(servo_config(config)),
       speeds_(kGroupCount + 1, 100) {}
@@ -215,6 +215,14 @@ void XArmEmulator::emit(const lsc::Frame& frame, io::TimePoint ready) {
   if (fault.corrupt) FaultInjector::flip(*bytes, fault.corrupt_where);
   if (fault.late) ready += config_.faults.late_by;
   if (fault.duplicate) line_.send(*bytes, ready);
+  if (fault.split && bytes->size() >= 2) {
+    // Two messages back to back on the line: the host is handed the first piece on its own.
+    const auto cut = 1 + static_cast<std::ptrdiff_t>(fault.split_where *
+                                                     static_cast<double>(bytes->size() - 1));
+    line_.send(Bytes(bytes->begin(), bytes->begin() + cut), ready);
+    line_.send(Bytes(bytes->begin() + cut, bytes->end()), ready);
+    return;
+  }
   line_.send(std::move(*bytes), ready);
 }
 

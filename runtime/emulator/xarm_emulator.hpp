@@ -36,6 +36,8 @@
 // Unknown commands and malformed frames are ignored (recorded with frame = nullopt when they
 // cannot be framed, or with their frame when they cannot be decoded).
 //
+// Like the firmware, the request parser has no inter-byte timeout: a frame waits for its last
+// byte however long (the frame-gap fault adds one).
 // Faults (XArmFaults): drawn once per framed request and once per outgoing frame, so the same
 // seed and the same input give the same received() and the same output, byte for byte.
 // Silence (silent_after) stops all further output and processing; a hang-up closes the link:
@@ -103,7 +105,7 @@ class XArmEmulator final : public ControllerDevice {
   // back by then.
   bool reconnect(io::TimePoint at) override;
   std::uint32_t baud() const override { return config_.baud; }
-  io::Duration frame_gap() const override { return config_.frame_gap; }
+  io::Duration frame_gap() const override { return config_.faults.frame_gap; }
   std::string port_name() const override { return "emu:xarm"; }
   // Resets (power dips) injected so far.
   std::size_t resets() const { return resets_; }

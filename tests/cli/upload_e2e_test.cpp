@@ -217,4 +217,40 @@ TEST(UploadCli, HangUpExitsWithDeviceFailureAndSaysTheGroupIsEmpty) {
   EXPECT_NE(err.find("seqc: group 0 is now empty"), std::string::npos) << err;
 }
 
+// stderr and stdout of `seqc upload walk.yaml --port PORT`, and its exit status.
+std::string upload_in_process(const std::string& port, int& status) {
+  std::string cmd = kSeqc + " upload " + kWalk + " --port '" + port + "' 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  if (p == nullptr) return out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
+  status = WEXITSTATUS(pclose(p));
+  return out;
+}
+
+TEST(UploadCli, TheInProcessEmulatorIsPacedLikeTheLine) {
+  // walk.yaml's download is 33 frames of 544 bytes and 33 six-byte acknowledgements: 742 bytes,
+  // which take 0.773 s at 9600 baud (960 bytes/s); a paced upload cannot report less.
+  int status = -1;
+  const std::string paced = upload_in_process("emu:xarm", status);
+  EXPECT_EQ(status, 0) << paced;
+  const auto seconds_of = [](const std::string& text) {
+    const auto at = text.find("emulated time, ");
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + 15));
+  };
+  EXPECT_GT(seconds_of(paced), 0.77) << paced;
+  const std::string unpaced = upload_in_process("emu:xarm?baud=0", status);
+  EXPECT_EQ(status, 0) << unpaced;
+  EXPECT_LT(seconds_of(unpaced), 0.5) << unpaced;
+}
+
+TEST(UploadCli, RepliesSplitAcrossReadsStillPairUp) {
+  int status = -1;
+  const std::string out = upload_in_process("emu:xarm?split=0.5,seed=4", status);
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
+      << out;
+}
+
 }  // namespace

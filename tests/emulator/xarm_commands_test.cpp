@@ -2,6 +2,7 @@
 // (hand-written).
 #include <gtest/gtest.h>
 
+#include "runtime/emulator/pty_device.hpp"
 #include "tests/emulator/emu_test_util.hpp"
 
 namespace seqc::emu::test {
@@ -37,6 +38,16 @@ TEST(XArmCommands, MoveIsLinearAndReadableWhileMoving) {
   // A target beyond the servo's range is clamped to it.
   EXPECT_EQ(exchange(emu, hex("55 55 08 03 01 00 00 04 d0 07"), t), Bytes{});
   EXPECT_EQ(emu.servo_position(4, t), 1000);
+}
+
+TEST(XArmCommands, PositionReadLeavesAbsentServosOut) {
+  XArmEmulator emu;  // six servos, ids 1-6
+  io::TimePoint t = at_ms(0);
+  // Asking for 9 only: a reply with count 0 and nothing else.
+  EXPECT_EQ(hex_of(exchange(emu, hex("55 55 04 15 01 09"), t)), "55 55 03 15 00");
+  // 2, 9 and 6: only the two on the bus, in the order asked.
+  EXPECT_EQ(hex_of(exchange(emu, hex("55 55 06 15 03 02 09 06"), t)),
+            "55 55 09 15 02 02 f4 01 06 f4 01");
 }
 
 TEST(XArmCommands, ServoOffUnpowersWhereItIs) {
@@ -134,8 +145,31 @@ TEST(XArmCommands, UnknownAndMalformedFramesAreIgnoredButRecorded) {
   EXPECT_EQ(emu.frames_received(), 3u) << "only framed requests count";
 }
 
+TEST(XArmCommands, AFrameWaitsForItsLastByteHoweverLong) {
+  // Like the firmware: no inter-byte timeout. A client writing byte by byte with pauses.
+  XArmEmulator emu;
+  const Bytes request = hex("55 55 02 0f");
+  io::TimePoint t = at_ms(0);
+  for (std::uint8_t b : request) {
+    emu.receive(ByteView(&b, 1), t);
+    t += 500ms;
+  }
+  EXPECT_EQ(hex_of(emu.take_output(t)), "55 55 04 0f 4c 1d");
+  ASSERT_EQ(emu.received().size(), 1u);
+  EXPECT_TRUE(emu.received()[0].frame.has_value());
+}
+
+TEST(XArmCommands, WithoutTheGapFaultACorruptedLenSwallowsTheNextFrame) {
+  XArmEmulator emu;
+  emu.receive(hex("55 55 20 0f"), at_ms(0));
+  emu.receive(hex("55 55 02 0f"), at_ms(30));
+  EXPECT_EQ(hex_of(emu.take_output(at_ms(1000))), "") << "still inside the first frame";
+}
+
 TEST(XArmCommands, IdleGapDiscardsPartialFrame) {
-  XArmEmulator emu;  // frame_gap 20 ms
+  XArmConfig config;
+  config.faults.frame_gap = 20ms;  // the opt-in fault: frame-gap=20ms
+  XArmEmulator emu(config);
   // A corrupted LEN (0x20 instead of 0x02) would swallow the next frames...
   emu.receive(hex("55 55 20 0f"), at_ms(0));
   // ...but after 30 ms of silence the partial frame is dropped.
@@ -145,10 +179,29 @@ TEST(XArmCommands, IdleGapDiscardsPartialFrame) {
   EXPECT_EQ(hex_of(emu.received()[0].raw), "55 55 20 0f");
   EXPECT_FALSE(emu.received()[0].frame.has_value());
   // Within the gap, the bytes continue the partial frame (as on a real UART).
-  XArmEmulator emu2;
+  XArmEmulator emu2(config);
   emu2.receive(hex("55 55 05 15"), at_ms(0));
   emu2.receive(hex("02 01 02"), at_ms(10));
   EXPECT_EQ(hex_of(emu2.take_output(at_ms(10))), "55 55 09 15 02 01 f4 01 02 f4 01");
+}
+
+TEST(XArmCommands, TheSplitFaultHandsARepliesOverInTwoPieces) {
+  XArmConfig config;
+  config.baud = 9600;
+  config.faults.split = 1.0;
+  XArmEmulator emu(config);
+  ControllerPtyDevice device(emu);
+  device.receive(hex("55 55 02 0f"), at_ms(0));
+  Bytes whole;
+  int pieces = 0;
+  while (auto at = device.next_output_at()) {
+    const Bytes got = device.take_output(*at);
+    if (got.empty()) continue;
+    ++pieces;
+    whole.insert(whole.end(), got.begin(), got.end());
+  }
+  EXPECT_EQ(pieces, 2);
+  EXPECT_EQ(hex_of(whole), "55 55 04 0f 4c 1d") << "nothing lost or reordered";
 }
 
 TEST(XArmCommands, RepliesArePacedByBaud) {
