@@ -31,6 +31,7 @@ struct PlayOptions {
   std::string port;
   bool strict = false;
   bool realtime = false;
+  bool allow_late = false;
 };
 
 std::string ms_text(io::Duration d) {
@@ -45,7 +46,8 @@ ExitCode play_servo_program(const compiler::CompileOutput& output, const PlayOpt
                             Context& ctx) {
   DeviceOptions device;
   device.port = o.port;
-  return play_on_servo_controller(ctx, output, device);
+  device.command = "play";
+  return play_on_servo_controller(ctx, output, device, LivePlayOptions{o.file, o.allow_late});
 }
 
 ExitCode play_raspblock(const compiler::RaspblockProgram& program, const PlayOptions& o,
@@ -149,6 +151,8 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "`seqc emulate raspblock`) or emu:raspblock. Servo controller: as for `seqc "
                   "upload` (default: the one connected; emu:xarm)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  cmd->add_flag("--allow-late", opts->allow_late,
+                "Servo controller: play a schedule the link cannot keep (moves leave late)");
   cmd->add_flag("--realtime", opts->realtime,
                 "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {

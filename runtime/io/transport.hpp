@@ -42,6 +42,12 @@ class Transport {
   virtual std::string describe() const = 0;
   // Seconds per byte on the wire (10 bits / baud), or 0 where unknown (HID, unpaced emulator).
   virtual double seconds_per_byte() const { return 0.0; }
+  // The shortest time between two frames the link can carry whatever their size (HID: one
+  // report per polling interval), or 0 where there is no such floor.
+  virtual Duration frame_interval() const { return Duration{0}; }
+  // Waits until every byte written so far has left the host (tcdrain on a serial port). The
+  // default has nothing to wait for: its write() returns once the bytes are gone.
+  virtual Status drain() { return Ok{}; }
   // After a HangUp: waits until `deadline` for the same device to come back (a cable that
   // slipped, a board that re-enumerated) and reconnects to it, with the same settings. True
   // when the link works again. The default cannot reconnect.

@@ -27,7 +27,38 @@ void send_safe_stop(io::Transport& transport, const PlayOptions& options, PlayRe
   }
 }
 
+// Byte times are whole nanoseconds on some links and exact on others: differences this small
+// are rounding, not lateness.
+constexpr io::Duration kRounding = std::chrono::microseconds(1);
+
+io::Duration wire_time(const ScheduledFrame& f, double seconds_per_byte) {
+  return std::chrono::duration_cast<io::Duration>(
+      std::chrono::duration<double>(static_cast<double>(f.bytes.size()) * seconds_per_byte));
+}
+
 }  // namespace
+
+ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double seconds_per_byte,
+                             io::Duration frame_interval) {
+  ScheduleCheck c;
+  io::Duration line_free{0};
+  io::Duration previous{0};
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const io::Duration start = std::max(frames[i].at, line_free);
+    if (start > frames[i].at) {
+      ++c.late_frames;
+      c.worst = std::max(c.worst, start - frames[i].at);
+      if (!c.first_late) {
+        c.first_late = i;
+        c.late_by = start - frames[i].at;
+        c.wire_time = previous;
+      }
+    }
+    previous = std::max(wire_time(frames[i], seconds_per_byte), frame_interval);
+    line_free = start + previous;
+  }
+  return c;
+}
 
 PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
                 io::Clock& clock, const PlayOptions& options) {
@@ -50,9 +81,24 @@ PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transp
       send_safe_stop(transport, options, report);
       return report;
     }
+    FrameTiming timing{deadline, begin - deadline, end - begin, io::Duration{0}};
+    if (options.drain) {
+      if (auto drained = transport.drain(); !drained) {
+        report.end = PlayEnd::WriteFailed;
+        report.error = drained.error().message;
+        send_safe_stop(transport, options, report);
+        return report;
+      }
+      // Computed wire times are rounded; a frame cannot leave before its bytes could.
+      timing.left_lateness = std::max(
+          io::Duration{0},
+          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte)) -
+              kRounding);
+      report.left_lateness.push_back(timing.left_lateness);
+    }
     ++report.sent;
     report.lateness.push_back(begin - deadline);
-    if (options.on_sent) options.on_sent(i, FrameTiming{deadline, begin - deadline, end - begin});
+    if (options.on_sent) options.on_sent(i, timing);
   }
   return report;
 }

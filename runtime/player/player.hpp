@@ -29,11 +29,14 @@ struct ScheduledFrame {
   Bytes bytes;
 };
 
-// How one frame went: lateness = when its write began - its deadline.
+// How one frame went: lateness = when its write began - its deadline. With drain, also when
+// its last byte had left compared with when it would have, written on time (its deadline plus
+// its own wire time).
 struct FrameTiming {
   io::TimePoint deadline{0};
   io::Duration lateness{0};
   io::Duration write_time{0};  // how long write() took
+  io::Duration left_lateness{0};
 };
 
 struct PlayOptions {
@@ -43,6 +46,10 @@ struct PlayOptions {
   io::Duration poll_interval = std::chrono::milliseconds(20);
   // Called after each frame is written (progress display, measurements).
   std::function<void(std::size_t index, const FrameTiming& timing)> on_sent;
+  // Wait for each frame to leave (Transport::drain) and measure left_lateness; the frame's own
+  // wire time is its size times `seconds_per_byte`.
+  bool drain = false;
+  double seconds_per_byte = 0;
 };
 
 enum class PlayEnd { Completed, Interrupted, WriteFailed };
@@ -52,6 +59,7 @@ struct PlayReport {
   io::TimePoint started{0};
   std::size_t sent = 0;                // frames written in full
   std::vector<io::Duration> lateness;  // one per frame written, in order
+  std::vector<io::Duration> left_lateness;  // with drain: one per frame written
   std::string error;                   // WriteFailed: why
   bool stop_sent = false;              // safe_stop was written after an early end
   std::string stop_error;              // why it could not be, if it was tried and failed
@@ -59,6 +67,19 @@ struct PlayReport {
 
 PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
                 io::Clock& clock, const PlayOptions& options = {});
+
+// The schedule checked against the link before playing: frame i cannot start leaving before
+// frame i-1 has left (its bytes x seconds_per_byte, at least frame_interval apart), so it
+// leaves late when the line is still busy at its deadline. The first late frame, if any.
+struct ScheduleCheck {
+  std::optional<std::size_t> first_late;  // index
+  io::Duration late_by{0};                // how late it would start leaving
+  io::Duration wire_time{0};              // the previous frame's time on the line
+  std::size_t late_frames = 0;
+  io::Duration worst{0};
+};
+ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double seconds_per_byte,
+                             io::Duration frame_interval);
 
 // Percentiles of lateness (nearest rank) and the largest value; all zero when empty.
 struct LatenessSummary {

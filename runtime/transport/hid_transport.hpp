@@ -27,6 +27,10 @@ class HidTransport final : public io::Transport {
   // a report not yet handed out. The uploader calls it before a download.
   void discard_input() override;
   std::string describe() const override { return description_; }
+  // One output report per polling interval of the interrupt endpoint: at full speed no shorter
+  // than a 1 ms USB frame (the controller's own bInterval may be longer: a reading).
+  io::Duration frame_interval() const override { return kReportInterval; }
+  static constexpr io::Duration kReportInterval = std::chrono::milliseconds(1);
 
   // At most this many queued reports are dropped by one discard_input(), so a device that
   // never stops sending cannot hold the caller forever.

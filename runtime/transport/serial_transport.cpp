@@ -230,6 +230,19 @@ io::ReadResult SerialTransport::read(std::span<std::uint8_t> buffer, io::TimePoi
   }
 }
 
+// tcdrain returns once the UART (or the USB adapter's driver) has sent everything written.
+Status SerialTransport::drain() {
+  while (::tcdrain(fd_) != 0) {
+    if (errno == EINTR) continue;
+    if (is_hang_up_errno(errno)) {
+      hung_up_ = true;
+      return make_error(hang_up("draining").message);
+    }
+    return make_error("cannot drain " + path_ + ": " + errno_text(errno));
+  }
+  return Ok{};
+}
+
 Status SerialTransport::write(ByteView bytes) {
   const io::TimePoint deadline = clock_.now() + write_budget(bytes.size(), options_);
   std::size_t done = 0;

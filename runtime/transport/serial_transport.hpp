@@ -57,6 +57,7 @@ class SerialTransport final : public io::Transport {
   void discard_input() override;
   std::string describe() const override;
   double seconds_per_byte() const override { return 10.0 / options_.baud; }
+  Status drain() override;
   bool reopen(io::TimePoint deadline) override;
 
   const std::string& path() const { return path_; }

@@ -55,8 +55,8 @@ TEST(DevicePlay, StreamsEachKeyframeAtItsStart) {
   }
   // A summary, so on stderr; stdout carries data only.
   EXPECT_EQ(r.out, "");
-  EXPECT_NE(r.err.find("seqc: played 3 moves, 1.75 s (send lateness p50 0 us, p99 0 us, max 0 "
-                       "us)\n"),
+  EXPECT_NE(r.err.find("seqc: played 3 moves, 1.75 s; moves left the port late by p50 0.0 ms, "
+                       "p99 0.0 ms, max 0.0 ms (measured once each had left)\n"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(h.clock.now() - start, milliseconds(1750));  // returns when the sequence ends

@@ -204,3 +204,92 @@ TEST(Player, SummaryUsesNearestRank) {
 
 }  // namespace
 }  // namespace seqc::player
+
+namespace seqc::player {
+namespace {
+
+// Frames of `size` bytes at the given times (ms).
+std::vector<ScheduledFrame> sized(std::size_t size, std::initializer_list<int> at_ms) {
+  std::vector<ScheduledFrame> out;
+  for (int ms : at_ms) out.push_back({std::chrono::milliseconds(ms), Bytes(size, 0x55)});
+  return out;
+}
+
+constexpr double k9600 = 10.0 / 9600;  // seconds per byte
+
+double ms(io::Duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+TEST(ScheduleCheck, AMoveDueWhileTheLineIsBusyIsLate) {
+  // 25 bytes (a six-servo MultiServoMove) take 25 x 1.0417 ms = 26.04 ms at 9600 baud.
+  const ScheduleCheck c = check_schedule(sized(25, {0, 20, 100}), k9600, io::Duration{0});
+  ASSERT_TRUE(c.first_late.has_value());
+  EXPECT_EQ(*c.first_late, 1u);
+  EXPECT_NEAR(ms(c.late_by), 6.04, 0.01);
+  EXPECT_NEAR(ms(c.wire_time), 26.04, 0.01);
+  EXPECT_EQ(c.late_frames, 1u);
+}
+
+TEST(ScheduleCheck, LatenessCarriesOverWhileMovesStayDense) {
+  // 20 ms apart, 26.04 ms each: the k-th move starts k x 6.04 ms late.
+  const ScheduleCheck c = check_schedule(sized(25, {0, 20, 40, 60}), k9600, io::Duration{0});
+  EXPECT_EQ(c.late_frames, 3u);
+  EXPECT_NEAR(ms(c.worst), 18.13, 0.01);
+}
+
+TEST(ScheduleCheck, ASparseScheduleFits) {
+  EXPECT_FALSE(check_schedule(sized(25, {0, 27, 54}), k9600, io::Duration{0}).first_late);
+  EXPECT_FALSE(check_schedule(sized(25, {0, 1000}), 0.0, io::Duration{0}).first_late)
+      << "an unpaced link keeps any schedule";
+}
+
+TEST(ScheduleCheck, HidAllowsOneReportPerInterval) {
+  const ScheduleCheck c =
+      check_schedule(sized(25, {0, 0, 5}), 0.0, std::chrono::milliseconds(1));
+  ASSERT_TRUE(c.first_late.has_value());
+  EXPECT_EQ(*c.first_late, 1u);
+  EXPECT_EQ(c.late_by, std::chrono::milliseconds(1));
+}
+
+// A link whose bytes leave at 9600 baud: write() returns at once, drain() waits for the line.
+class DrainingLink final : public io::Transport {
+ public:
+  explicit DrainingLink(io::ManualClock& clock) : clock_(clock) {}
+  Status write(ByteView bytes) override {
+    const io::TimePoint start = std::max(clock_.now(), line_free_);
+    line_free_ = start + std::chrono::duration_cast<io::Duration>(
+                             std::chrono::duration<double>(bytes.size() * k9600));
+    return Ok{};
+  }
+  Status drain() override {
+    ++drains;
+    clock_.sleep_until(line_free_);
+    return Ok{};
+  }
+  io::ReadResult read(std::span<std::uint8_t>, io::TimePoint) override { return {}; }
+  void discard_input() override {}
+  std::string describe() const override { return "draining"; }
+  int drains = 0;
+
+ private:
+  io::ManualClock& clock_;
+  io::TimePoint line_free_{0};
+};
+
+TEST(Player, MeasuresLatenessOnceTheBytesHaveLeft) {
+  io::ManualClock clock;
+  DrainingLink link(clock);
+  PlayOptions options;
+  options.drain = true;
+  options.seconds_per_byte = k9600;
+  const PlayReport r = play(sized(25, {0, 20, 100}), link, clock, options);
+  ASSERT_EQ(r.end, PlayEnd::Completed);
+  EXPECT_EQ(link.drains, 3);
+  ASSERT_EQ(r.left_lateness.size(), 3u);
+  EXPECT_EQ(r.left_lateness[0], io::Duration{0});
+  // Move 2 is written at 26.04 ms (drain of move 1), leaves at 52.08 ms instead of 46.04 ms.
+  EXPECT_NEAR(ms(r.left_lateness[1]), 6.04, 0.01);
+  EXPECT_EQ(r.left_lateness[2], io::Duration{0});
+}
+
+}  // namespace
+}  // namespace seqc::player
