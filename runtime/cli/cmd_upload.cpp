@@ -100,6 +100,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     transport = trace.get();
   }
 
+  if (const std::string why = dialect->too_big_for(*transport); !why.empty()) {
+    ctx.err << "seqc: error: " << a.file << ": " << why << "\n";
+    return ExitCode::InvalidInput;
+  }
   upload::UploadOptions options;
   options.group = group;
   options.retries = a.retries;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "runtime/cli/session_text.hpp"
+#include "runtime/protocol/group_download.hpp"
 #include "runtime/upload/controller_link.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/lsc6_uploader.hpp"
@@ -12,7 +13,15 @@ namespace {
 
 class XarmDialect final : public GroupDialect {
  public:
-  explicit XarmDialect(std::vector<lsc::Request> plan) : plan_(std::move(plan)) {}
+  explicit XarmDialect(std::vector<lsc::Request> plan) : plan_(std::move(plan)) {
+    std::size_t action = 0;
+    for (const lsc::Request& r : plan_) {
+      const int step = lsc::group_download_step(r);
+      const std::string what = step == 4 ? "step 4 (action " + std::to_string(++action) + ")"
+                                         : "step " + std::to_string(step);
+      frame_sizes_.emplace_back(lsc::encode_serial(r).value().size(), what);
+    }
+  }
   std::string board() const override { return "xArm / LSC-16 / LSC-32"; }
   std::string session_hex(std::uint8_t group, bool run, std::uint16_t times) const override {
     return upload_session_hex(plan_, group, run, times);
@@ -32,7 +41,12 @@ class XarmDialect final : public GroupDialect {
 
 class Lsc6Dialect final : public GroupDialect {
  public:
-  explicit Lsc6Dialect(std::vector<lsc6::DownloadAction> plan) : plan_(std::move(plan)) {}
+  explicit Lsc6Dialect(std::vector<lsc6::DownloadAction> plan) : plan_(std::move(plan)) {
+    for (const lsc6::DownloadAction& a : plan_) {
+      frame_sizes_.emplace_back(lsc6::encode_serial(lsc6::Request{a}).value().size(),
+                                "action " + std::to_string(a.index + 1));
+    }
+  }
   std::string board() const override { return "LSC-6"; }
   std::string session_hex(std::uint8_t group, bool run, std::uint16_t times) const override {
     return lsc6_session_hex(plan_, group, run, times);
@@ -54,6 +68,19 @@ class Lsc6Dialect final : public GroupDialect {
 };
 
 }  // namespace
+
+std::string GroupDialect::too_big_for(const io::Transport& transport) const {
+  const std::size_t limit = transport.max_frame_bytes();
+  if (limit == 0) return "";
+  for (const auto& [size, what] : frame_sizes_) {
+    if (size > limit) {
+      return what + " is a " + std::to_string(size) + "-byte frame, and " +
+             transport.describe() + " carries at most " + std::to_string(limit) +
+             " bytes in one report; nothing was sent (a serial port takes any frame)";
+    }
+  }
+  return "";
+}
 
 std::unique_ptr<GroupDialect> dialect_for(std::vector<backend::PlannedFrame> plan) {
   if (!plan.empty() && std::holds_alternative<lsc6::Request>(plan.front().request)) {

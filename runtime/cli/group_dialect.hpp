@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compiler/backend/servo_backend.hpp"
@@ -32,6 +33,13 @@ class GroupDialect {
                                       upload::UploadObserver* observer) const = 0;
   // What a run that the board did not confirm means on it.
   virtual std::string unconfirmed_run() const = 0;
+  // Why the plan cannot go over `transport` (a frame larger than one write can carry, as over
+  // USB HID), or "" when it can: checked before anything is sent.
+  std::string too_big_for(const io::Transport& transport) const;
+
+ protected:
+  // Each frame of the download in send order, with what it is ("step 4 (action 3)").
+  std::vector<std::pair<std::size_t, std::string>> frame_sizes_;
 };
 
 // The dialect `plan` (from backend::plan_download) is written in, holding the plan.

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "runtime/emulator/emulator_transport.hpp"
+#include "runtime/emulator/hid_face.hpp"
 #include "runtime/transport/baud_rates.hpp"
 #include "runtime/transport/hidapi_backend.hpp"
 #include "runtime/transport/open_port.hpp"
@@ -43,8 +44,30 @@ PortOpenResult open_lsc6(const transport::PortSpec& spec, Context& ctx) {
   return r;
 }
 
+// The xArm emulator behind its USB HID face: discovery and HidTransport as for a real device.
+PortOpenResult open_xarm_hid(const transport::PortSpec& spec) {
+  emu::XArmConfig config;  // no UART on this path: reports are paced by the USB frames
+  if (auto ok = emu::apply_emulator_options(spec.emulator_options, config); !ok) {
+    return failure(ExitCode::Usage,
+                   "--port " + transport::format_port(spec) + ": " + ok.error().message);
+  }
+  OpenedPort port;
+  port.emulated_clock = std::make_unique<io::ManualClock>();
+  port.emulator = std::make_unique<emu::XArmEmulator>(config);
+  emu::EmulatedHidBackend backend(*port.emulator, *port.emulated_clock);
+  auto opened =
+      transport::open_port(transport::hid_port(), *port.emulated_clock, kEmulatedBaud, backend);
+  if (!opened) return failure(ExitCode::PortUnavailable, opened.error().message);
+  port.transport = std::move(opened).value();
+  port.clock = port.emulated_clock.get();
+  PortOpenResult r;
+  r.port = std::move(port);
+  return r;
+}
+
 PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
   if (spec.emulator == "lsc6") return open_lsc6(spec, ctx);
+  if (spec.emulator == "xarm-hid") return open_xarm_hid(spec);
   if (spec.emulator != "xarm") {
     return failure(ExitCode::Usage, "--port emu:" + spec.emulator +
                                         ": this command talks to the servo controller; use "

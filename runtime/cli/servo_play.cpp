@@ -61,10 +61,21 @@ std::string link_text(const io::Transport& t) {
   return "at one report per " + ms_text(t.frame_interval());
 }
 
-// False when the link cannot keep the schedule and late moves are not allowed (said why).
+// False when a move cannot go over the link at all, or the link cannot keep the schedule and
+// late moves are not allowed (said why).
 bool schedule_fits(Context& ctx, const compiler::CompileOutput& compiled,
                    const std::vector<player::ScheduledFrame>& frames, const io::Transport& t,
                    const LivePlayOptions& o) {
+  if (const std::size_t limit = t.max_frame_bytes(); limit > 0) {
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      if (frames[i].bytes.size() > limit) {
+        ctx.err << "seqc: error: move " << i + 1 << " is a " << frames[i].bytes.size()
+                << "-byte frame, and " << t.describe() << " carries at most " << limit
+                << " bytes in one report; nothing was sent\n";
+        return false;
+      }
+    }
+  }
   const player::ScheduleCheck c =
       player::check_schedule(frames, t.seconds_per_byte(), t.frame_interval());
   if (!c.first_late) return true;

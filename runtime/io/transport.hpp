@@ -45,6 +45,8 @@ class Transport {
   // The shortest time between two frames the link can carry whatever their size (HID: one
   // report per polling interval), or 0 where there is no such floor.
   virtual Duration frame_interval() const { return Duration{0}; }
+  // The largest frame one write can carry (HID: what fits one report), or 0 for no limit.
+  virtual std::size_t max_frame_bytes() const { return 0; }
   // Waits until every byte written so far has left the host (tcdrain on a serial port). The
   // default has nothing to wait for: its write() returns once the bytes are gone.
   virtual Status drain() { return Ok{}; }

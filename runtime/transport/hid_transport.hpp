@@ -11,6 +11,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
+#include "runtime/protocol/lsc_frame.hpp"
 #include "runtime/transport/hid_backend.hpp"
 
 namespace seqc::transport {
@@ -30,6 +31,8 @@ class HidTransport final : public io::Transport {
   // One output report per polling interval of the interrupt endpoint: at full speed no shorter
   // than a 1 ms USB frame (the controller's own bInterval may be longer: a reading).
   io::Duration frame_interval() const override { return kReportInterval; }
+  // A serial frame travels in one 64-byte report.
+  std::size_t max_frame_bytes() const override { return lsc::kHidReportData; }
   static constexpr io::Duration kReportInterval = std::chrono::milliseconds(1);
 
   // At most this many queued reports are dropped by one discard_input(), so a device that

@@ -10,9 +10,9 @@ namespace {
 
 constexpr std::string_view kForms =
     "expected a device path (/dev/ttyUSB0[@BAUD]), serial:PATH[@BAUD], pty:PATH[@BAUD], hid, "
-    "hid:PATH, emu:xarm, emu:lsc6 or emu:raspblock";
+    "hid:PATH, emu:xarm, emu:xarm-hid, emu:lsc6 or emu:raspblock";
 
-constexpr std::array<std::string_view, 3> kEmulators{"xarm", "lsc6", "raspblock"};
+constexpr std::array<std::string_view, 4> kEmulators{"xarm", "xarm-hid", "lsc6", "raspblock"};
 
 Error port_error(std::string_view text, std::string_view why) {
   return make_error("invalid port '" + std::string(text) + "': " + std::string(why));
@@ -58,9 +58,10 @@ Result<PortSpec> parse_emulator(std::string_view whole, std::string_view rest) {
     }
   }
   return port_error(whole, name.empty() ? "the emulator name is missing; use emu:xarm, "
-                                          "emu:lsc6 or emu:raspblock"
+                                          "emu:xarm-hid, emu:lsc6 or emu:raspblock"
                                         : "unknown emulator '" + std::string(name) +
-                                              "'; use emu:xarm, emu:lsc6 or emu:raspblock");
+                                              "'; use emu:xarm, emu:xarm-hid, emu:lsc6 or "
+                                              "emu:raspblock");
 }
 
 }  // namespace

@@ -253,4 +253,38 @@ TEST(UploadCli, RepliesSplitAcrossReadsStillPairUp) {
       << out;
 }
 
+TEST(UploadCli, ThroughTheHidFace) {
+  // Discovery, HidTransport and 64-byte reports, as with a controller on USB.
+  int status = -1;
+  const std::string out = upload_in_process("emu:xarm-hid", status);
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0 (hid:emu:xarm-hid "
+                     "(0483:5750 LOBOT), emulated time"),
+            std::string::npos)
+      << out;
+}
+
+TEST(UploadCli, AFrameTooBigForAHidReportIsRefusedBeforeSending) {
+  // Twenty bus servos in one action: 55 55 LEN 05 04 G b i 0b tLo tHi, then 3 x 20: 71 > 64.
+  const std::string file = "/tmp/seqc-wide-" + std::to_string(getpid()) + ".yaml";
+  {
+    std::ofstream f(file);
+    f << "robot: bus\nsequence:\n  - move: {";
+    for (int i = 1; i <= 20; ++i) f << (i > 1 ? ", " : "") << "s" << i << ": 100";
+    f << "}\n    time: 1s\n";
+  }
+  std::string cmd = kSeqc + " upload " + file + " --port emu:xarm-hid 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[512];
+  std::string out;
+  while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
+  EXPECT_EQ(WEXITSTATUS(pclose(p)), 1);
+  EXPECT_NE(out.find("step 4 (action 1) is a 71-byte frame, and hid:emu:xarm-hid (0483:5750 "
+                     "LOBOT) carries at most 64 bytes in one report; nothing was sent"),
+            std::string::npos)
+      << out;
+  std::remove(file.c_str());
+}
+
 }  // namespace

@@ -69,7 +69,8 @@ TEST(ParsePort, Emulators) {
 TEST(ParsePort, Errors) {
   EXPECT_EQ(error_of(""),
             "invalid port '': expected a device path (/dev/ttyUSB0[@BAUD]), serial:PATH[@BAUD], "
-            "pty:PATH[@BAUD], hid, hid:PATH, emu:xarm, emu:lsc6 or emu:raspblock");
+            "pty:PATH[@BAUD], hid, hid:PATH, emu:xarm, emu:xarm-hid, emu:lsc6 or "
+            "emu:raspblock");
   EXPECT_EQ(error_of("/dev/ttyUSB0@fast"),
             "invalid port '/dev/ttyUSB0@fast': 'fast' is not a baud rate (e.g. @115200)");
   EXPECT_EQ(error_of("/dev/ttyUSB0@"),
@@ -89,11 +90,11 @@ TEST(ParsePort, Errors) {
   EXPECT_EQ(error_of("hid:"),
             "invalid port 'hid:': the HID path is missing (e.g. hid:/dev/hidraw3)");
   EXPECT_EQ(error_of("emu:"),
-            "invalid port 'emu:': the emulator name is missing; use emu:xarm, emu:lsc6 or "
-            "emu:raspblock");
+            "invalid port 'emu:': the emulator name is missing; use emu:xarm, emu:xarm-hid, "
+            "emu:lsc6 or emu:raspblock");
   EXPECT_EQ(error_of("emu:lsc16?x"),
-            "invalid port 'emu:lsc16?x': unknown emulator 'lsc16'; use emu:xarm, emu:lsc6 or "
-            "emu:raspblock");
+            "invalid port 'emu:lsc16?x': unknown emulator 'lsc16'; use emu:xarm, emu:xarm-hid, "
+            "emu:lsc6 or emu:raspblock");
   EXPECT_EQ(error_of("usb:/dev/ttyUSB0")
                 .rfind("invalid port 'usb:/dev/ttyUSB0': unknown port "
                        "kind 'usb:'; expected a device path",
