@@ -36,8 +36,8 @@ std::string_view trim(std::string_view s) {
 std::string hex_part(std::string_view line) {
   std::string_view s = trim(line.substr(0, line.find('#')));
   const std::size_t ms = s.find(" ms ");
-  if (ms != std::string_view::npos && s.substr(0, ms).find_first_not_of("0123456789 ") ==
-                                          std::string_view::npos) {
+  if (ms != std::string_view::npos &&
+      s.substr(0, ms).find_first_not_of("0123456789 ") == std::string_view::npos) {
     s = trim(s.substr(ms + 4));
   }
   return std::string(s);
@@ -323,8 +323,7 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format) {
   }
   std::vector<std::string> errors;
   const Bytes bytes = hex_bytes(text, errors);
-  DecodeResult r =
-      format == DecodeFormat::Lsc6 ? decode_lsc6_frames(bytes) : decode_frames(bytes);
+  DecodeResult r = format == DecodeFormat::Lsc6 ? decode_lsc6_frames(bytes) : decode_frames(bytes);
   for (const std::string& e : errors) {
     r.table += "! input: " + e + "\n";
     r.issues.push_back("input: " + e);

@@ -38,9 +38,10 @@ class Lsc6Decoder {
                         frames.pending_bytes()));
     }
     if (open_) {
-      issue(fmt::format("group {} download ends without its last index ({}): the board keeps "
-                        "its old action count",
-                        open_->group, open_->total - 1));
+      issue(
+          fmt::format("group {} download ends without its last index ({}): the board keeps "
+                      "its old action count",
+                      open_->group, open_->total - 1));
     }
     out_.table +=
         fmt::format("# LSC-6: {} frame(s), {} action(s), {} total, {} issue(s)\n", out_.frames,
@@ -59,9 +60,7 @@ class Lsc6Decoder {
     out_.table += fmt::format("! frame {}: {}\n", out_.frames, message);
     out_.issues.push_back(fmt::format("frame {}: {}", out_.frames, std::move(message)));
   }
-  void line(const std::string& text) {
-    out_.table += fmt::format("{:<6} {}\n", out_.frames, text);
-  }
+  void line(const std::string& text) { out_.table += fmt::format("{:<6} {}\n", out_.frames, text); }
 
   void on_frame(const lsc::Frame& frame) {
     // Requests and the board's four-byte answers share command numbers (7, 8): a frame with no
@@ -93,8 +92,8 @@ class Lsc6Decoder {
     for (const lsc6::Target& t : a.servos) {
       servos += fmt::format("{}{}={}", servos.empty() ? "" : " ", t.channel, t.pulse_us);
     }
-    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, a.group,
-                              a.total, a.index, a.time_ms, servos);
+    out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, a.group, a.total,
+                              a.index, a.time_ms, servos);
     if (a.time_ms < lsc6::kMinTime || a.time_ms > lsc6::kMaxTime) {
       issue(fmt::format("time {} ms is outside the board's 20-30000 ms", a.time_ms));
     }
@@ -116,13 +115,12 @@ class Lsc6Decoder {
       open_ = Download{a.group, a.total, 0};
     }
     if (!open_) {
-      issue(fmt::format("index {} without index 0 before it (index 0 erases the group)",
-                        a.index));
+      issue(fmt::format("index {} without index 0 before it (index 0 erases the group)", a.index));
       return;
     }
     if (a.group != open_->group || a.total != open_->total) {
-      issue(fmt::format("group {} total {} differs from the download's group {} total {}",
-                        a.group, a.total, open_->group, open_->total));
+      issue(fmt::format("group {} total {} differs from the download's group {} total {}", a.group,
+                        a.total, open_->group, open_->total));
     }
     if (a.index != open_->next) {
       issue(fmt::format("expected index {} next, got {}", open_->next, a.index));

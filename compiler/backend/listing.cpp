@@ -51,8 +51,9 @@ struct FieldsOf {
 std::string fields(const DialectRequest& request) {
   if (const auto* lsc6_request = std::get_if<lsc6::Request>(&request)) {
     if (const auto* a = std::get_if<lsc6::DownloadAction>(lsc6_request)) {
-      return fmt::format("download action | group {} | total {} | index {} | time {} ms | servos {}",
-                         a->group, a->total, a->index, a->time_ms, a->servos.size());
+      return fmt::format(
+          "download action | group {} | total {} | index {} | time {} ms | servos {}", a->group,
+          a->total, a->index, a->time_ms, a->servos.size());
     }
     return lsc6::describe(*lsc6_request);
   }
@@ -77,10 +78,9 @@ std::string render_listing(const compiler::ServoProgram& program,
                            const compiler::SourceManager& sources) {
   const std::size_t n = program.keyframes.size();
   const std::size_t blocks = (n + lsc::kActionsPerBlock - 1) / lsc::kActionsPerBlock;
-  const std::string storage =
-      uses_lsc6_dialect(program)
-          ? std::string(" (LSC-6 dialect)")
-          : fmt::format(" in {} block{}", blocks, blocks == 1 ? "" : "s");
+  const std::string storage = uses_lsc6_dialect(program)
+                                  ? std::string(" (LSC-6 dialect)")
+                                  : fmt::format(" in {} block{}", blocks, blocks == 1 ? "" : "s");
   std::string out = fmt::format("# robot {}, group {}: {} action{}{}, {} frames, {}\n",
                                 program.robot.profile, group, n, n == 1 ? "" : "s", storage,
                                 plan.size(), compiler::format_seconds(program.duration_ms()));

@@ -99,10 +99,10 @@ std::string group_capacity_text(const RobotProfile* profile) {
     return digits;
   };
   const std::size_t cap = group_capacity(profile);
-  const std::string holds = cap == lsc::kMaxActions
-                                ? "a group holds at most 1,020 (4 blocks of 255)"
-                                : "a group on the " + std::string(profile->name) +
-                                      " holds at most " + count(cap);
+  const std::string holds =
+      cap == lsc::kMaxActions
+          ? "a group holds at most 1,020 (4 blocks of 255)"
+          : "a group on the " + std::string(profile->name) + " holds at most " + count(cap);
   return holds + ", and this step makes action " + count(cap + 1);
 }
 

@@ -1,5 +1,5 @@
-// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32, lsc-6) means before the file's own
-// servo definitions are applied.
+// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32, lsc-6) means before the file's
+// own servo definitions are applied.
 //
 // This table is where a new robot kind plugs in: add a RobotKind (compile.hpp), a profile row
 // here, and the lowering for that kind (lang/compile.cpp dispatches on the profile's kind).

@@ -64,8 +64,8 @@ void ServoLowering::finish(ServoProgram& program) {
   FitResult fit = fit_timeline(timeline_);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
   if (needed > capacity()) {
-    const Location at =
-        fit.actions.size() > capacity() ? fit.actions[capacity()].source : fit.actions.back().source;
+    const Location at = fit.actions.size() > capacity() ? fit.actions[capacity()].source
+                                                        : fit.actions.back().source;
     reporter_.error(at, "the sequence needs " + std::string(truncated_ ? "at least " : "") +
                             std::to_string(needed) + "/" + std::to_string(capacity()) +
                             " actions; " + group_capacity_text(robot_.profile));

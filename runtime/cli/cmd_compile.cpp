@@ -3,11 +3,11 @@
 #include <string>
 
 #include "compiler/backend/listing.hpp"
-#include "runtime/cli/group_dialect.hpp"
 #include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/group_dialect.hpp"
 #include "runtime/cli/session_text.hpp"
 #include "runtime/io/disk.hpp"
 

@@ -107,8 +107,8 @@ struct EraseOptions {
 ExitCode erase_group(Context& ctx, const EraseOptions& o) {
   if (o.all && !o.group.empty()) return usage_error(ctx, "give GROUP or --all, not both");
   if (!o.all && o.group.empty()) return usage_error(ctx, "give a GROUP to erase, or --all");
-  auto target = o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true})
-                      : parse_group_target(o.group);
+  auto target =
+      o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true}) : parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
   if (is_lsc6_board(o.device.profile(), o.device.port)) {
     return lsc6_erase(ctx, o.device, target->all);
@@ -164,8 +164,7 @@ void add_group_command(CLI::App& app, Context& ctx, Outcome& result) {
   CLI::App* erase_cmd =
       group->add_subcommand("erase", "Erase a stored group, or all of them (GroupErase)");
   erase_cmd->add_option("GROUP", erase->group, "Group number 0-254, or `all`");
-  erase_cmd->add_flag("--all", erase->all,
-                      "Erase every group (the only erase an LSC-6 board has)");
+  erase_cmd->add_flag("--all", erase->all, "Erase every group (the only erase an LSC-6 board has)");
   add_device_options(*erase_cmd, erase->device);
   erase_cmd->callback([erase, &ctx, &result] { result.code = erase_group(ctx, *erase); });
 

@@ -18,8 +18,8 @@
 #include "compiler/lang/show.hpp"
 #include "runtime/cli/board_port.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/group_dialect.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/group_dialect.hpp"
 #include "runtime/cli/port_open.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/upload/controller_link.hpp"
@@ -97,7 +97,7 @@ bool upload_stage(Context& ctx, Stage& stage) {
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
   const upload::UploadResult r = dialect->upload(*stage.transport, *stage.controller->clock,
-                                                  ctx.interrupted, options, &progress);
+                                                 ctx.interrupted, options, &progress);
   progress.finish();
   if (!r.ok()) {
     ctx.err << "seqc: error: " << p.name << ": " << r.message << "\n";

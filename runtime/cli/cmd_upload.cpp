@@ -147,8 +147,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     if (r.run_reported) {
       ctx.err << "seqc: group " << a.group << " started (" << times << ")\n";
     } else {
-      ctx.err << "seqc: asked the controller to run group " << a.group << " (" << times
-              << "); " << dialect->unconfirmed_run() << "\n";
+      ctx.err << "seqc: asked the controller to run group " << a.group << " (" << times << "); "
+              << dialect->unconfirmed_run() << "\n";
     }
   }
   return ExitCode::Ok;

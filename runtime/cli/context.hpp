@@ -11,7 +11,7 @@
 namespace seqc::emu {
 class XArmEmulator;
 class Lsc6Emulator;
-}
+}  // namespace seqc::emu
 
 namespace seqc::cli {
 

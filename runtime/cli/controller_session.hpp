@@ -32,9 +32,9 @@ namespace seqc::cli {
 struct DeviceOptions {
   std::string port;  // empty: find the one connected controller
   std::string timeout = "1s";
-  std::string robot;                      // --robot, when the command has no other use for it
+  std::string robot;                          // --robot, when the command has no other use for it
   const CLI::Option* robot_option = nullptr;  // the command's own --robot, when it has one
-  std::string command;                    // "group speed", "battery": for messages
+  std::string command;                        // "group speed", "battery": for messages
 
   // The --robot profile given ("" if none): `lsc-6` selects that board's dialect.
   std::string profile() const;

@@ -74,8 +74,8 @@ std::string GroupDialect::too_big_for(const io::Transport& transport) const {
   if (limit == 0) return "";
   for (const auto& [size, what] : frame_sizes_) {
     if (size > limit) {
-      return what + " is a " + std::to_string(size) + "-byte frame, and " +
-             transport.describe() + " carries at most " + std::to_string(limit) +
+      return what + " is a " + std::to_string(size) + "-byte frame, and " + transport.describe() +
+             " carries at most " + std::to_string(limit) +
              " bytes in one report; nothing was sent (a serial port takes any frame)";
     }
   }

@@ -78,8 +78,7 @@ ExitCode lsc6_run(Context& ctx, const DeviceOptions& device, std::uint8_t group,
     }
     if (w.status != upload::WaitStatus::Timeout) return wait_failed(ctx, link, w);
     summarize(ctx, "group " + std::to_string(group) + ": run sent, " + how);
-    ctx.err << "seqc: warning: the board did not answer Run within "
-            << describe_duration(timeout)
+    ctx.err << "seqc: warning: the board did not answer Run within " << describe_duration(timeout)
             << "; some copies of the LSC-6 firmware never do, so the group may have started "
                "(started, unconfirmed)\n";
     return ExitCode::Ok;

@@ -35,7 +35,8 @@ io::ReadResult EmulatorTransport::read(std::span<std::uint8_t> buffer, io::TimeP
   if (buffer.empty()) return io::ReadResult{io::ReadStatus::Error, 0, "empty read buffer"};
   while (true) {
     if (!inbox_.empty()) return deliver(buffer);
-    if (emu_.hung_up()) return io::ReadResult{io::ReadStatus::HangUp, 0, emu_.port_name() + " hung up"};
+    if (emu_.hung_up())
+      return io::ReadResult{io::ReadStatus::HangUp, 0, emu_.port_name() + " hung up"};
     Bytes due = emu_.take_output(clock_.now());
     if (!due.empty()) {
       inbox_ = std::move(due);

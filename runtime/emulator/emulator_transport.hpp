@@ -15,8 +15,8 @@
 
 #include <string>
 
-#include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/controller_device.hpp"
+#include "runtime/emulator/serial_line.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 

@@ -13,10 +13,11 @@ EmulatedHidDevice::EmulatedHidDevice(XArmEmulator& emulator, io::ManualClock& cl
 
 Result<std::size_t> EmulatedHidDevice::write(ByteView report) {
   if (report.size() != 1 + lsc::kHidReportData || report[0] != 0) {
-    return make_error("the controller's output report is report id 0 and 64 bytes (65 for "
-                      "hid_write), got " +
-                      std::to_string(report.size()) + " bytes starting " +
-                      (report.empty() ? std::string("nowhere") : to_hex(report.first(1))));
+    return make_error(
+        "the controller's output report is report id 0 and 64 bytes (65 for "
+        "hid_write), got " +
+        std::to_string(report.size()) + " bytes starting " +
+        (report.empty() ? std::string("nowhere") : to_hex(report.first(1))));
   }
   written_.emplace_back(report.begin(), report.end());
   // The frame is what LEN says; the padding never reaches the controller's parser.
@@ -24,7 +25,8 @@ Result<std::size_t> EmulatedHidDevice::write(ByteView report) {
   const std::size_t len =
       data.size() >= 3 && data[0] == 0x55 && data[1] == 0x55 ? std::size_t{data[2]} + 2 : 0;
   const std::size_t n = std::min(len, data.size());
-  const io::TimePoint at = std::max(clock_.now(), next_slot_) + transport::HidTransport::kReportInterval;
+  const io::TimePoint at =
+      std::max(clock_.now(), next_slot_) + transport::HidTransport::kReportInterval;
   next_slot_ = at;
   clock_.sleep_until(at);
   if (n > 0) emu_.receive(data.first(n), at);

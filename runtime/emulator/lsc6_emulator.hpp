@@ -55,7 +55,7 @@ struct Lsc6Config {
   io::Duration sector_erase = std::chrono::milliseconds(45);
   io::Duration slot_write = std::chrono::microseconds(700);
   io::Duration table_write = std::chrono::microseconds(1400);  // 256 bytes: one page program
-  double drop = 0.0;  // fraction of completed frames lost
+  double drop = 0.0;                                           // fraction of completed frames lost
   std::uint64_t seed = 1;
 };
 

@@ -32,10 +32,10 @@ class PtyDevice {
   virtual bool hung_up() const = 0;
 };
 
-// A servo controller (xArm or LSC-6 firmware) behind a pty. A pty has no line rate: whatever the host writes is
-// readable at once. The device puts the host's bytes on an InputLine at the emulator's baud,
-// so each byte reaches the controller after its wire time (byte k of a write at t at
-// t + (k+1) x 10 bits / baud, queued behind bytes still on the line) and a frame is processed
+// A servo controller (xArm or LSC-6 firmware) behind a pty. A pty has no line rate: whatever the
+// host writes is readable at once. The device puts the host's bytes on an InputLine at the
+// emulator's baud, so each byte reaches the controller after its wire time (byte k of a write at t
+// at t + (k+1) x 10 bits / baud, queued behind bytes still on the line) and a frame is processed
 // only once its last byte has arrived, as on a real UART. Every byte is handed to the
 // emulator stamped with its own delivery time, however late the server wakes, so the
 // emulated timeline depends only on when the host wrote.

@@ -55,9 +55,9 @@ struct XArmFaults {
 
 // Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
 // hangup-at=500,back-after=2s,reset=0.001,reset-at=300,boot-time=300ms,busy=0.01,
-// busy-for=400ms,frame-gap=20ms,split=0.1,seed=7" (any subset, any order; "" = no faults). Durations take ns, us, ms or
-// s (a bare number is milliseconds). Unknown keys, rates outside 0..1 and malformed numbers
-// are errors naming the offending item.
+// busy-for=400ms,frame-gap=20ms,split=0.1,seed=7" (any subset, any order; "" = no faults).
+// Durations take ns, us, ms or s (a bare number is milliseconds). Unknown keys, rates outside 0..1
+// and malformed numbers are errors naming the offending item.
 Result<XArmFaults> parse_faults(std::string_view spec);
 
 // The spec form of `faults` (only non-default items), e.g. "drop=0.05,seed=7"; "none" if none.
@@ -90,7 +90,6 @@ struct XArmConfig {
   std::uint16_t servo_home = 500;
   std::uint8_t servo_temperature_c = 32;  // what BusServoInfoRead reports
   ServoPositions initial_positions;       // power-on positions other than home
-
 };
 
 }  // namespace seqc::emu

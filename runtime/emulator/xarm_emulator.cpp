@@ -217,8 +217,8 @@ void XArmEmulator::emit(const lsc::Frame& frame, io::TimePoint ready) {
   if (fault.duplicate) line_.send(*bytes, ready);
   if (fault.split && bytes->size() >= 2) {
     // Two messages back to back on the line: the host is handed the first piece on its own.
-    const auto cut = 1 + static_cast<std::ptrdiff_t>(fault.split_where *
-                                                     static_cast<double>(bytes->size() - 1));
+    const auto cut =
+        1 + static_cast<std::ptrdiff_t>(fault.split_where * static_cast<double>(bytes->size() - 1));
     line_.send(Bytes(bytes->begin(), bytes->begin() + cut), ready);
     line_.send(Bytes(bytes->begin() + cut, bytes->end()), ready);
     return;

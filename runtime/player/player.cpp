@@ -92,8 +92,7 @@ PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transp
       // Computed wire times are rounded; a frame cannot leave before its bytes could.
       timing.left_lateness = std::max(
           io::Duration{0},
-          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte)) -
-              kRounding);
+          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte)) - kRounding);
       report.left_lateness.push_back(timing.left_lateness);
     }
     ++report.sent;

@@ -57,12 +57,12 @@ enum class PlayEnd { Completed, Interrupted, WriteFailed };
 struct PlayReport {
   PlayEnd end = PlayEnd::Completed;
   io::TimePoint started{0};
-  std::size_t sent = 0;                // frames written in full
-  std::vector<io::Duration> lateness;  // one per frame written, in order
+  std::size_t sent = 0;                     // frames written in full
+  std::vector<io::Duration> lateness;       // one per frame written, in order
   std::vector<io::Duration> left_lateness;  // with drain: one per frame written
-  std::string error;                   // WriteFailed: why
-  bool stop_sent = false;              // safe_stop was written after an early end
-  std::string stop_error;              // why it could not be, if it was tried and failed
+  std::string error;                        // WriteFailed: why
+  bool stop_sent = false;                   // safe_stop was written after an early end
+  std::string stop_error;                   // why it could not be, if it was tried and failed
 };
 
 PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,

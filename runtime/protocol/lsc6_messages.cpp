@@ -107,8 +107,7 @@ Result<std::vector<Target>> read_action(FieldReader& r, std::uint16_t& time_ms,
 
 Status expect_empty(const Frame& f, const std::string& what) {
   if (!f.data.empty()) {
-    return make_error(what + ": expected no data, got " + std::to_string(f.data.size()) +
-                      " bytes");
+    return make_error(what + ": expected no data, got " + std::to_string(f.data.size()) + " bytes");
   }
   return Ok{};
 }
@@ -254,8 +253,8 @@ Result<std::vector<DownloadAction>> plan_download(std::uint8_t group,
       return make_error(what + " moves " + std::to_string(a.servos.size()) +
                         " servos; the LSC-6 stops playing at an action with more than 8");
     }
-    DownloadAction d{group, static_cast<std::uint8_t>(actions.size()),
-                     static_cast<std::uint8_t>(i), a.time_ms, a.servos};
+    DownloadAction d{group, static_cast<std::uint8_t>(actions.size()), static_cast<std::uint8_t>(i),
+                     a.time_ms, a.servos};
     if (auto frame = encode(Request{d}); !frame) {
       return make_error(what + ": " + frame.error().message);
     }

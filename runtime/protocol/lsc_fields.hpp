@@ -1,5 +1,6 @@
 // Internal to the protocol library: little-endian field writer and reader for the servo
-// controller's frame data, shared by lsc_messages.cpp and group_download.cpp.
+// controller's frame data and the checks encoding and decoding share, used by
+// lsc_messages.cpp, lsc_decode.cpp, group_download.cpp and lsc6_messages.cpp.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,7 @@
 #include <utility>
 
 #include "runtime/protocol/lsc_frame.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
 #include "runtime/protocol/result.hpp"
 
 namespace seqc::lsc::detail {
@@ -72,6 +74,21 @@ inline Status expect_size(const Bytes& data, std::size_t expected, const std::st
   if (data.size() != expected) {
     return make_error(what + ": expected " + std::to_string(expected) + " data bytes, got " +
                       std::to_string(data.size()));
+  }
+  return Ok{};
+}
+
+constexpr std::uint8_t cmd_of(Command c) { return static_cast<std::uint8_t>(c); }
+
+// BusServoLimits' two flag fields hold only the values the document gives them.
+inline Status check_limits(const BusServoLimits& l, const std::string& what) {
+  if (l.led_status > 1) {
+    return make_error(what + ": led_status " + std::to_string(l.led_status) +
+                      " is outside 0..1 (0 = enable, 1 = disable)");
+  }
+  if ((l.led_warning & ~0x07) != 0) {
+    return make_error(what + ": led_warning " + std::to_string(l.led_warning) +
+                      " sets bits other than 0-2 (overheat, overvoltage, overposition)");
   }
   return Ok{};
 }

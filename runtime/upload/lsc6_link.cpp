@@ -10,8 +10,7 @@ constexpr io::Duration kSlice = std::chrono::milliseconds(100);
 
 }  // namespace
 
-Lsc6Link::Lsc6Link(io::Transport& transport, io::Clock& clock,
-                   const std::atomic<bool>* interrupted)
+Lsc6Link::Lsc6Link(io::Transport& transport, io::Clock& clock, const std::atomic<bool>* interrupted)
     : transport_(transport), clock_(clock), interrupted_(interrupted) {}
 
 Status Lsc6Link::send(const lsc6::Request& request) {

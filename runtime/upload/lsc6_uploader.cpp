@@ -155,8 +155,8 @@ Lsc6Run::Flow Lsc6Run::exchange(std::size_t i) {
     }
     ++result_.retries;
     if (observer_ != nullptr) {
-      observer_->on_retry(RetryEvent{what(i), sends + 1, opt_.retries + 1,
-                                     "no answer within " + seconds(limit)});
+      observer_->on_retry(
+          RetryEvent{what(i), sends + 1, opt_.retries + 1, "no answer within " + seconds(limit)});
     }
   }
   // Each sending earns at most one answer: wait for those still owed before the next frame.
@@ -197,8 +197,9 @@ void Lsc6Run::start_group() {
   if (w.ok()) {
     result_.run_reported = true;
   } else {
-    note("the board did not answer Run (some copies of its firmware never do): started, "
-         "unconfirmed");
+    note(
+        "the board did not answer Run (some copies of its firmware never do): started, "
+        "unconfirmed");
   }
 }
 
@@ -235,7 +236,8 @@ UploadResult Lsc6Run::go() {
       }
       ++result_.restarts;
       if (observer_ != nullptr) {
-        observer_->on_restart(RestartEvent{result_.restarts + 1, opt_.restarts + 1, restart_reason_});
+        observer_->on_restart(
+            RestartEvent{result_.restarts + 1, opt_.restarts + 1, restart_reason_});
       }
     }
   } else {

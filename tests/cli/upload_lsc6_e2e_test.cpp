@@ -50,9 +50,15 @@ class Lsc6E2E : public ::testing::Test {
   }
   void start_emulator(const std::vector<std::string>& extra = {}) {
     link_ = dir_ + "/lsc6";
-    std::vector<std::string> args = {kSeqc,    "emulate",         "lsc6",  "--link",
-                                      link_,    "--record",        dir_ + "/record.csv",
-                                      "--dump-groups", dir_ + "/groups.txt"};
+    std::vector<std::string> args = {kSeqc,
+                                     "emulate",
+                                     "lsc6",
+                                     "--link",
+                                     link_,
+                                     "--record",
+                                     dir_ + "/record.csv",
+                                     "--dump-groups",
+                                     dir_ + "/groups.txt"};
     args.insert(args.end(), extra.begin(), extra.end());
     emulator_ = spawn(args, dir_ + "/emu.out", dir_ + "/emu.err");
     ASSERT_GT(emulator_, 0);
@@ -75,8 +81,7 @@ TEST_F(Lsc6E2E, UploadsAndRunsOnTheEmulatedBoard) {
   start_emulator();
   std::string err;
   ASSERT_EQ(run({kSeqc, "upload", file_, "--port", link_, "--run"}, &err), 0) << err;
-  EXPECT_NE(err.find("seqc: the controller acknowledged 3 actions into group 0"),
-            std::string::npos)
+  EXPECT_NE(err.find("seqc: the controller acknowledged 3 actions into group 0"), std::string::npos)
       << err;
   EXPECT_NE(err.find("seqc: group 0 started (1 time)"), std::string::npos) << err;
   ASSERT_EQ(stop_with_sigint(emulator_), 0);

@@ -59,12 +59,16 @@ TEST(Backend, FullGroupPacksIntoExactlyFourBlocks) {
   const auto& open = std::get<lsc::GroupDownloadOpen>(std::get<lsc::Request>((*plan)[0].request));
   EXPECT_EQ(open.block_counts, (std::vector<std::uint8_t>{255, 255, 255, 255}));
   for (int b = 0; b < 4; ++b) {
-    const auto& size = std::get<lsc::GroupDownloadSize>(std::get<lsc::Request>((*plan)[1 + b].request));
+    const auto& size =
+        std::get<lsc::GroupDownloadSize>(std::get<lsc::Request>((*plan)[1 + b].request));
     EXPECT_EQ(size.block, b);
     EXPECT_EQ(size.count, 255);
   }
-  EXPECT_EQ(std::get<lsc::GroupDownloadBlocks>(std::get<lsc::Request>((*plan)[5].request)).block_count, 4);
-  const auto& last = std::get<lsc::GroupDownloadAction>(std::get<lsc::Request>((*plan)[1025].request));
+  EXPECT_EQ(
+      std::get<lsc::GroupDownloadBlocks>(std::get<lsc::Request>((*plan)[5].request)).block_count,
+      4);
+  const auto& last =
+      std::get<lsc::GroupDownloadAction>(std::get<lsc::Request>((*plan)[1025].request));
   EXPECT_EQ(last.block, 3);
   EXPECT_EQ(last.index, 254);
 }

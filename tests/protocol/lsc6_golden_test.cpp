@@ -126,8 +126,10 @@ TEST(Lsc6Plan, StoresEachActionWithItsIndexAndTheTotal) {
   auto plan = plan_download(3, {{100, {{1, 1500}}}, {200, {{2, 600}}}});
   ASSERT_TRUE(plan.ok());
   ASSERT_EQ(plan->size(), 2u);
-  EXPECT_EQ(hex_or_error(encode_serial((*plan)[0])), norm("55 55 0b 19 03 02 00 01 64 00 01 dc 05"));
-  EXPECT_EQ(hex_or_error(encode_serial((*plan)[1])), norm("55 55 0b 19 03 02 01 01 c8 00 02 58 02"));
+  EXPECT_EQ(hex_or_error(encode_serial((*plan)[0])),
+            norm("55 55 0b 19 03 02 00 01 64 00 01 dc 05"));
+  EXPECT_EQ(hex_or_error(encode_serial((*plan)[1])),
+            norm("55 55 0b 19 03 02 01 01 c8 00 02 58 02"));
 }
 
 TEST(Lsc6Plan, RefusesMoreThan255ActionsAndMoreThan8Servos) {

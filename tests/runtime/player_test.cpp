@@ -243,8 +243,7 @@ TEST(ScheduleCheck, ASparseScheduleFits) {
 }
 
 TEST(ScheduleCheck, HidAllowsOneReportPerInterval) {
-  const ScheduleCheck c =
-      check_schedule(sized(25, {0, 0, 5}), 0.0, std::chrono::milliseconds(1));
+  const ScheduleCheck c = check_schedule(sized(25, {0, 0, 5}), 0.0, std::chrono::milliseconds(1));
   ASSERT_TRUE(c.first_late.has_value());
   EXPECT_EQ(*c.first_late, 1u);
   EXPECT_EQ(c.late_by, std::chrono::milliseconds(1));
@@ -256,8 +255,8 @@ class DrainingLink final : public io::Transport {
   explicit DrainingLink(io::ManualClock& clock) : clock_(clock) {}
   Status write(ByteView bytes) override {
     const io::TimePoint start = std::max(clock_.now(), line_free_);
-    line_free_ = start + std::chrono::duration_cast<io::Duration>(
-                             std::chrono::duration<double>(bytes.size() * k9600));
+    line_free_ = start + std::chrono::duration_cast<io::Duration>(std::chrono::duration<double>(
+                             static_cast<double>(bytes.size()) * k9600));
     return Ok{};
   }
   Status drain() override {
