@@ -23,28 +23,11 @@ struct Download {
 class Decoder {
  public:
   DecodeResult run(ByteView bytes) {
-    lsc::FrameDecoder frames;
-    frames.feed(bytes);
     out_.table = fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", "frame", "group", "block",
                              "index", "time_ms", "servos");
-    std::size_t skipped = 0;
-    while (auto frame = frames.next()) {
-      ++out_.frames;
-      if (frames.skipped_bytes() != skipped) {
-        issue(fmt::format("{} byte(s) before this frame are not part of any frame",
-                          frames.skipped_bytes() - skipped));
-        skipped = frames.skipped_bytes();
-      }
-      on_frame(*frame);
-    }
-    if (frames.skipped_bytes() != skipped) {
-      issue(fmt::format("{} byte(s) after the last frame are not part of any frame",
-                        frames.skipped_bytes() - skipped));
-    }
-    if (frames.pending_bytes() != 0) {
-      issue(fmt::format("the input ends inside a frame ({} byte(s) left over)",
-                        frames.pending_bytes()));
-    }
+    walk_frames(
+        bytes, out_.frames, [this](const lsc::Frame& f) { on_frame(f); },
+        [this](std::string m) { issue(std::move(m)); });
     if (open_) {
       issue(fmt::format("group {} download was opened but never closed (step 5 missing)",
                         open_->group));
@@ -177,6 +160,31 @@ class Decoder {
 };
 
 }  // namespace
+
+void walk_frames(ByteView bytes, std::size_t& frames,
+                 const std::function<void(const lsc::Frame&)>& on_frame,
+                 const std::function<void(std::string)>& issue) {
+  lsc::FrameDecoder decoder;
+  decoder.feed(bytes);
+  std::size_t skipped = 0;
+  while (auto frame = decoder.next()) {
+    ++frames;
+    if (decoder.skipped_bytes() != skipped) {
+      issue(fmt::format("{} byte(s) before this frame are not part of any frame",
+                        decoder.skipped_bytes() - skipped));
+      skipped = decoder.skipped_bytes();
+    }
+    on_frame(*frame);
+  }
+  if (decoder.skipped_bytes() != skipped) {
+    issue(fmt::format("{} byte(s) after the last frame are not part of any frame",
+                      decoder.skipped_bytes() - skipped));
+  }
+  if (decoder.pending_bytes() != 0) {
+    issue(fmt::format("the input ends inside a frame ({} byte(s) left over)",
+                      decoder.pending_bytes()));
+  }
+}
 
 DecodeResult decode_frames(ByteView bytes) { return Decoder{}.run(bytes); }
 

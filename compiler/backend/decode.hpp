@@ -2,10 +2,12 @@
 // GroupDownload is internally consistent (order, block slots, counts, open/close).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "runtime/protocol/bytes.hpp"
+#include "runtime/protocol/lsc_frame.hpp"
 
 namespace seqc::backend {
 
@@ -19,5 +21,11 @@ struct DecodeResult {
 // Decodes any sequence of serial frames (whatever the line breaks), skipping and flagging
 // garbage between frames.
 DecodeResult decode_frames(ByteView bytes);
+
+// The frame walk both dialects' decoders share: `on_frame` for each frame in order (after
+// `frames` counts it), `issue` for bytes outside frames and for input that ends inside one.
+void walk_frames(ByteView bytes, std::size_t& frames,
+                 const std::function<void(const lsc::Frame&)>& on_frame,
+                 const std::function<void(std::string)>& issue);
 
 }  // namespace seqc::backend

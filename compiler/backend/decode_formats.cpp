@@ -96,33 +96,26 @@ FrameText describe_frames(lsc::FrameDecoder& frames, ByteView bytes,
 }
 
 using Describe = std::function<Result<std::string>(const lsc::Frame&)>;
+template <class Msg, class DescribeFn>
+Describe describer(Result<Msg> (*decode)(const lsc::Frame&), DescribeFn describe) {
+  return [decode, describe](const lsc::Frame& f) -> Result<std::string> {
+    auto m = decode(f);
+    if (!m) return m.error();
+    return describe(*m);
+  };
+}
 Describe request_describer(bool lsc6) {
   if (lsc6) {
-    return [](const lsc::Frame& f) -> Result<std::string> {
-      auto r = lsc6::decode_request(f);
-      if (!r) return r.error();
-      return lsc6::describe(*r);
-    };
+    return describer(&lsc6::decode_request,
+                     [](const lsc6::Request& r) { return lsc6::describe(r); });
   }
-  return [](const lsc::Frame& f) -> Result<std::string> {
-    auto r = lsc::decode_request(f);
-    if (!r) return r.error();
-    return lsc::describe(*r);
-  };
+  return describer(&lsc::decode_request, [](const lsc::Request& r) { return lsc::describe(r); });
 }
 Describe reply_describer(bool lsc6) {
   if (lsc6) {
-    return [](const lsc::Frame& f) -> Result<std::string> {
-      auto r = lsc6::decode_reply(f);
-      if (!r) return r.error();
-      return lsc6::describe(*r);
-    };
+    return describer(&lsc6::decode_reply, [](const lsc6::Reply& r) { return lsc6::describe(r); });
   }
-  return [](const lsc::Frame& f) -> Result<std::string> {
-    auto r = lsc::decode_reply(f);
-    if (!r) return r.error();
-    return lsc::describe(*r);
-  };
+  return describer(&lsc::decode_reply, [](const lsc::Reply& r) { return lsc::describe(r); });
 }
 
 class TextTable {

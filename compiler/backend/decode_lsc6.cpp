@@ -7,7 +7,6 @@
 #include "compiler/backend/decode_formats.hpp"
 #include "compiler/source/units.hpp"
 #include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
 
 namespace seqc::backend {
 namespace {
@@ -15,28 +14,11 @@ namespace {
 class Lsc6Decoder {
  public:
   DecodeResult run(ByteView bytes) {
-    lsc::FrameDecoder frames;
-    frames.feed(bytes);
     out_.table = fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", "frame", "group", "total",
                              "index", "time_ms", "servos");
-    std::size_t skipped = 0;
-    while (auto frame = frames.next()) {
-      ++out_.frames;
-      if (frames.skipped_bytes() != skipped) {
-        issue(fmt::format("{} byte(s) before this frame are not part of any frame",
-                          frames.skipped_bytes() - skipped));
-        skipped = frames.skipped_bytes();
-      }
-      on_frame(*frame);
-    }
-    if (frames.skipped_bytes() != skipped) {
-      issue(fmt::format("{} byte(s) after the last frame are not part of any frame",
-                        frames.skipped_bytes() - skipped));
-    }
-    if (frames.pending_bytes() != 0) {
-      issue(fmt::format("the input ends inside a frame ({} byte(s) left over)",
-                        frames.pending_bytes()));
-    }
+    walk_frames(
+        bytes, out_.frames, [this](const lsc::Frame& f) { on_frame(f); },
+        [this](std::string m) { issue(std::move(m)); });
     if (open_) {
       issue(
           fmt::format("group {} download ends without its last index ({}): the board keeps "

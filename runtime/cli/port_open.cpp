@@ -44,25 +44,34 @@ PortOpenResult open_lsc6(const transport::PortSpec& spec, Context& ctx) {
   return r;
 }
 
-// The xArm emulator behind its USB HID face: discovery and HidTransport as for a real device.
-PortOpenResult open_xarm_hid(const transport::PortSpec& spec) {
-  emu::XArmConfig config;  // no UART on this path: reports are paced by the USB frames
+// A fresh XArmEmulator on its own clock, with the spec's options over `baud` (no transport yet).
+PortOpenResult new_xarm_emulator(const transport::PortSpec& spec, std::uint32_t baud) {
+  emu::XArmConfig config;
+  config.baud = baud;
   if (auto ok = emu::apply_emulator_options(spec.emulator_options, config); !ok) {
     return failure(ExitCode::Usage,
                    "--port " + transport::format_port(spec) + ": " + ok.error().message);
   }
-  OpenedPort port;
-  port.emulated_clock = std::make_unique<io::ManualClock>();
-  port.emulator = std::make_unique<emu::XArmEmulator>(config);
+  PortOpenResult r;
+  r.port.emplace();
+  r.port->emulated_clock = std::make_unique<io::ManualClock>();
+  r.port->emulator = std::make_unique<emu::XArmEmulator>(config);
+  r.port->clock = r.port->emulated_clock.get();
+  return r;
+}
+
+// The xArm emulator behind its USB HID face: discovery and HidTransport as for a real device.
+PortOpenResult open_xarm_hid(const transport::PortSpec& spec) {
+  // No UART on this path: reports are paced by the USB frames.
+  PortOpenResult made = new_xarm_emulator(spec, 0);
+  if (!made.port) return made;
+  OpenedPort& port = *made.port;
   emu::EmulatedHidBackend backend(*port.emulator, *port.emulated_clock);
   auto opened =
       transport::open_port(transport::hid_port(), *port.emulated_clock, kEmulatedBaud, backend);
   if (!opened) return failure(ExitCode::PortUnavailable, opened.error().message);
   port.transport = std::move(opened).value();
-  port.clock = port.emulated_clock.get();
-  PortOpenResult r;
-  r.port = std::move(port);
-  return r;
+  return made;
 }
 
 PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
@@ -82,22 +91,14 @@ PortOpenResult open_emulator(const transport::PortSpec& spec, Context& ctx) {
     r.port = std::move(port);
     return r;
   }
-  emu::XArmConfig config;
   // Paced like the real line (and `seqc emulate xarm`), so times and rates are the wire's;
   // `emu:xarm?baud=0` runs unpaced.
-  config.baud = kEmulatedBaud;
-  if (auto ok = emu::apply_emulator_options(spec.emulator_options, config); !ok) {
-    return failure(ExitCode::Usage,
-                   "--port " + transport::format_port(spec) + ": " + ok.error().message);
+  PortOpenResult made = new_xarm_emulator(spec, kEmulatedBaud);
+  if (made.port) {
+    OpenedPort& port = *made.port;
+    port.transport = std::make_unique<emu::EmulatorTransport>(*port.emulator, *port.emulated_clock);
   }
-  OpenedPort port;
-  port.emulated_clock = std::make_unique<io::ManualClock>();
-  port.emulator = std::make_unique<emu::XArmEmulator>(config);
-  port.transport = std::make_unique<emu::EmulatorTransport>(*port.emulator, *port.emulated_clock);
-  port.clock = port.emulated_clock.get();
-  PortOpenResult r;
-  r.port = std::move(port);
-  return r;
+  return made;
 }
 
 }  // namespace

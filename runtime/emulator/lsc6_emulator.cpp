@@ -286,8 +286,11 @@ void Lsc6Emulator::play_until(io::TimePoint at) {
   if (playing_) playing_->action_end = at + d;
 }
 
-std::optional<io::TimePoint> Lsc6Emulator::next_output_at() const {
-  std::optional<io::TimePoint> next = line_.next_byte_at();
+// The earlier of `line_time` and the next moment the board may start sending: a held command
+// being processed or a run ending (a lower bound, as ControllerDevice allows).
+std::optional<io::TimePoint> Lsc6Emulator::earliest_with_pending(
+    std::optional<io::TimePoint> line_time) const {
+  std::optional<io::TimePoint> next = line_time;
   auto earliest = [&next](std::optional<io::TimePoint> t) {
     if (t && (!next || *t < *next)) next = t;
   };
@@ -296,14 +299,12 @@ std::optional<io::TimePoint> Lsc6Emulator::next_output_at() const {
   return next;
 }
 
+std::optional<io::TimePoint> Lsc6Emulator::next_output_at() const {
+  return earliest_with_pending(line_.next_byte_at());
+}
+
 std::optional<io::TimePoint> Lsc6Emulator::next_message_end_at() const {
-  std::optional<io::TimePoint> next = line_.front_last_byte_at();
-  auto earliest = [&next](std::optional<io::TimePoint> t) {
-    if (t && (!next || *t < *next)) next = t;
-  };
-  if (held_since_) earliest(std::max(*held_since_, busy_until_));
-  earliest(next_playback_event());
-  return next;
+  return earliest_with_pending(line_.front_last_byte_at());
 }
 
 Bytes Lsc6Emulator::take_output(io::TimePoint upto) {

@@ -127,6 +127,7 @@ class Lsc6Emulator final : public ControllerDevice {
   void play_until(io::TimePoint upto);
   io::Duration play_action(io::TimePoint at);
   std::optional<io::TimePoint> next_playback_event() const;
+  std::optional<io::TimePoint> earliest_with_pending(std::optional<io::TimePoint> line_time) const;
 
   Lsc6Config config_;
   SplitMix64 rng_;

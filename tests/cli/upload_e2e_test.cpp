@@ -217,9 +217,9 @@ TEST(UploadCli, HangUpExitsWithDeviceFailureAndSaysTheGroupIsEmpty) {
   EXPECT_NE(err.find("seqc: group 0 is now empty"), std::string::npos) << err;
 }
 
-// stderr and stdout of `seqc upload walk.yaml --port PORT`, and its exit status.
-std::string upload_in_process(const std::string& port, int& status) {
-  std::string cmd = kSeqc + " upload " + kWalk + " --port '" + port + "' 2>&1";
+// What `seqc ARGS` prints on stderr and stdout together, and its exit status.
+std::string run_seqc(const std::string& args, int& status) {
+  std::string cmd = kSeqc + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string out;
   if (p == nullptr) return out;
@@ -227,6 +227,10 @@ std::string upload_in_process(const std::string& port, int& status) {
   while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
   status = WEXITSTATUS(pclose(p));
   return out;
+}
+
+std::string upload_in_process(const std::string& port, int& status) {
+  return run_seqc("upload " + kWalk + " --port '" + port + "'", status);
 }
 
 TEST(UploadCli, TheInProcessEmulatorIsPacedLikeTheLine) {
@@ -273,13 +277,9 @@ TEST(UploadCli, AFrameTooBigForAHidReportIsRefusedBeforeSending) {
     for (int i = 1; i <= 20; ++i) f << (i > 1 ? ", " : "") << "s" << i << ": 100";
     f << "}\n    time: 1s\n";
   }
-  std::string cmd = kSeqc + " upload " + file + " --port emu:xarm-hid 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  char buf[512];
-  std::string out;
-  while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
-  EXPECT_EQ(WEXITSTATUS(pclose(p)), 1);
+  int status = -1;
+  const std::string out = run_seqc("upload " + file + " --port emu:xarm-hid", status);
+  EXPECT_EQ(status, 1);
   EXPECT_NE(out.find("step 4 (action 1) is a 71-byte frame, and hid:emu:xarm-hid (0483:5750 "
                      "LOBOT) carries at most 64 bytes in one report; nothing was sent"),
             std::string::npos)
