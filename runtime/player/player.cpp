@@ -90,9 +90,9 @@ PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transp
         return report;
       }
       // Computed wire times are rounded; a frame cannot leave before its bytes could.
-      timing.left_lateness = std::max(
-          io::Duration{0},
-          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte)) - kRounding);
+      const io::Duration late =
+          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte));
+      timing.left_lateness = late < kRounding ? io::Duration{0} : late;
       report.left_lateness.push_back(timing.left_lateness);
     }
     ++report.sent;

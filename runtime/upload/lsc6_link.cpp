@@ -62,15 +62,7 @@ io::ReadResult Lsc6Link::read_some(io::TimePoint deadline) {
 Lsc6Wait Lsc6Link::wait_for(const std::function<bool(const lsc6::Reply&)>& take,
                             io::TimePoint deadline) {
   for (;;) {
-    while (!pending_.empty() || decoder_.pending_bytes() > 0) {
-      std::optional<lsc6::Reply> reply;
-      if (!pending_.empty()) {
-        reply = pending_.front();
-        pending_.erase(pending_.begin());
-      } else {
-        reply = next_answer();
-      }
-      if (!reply) break;
+    while (auto reply = next_answer()) {
       if (take(*reply)) return Lsc6Wait{WaitStatus::Matched, *reply, {}};
       if (!std::holds_alternative<lsc6::GroupFinished>(*reply)) ++skipped_;
     }
@@ -85,8 +77,7 @@ Lsc6Wait Lsc6Link::wait_for(const std::function<bool(const lsc6::Reply&)>& take,
 
 std::vector<lsc6::Reply> Lsc6Link::drain(WaitStatus& status) {
   status = WaitStatus::Timeout;
-  std::vector<lsc6::Reply> out = std::move(pending_);
-  pending_.clear();
+  std::vector<lsc6::Reply> out;
   for (;;) {
     while (auto reply = next_answer()) out.push_back(*reply);
     const io::ReadResult r = read_some(clock_.now());
@@ -98,7 +89,6 @@ std::vector<lsc6::Reply> Lsc6Link::drain(WaitStatus& status) {
 }
 
 void Lsc6Link::discard_input() {
-  pending_.clear();
   decoder_.reset();
   transport_.discard_input();
 }

@@ -61,7 +61,6 @@ class Lsc6Link {
   io::Clock& clock_;
   const std::atomic<bool>* interrupted_;
   lsc::FrameDecoder decoder_;
-  std::vector<lsc6::Reply> pending_;  // decoded, not yet looked at
   LinkStats stats_;
   std::size_t finished_ = 0;
   std::size_t skipped_ = 0;
