@@ -69,9 +69,7 @@ class Decoder {
   }
 
   void on_request(const lsc::GroupDownloadOpen& m) {
-    std::string counts;
-    for (std::uint8_t c : m.block_counts) counts += (counts.empty() ? "" : " ") + std::to_string(c);
-    line(fmt::format("open group {}: block counts {}", m.group, counts));
+    line(fmt::format("open group {}: block counts {}", m.group, fmt::join(m.block_counts, " ")));
     if (open_) issue(fmt::format("group {} download opened again before step 5", open_->group));
     open_ = Download{m.group, m.block_counts};
   }

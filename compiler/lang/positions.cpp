@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace seqc::compiler {
 
 std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const YamlNode& value,
@@ -33,7 +35,7 @@ bool check_position_limits(const PositionEntry& e, std::string_view name, long l
   const long long p = std::llround(units);
   if (p >= min && p <= max) return true;
   if (how.empty() && e.value.degrees) how = e.written;
-  std::string message = "'" + std::string(name) + "' would move to " + std::to_string(p);
+  std::string message = fmt::format("'{}' would move to {}", name, p);
   if (!how.empty()) message += " (" + how + ")";
   message +=
       p > max ? ", above its max " + std::to_string(max) : ", below its min " + std::to_string(min);

@@ -94,9 +94,13 @@ std::size_t group_capacity(const RobotProfile* profile) {
 std::string group_capacity_text(const RobotProfile* profile) {
   // Counts in messages carry thousands separators: "action 1,021".
   auto count = [](std::size_t n) {
-    std::string digits = std::to_string(n);
-    for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(i, ",");
-    return digits;
+    const std::string digits = std::to_string(n);
+    std::string out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+      if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+      out += digits[i];
+    }
+    return out;
   };
   const std::size_t cap = group_capacity(profile);
   const std::string holds =

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "compiler/lang/raspblock_lowering_state.hpp"
 
 namespace seqc::compiler {
@@ -188,8 +190,8 @@ bool RaspblockLowering::resolve_move(const YamlNode& target, std::map<std::size_
       units = absolute_units(e);
     }
     if (out.count(e.output) != 0) {
-      reporter_.error(
-          e.at, "'" + std::string(kChannels[e.output].name) + "' is given twice in this move");
+      reporter_.error(e.at,
+                      fmt::format("'{}' is given twice in this move", kChannels[e.output].name));
       ok = false;
       continue;
     }
@@ -296,9 +298,10 @@ void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value)
       reporter_.error(step.location, "this repeat would make the stream last longer than 24 hours");
       full_ = true;
     } else if (dp > 0 && rest > (kRaspblockMaxPackets - packets_.size()) / dp) {
-      reporter_.error(step.location, "this repeat would make the stream need more than " +
-                                         grouped(kRaspblockMaxPackets) +
-                                         " packets; use a coarser 'resolution' or fewer repeats");
+      reporter_.error(step.location,
+                      fmt::format("this repeat would make the stream need more than {} packets; "
+                                  "use a coarser 'resolution' or fewer repeats",
+                                  grouped(kRaspblockMaxPackets)));
       full_ = true;
     }
   }

@@ -1,5 +1,9 @@
 #include "compiler/lang/reporter.hpp"
 
+#include <fmt/format.h>
+
+#include <iterator>
+
 namespace seqc::compiler {
 
 void Reporter::report(Severity severity, Location at, std::string message,
@@ -25,8 +29,8 @@ void Reporter::report(Severity severity, Location at, std::string message,
 
 void Reporter::unknown(Location at, std::string_view what, std::string_view word,
                        const std::vector<std::string>& candidates, std::string_view where) {
-  std::string message = "unknown " + std::string(what) + " '" + std::string(word) + "'";
-  if (!where.empty()) message += " " + std::string(where);
+  std::string message = fmt::format("unknown {} '{}'", what, word);
+  if (!where.empty()) fmt::format_to(std::back_inserter(message), " {}", where);
   const std::string suggestion = did_you_mean(word, candidates);
   if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
   error(at, std::move(message));
@@ -36,8 +40,7 @@ void Reporter::check_free_text(const YamlNode& root) {
   for (const char* key : {"name", "description"}) {
     const YamlNode* node = root.find(key);
     if (node != nullptr && !node->is_scalar() && node->kind != YamlNode::Kind::Null) {
-      error(node->location,
-            "'" + std::string(key) + "' is free text, not " + std::string(kind_name(*node)));
+      error(node->location, fmt::format("'{}' is free text, not {}", key, kind_name(*node)));
     }
   }
 }

@@ -1,11 +1,20 @@
 #include "compiler/source/units.hpp"
 
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <string>
 
 namespace seqc::compiler {
 namespace {
+
+std::string not_a_speed(std::string_view text) {
+  return fmt::format(
+      "'{}' is not a speed; write device units per second ('400/s') or degrees per second "
+      "('90deg/s')",
+      text);
+}
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
@@ -39,8 +48,8 @@ Result<TimeValue> parse_time(std::string_view text) {
   const std::size_t n = number_length(text);
   double amount = 0;
   if (n == 0 || !parse_decimal(text.substr(0, n), amount)) {
-    return make_error("'" + std::string(text) +
-                      "' is not a time; write it like '500ms', '1.5s' or '2b' (beats)");
+    return make_error(
+        fmt::format("'{}' is not a time; write it like '500ms', '1.5s' or '2b' (beats)", text));
   }
   const std::string_view unit = text.substr(n);
   if (unit.empty()) {
@@ -70,9 +79,10 @@ Result<PositionValue> parse_position(std::string_view text) {
   }
   double amount = 0;
   if (!parse_decimal(rest, amount)) {
-    return make_error("'" + std::string(text) +
-                      "' is not a position; write device units (500), degrees (90deg) or a "
-                      "relative move (+50, -10deg)");
+    return make_error(fmt::format(
+        "'{}' is not a position; write device units (500), degrees (90deg) or a relative move "
+        "(+50, -10deg)",
+        text));
   }
   if (!v.degrees && rest.find('.') != std::string_view::npos) {
     return make_error("position '" + std::string(text) +
@@ -87,9 +97,7 @@ Result<SpeedValue> parse_speed(std::string_view text) {
   SpeedValue v;
   std::string_view rest = text;
   if (rest.size() < 2 || rest.substr(rest.size() - 2) != "/s") {
-    return make_error("'" + std::string(text) +
-                      "' is not a speed; write device units per second ('400/s') or degrees "
-                      "per second ('90deg/s')");
+    return make_error(not_a_speed(text));
   }
   rest.remove_suffix(2);
   if (rest.size() >= 3 && rest.substr(rest.size() - 3) == "deg") {
@@ -97,9 +105,7 @@ Result<SpeedValue> parse_speed(std::string_view text) {
     rest.remove_suffix(3);
   }
   if (!parse_decimal(rest, v.per_second) || v.per_second <= 0) {
-    return make_error("'" + std::string(text) +
-                      "' is not a speed; write device units per second ('400/s') or degrees "
-                      "per second ('90deg/s')");
+    return make_error(not_a_speed(text));
   }
   return v;
 }

@@ -3,6 +3,8 @@
 #include <array>
 #include <charconv>
 
+#include <fmt/format.h>
+
 #include "runtime/transport/baud_rates.hpp"
 
 namespace seqc::transport {
@@ -30,7 +32,7 @@ Result<PortSpec> parse_serial(std::string_view whole, std::string_view rest) {
     std::uint32_t baud = 0;
     auto [end, ec] = std::from_chars(rate.data(), rate.data() + rate.size(), baud);
     if (rate.empty() || ec != std::errc{} || end != rate.data() + rate.size()) {
-      return port_error(whole, "'" + std::string(rate) + "' is not a baud rate (e.g. @115200)");
+      return port_error(whole, fmt::format("'{}' is not a baud rate (e.g. @115200)", rate));
     }
     if (!baud_to_speed(baud)) {
       return port_error(whole, "unsupported baud rate " + std::to_string(baud) +

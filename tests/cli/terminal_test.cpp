@@ -133,7 +133,9 @@ TEST(Terminal, PlayShowsProgress) {
   ASSERT_EQ(r.status, 0) << r.screen;
   EXPECT_NE(r.screen.find(" s  frame "), std::string::npos) << r.screen;
   for (const std::string& line : drawn_lines(r.screen)) {
-    if (line.find(" s  frame ") != std::string::npos) EXPECT_LT(visible_width(line), 70u) << line;
+    if (line.find(" s  frame ") != std::string::npos) {
+      EXPECT_LT(visible_width(line), 70u) << line;
+    }
   }
   // --quiet: no progress at all.
   const TerminalRun quiet = on_terminal(

@@ -1,6 +1,7 @@
 // Golden tests of what a person reads: the diagnostic layout is fixed here, byte for byte.
 #include "compiler/source/diagnostics.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 namespace seqc::compiler {
@@ -28,9 +29,9 @@ TEST_F(RenderTest, ErrorWithLineNumberGutterAndCaret) {
             "      |       ^\n");
 }
 
-TEST_F(RenderTest, TwoDigitLineNumbersAlignLikeTheBriefExample) {
+TEST_F(RenderTest, TwoDigitLineNumbersAlign) {
   std::string text;
-  for (int i = 1; i < 12; ++i) text += "a" + std::to_string(i) + ": 1\n";
+  for (int i = 1; i < 12; ++i) text += fmt::format("a{}: 1\n", i);
   text += "      tme: 500ms\n";
   const auto f = sources_.add("walk.yaml", text);
   const Diagnostic d{Severity::Error, {f, 12, 7}, "unknown key 'tme'; did you mean 'time'?"};

@@ -1,4 +1,5 @@
 // Mistakes: all reported in one run, with the exact wording people read.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "tests/compiler/lang_test_util.hpp"
@@ -196,9 +197,9 @@ TEST(Validation, SixteenNestedIncludesAreFine) {
   files.files["main.yaml"] =
       "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n  - include: d1.yaml\n";
   for (int i = 1; i <= 16; ++i) {
-    files.files["d" + std::to_string(i) + ".yaml"] =
+    files.files[fmt::format("d{}.yaml", i)] =
         "sequence:\n  - wait: 20ms\n" +
-        (i < 16 ? "  - include: d" + std::to_string(i + 1) + ".yaml\n" : std::string());
+        (i < 16 ? fmt::format("  - include: d{}.yaml\n", i + 1) : std::string());
   }
   auto out = compile_file("main.yaml", files);
   ASSERT_TRUE(out.servo_program()) << diagnostics_of(out);
