@@ -132,11 +132,22 @@ class Fitter {
       return;
     }
     std::int64_t cur = a;
-    for (std::int64_t e : fewest(curved, a, b)) {
+    Samples samples = sample(curved, a, b);
+    while (cur < b) {
+      const Path path = fewest(samples, curved.size(), cur);
+      for (std::int64_t e : path.ends) {
+        emit(cur, e, &curved);
+        cur = e;
+      }
+      if (path.complete) return;
+      if (path.gave_up) break;
+      // No actions within tolerance go on from here, so even the shortest misses: say so there
+      // (and only there), then search again from its end.
+      const std::int64_t e = b - cur < 2 * min ? b : cur + min;
       emit(cur, e, &curved);
       cur = e;
     }
-    while (cur < b) {  // no way within tolerance (or too long to search): the farthest reach
+    while (cur < b) {  // too long to search: the farthest reach
       std::int64_t e = farthest(curved, cur, b);
       if (e == 0) e = b - cur < 2 * min ? b : cur + min;  // even the shortest misses: say so
       emit(cur, e, &curved);
@@ -144,43 +155,74 @@ class Fitter {
     }
   }
 
-  // The fewest actions from a to b that keep every servo in `curved` within tolerance at every
-  // millisecond, as their end times (b last); empty if there is no such sequence. Dynamic
-  // programming over boundaries on the 1 ms grid: from each reachable start, lines to later
-  // ends are tried while the slope windows (see farthest()) stay open. That is quadratic in
-  // the worst case (minutes of slow, smooth curve, where every line reaches far): past
-  // kFewestBudget candidate ends it gives up, also empty, and the caller takes the greedy
-  // farthest reach instead -- within tolerance, perhaps an action or two more.
-  static constexpr std::size_t kFewestBudget = 2'000'000;
-  std::vector<std::int64_t> fewest(const std::vector<std::size_t>& curved, std::int64_t a,
-                                   std::int64_t b) const {
-    const std::size_t n = static_cast<std::size_t>(b - a);
+  // What fewest() reads, per servo of `curved` and millisecond of [a, b]: the intended
+  // position, its tolerance and its whole-unit target, computed once for the stretch (a search
+  // starts again after each shortfall), and the search's own tables, allocated once.
+  struct Samples {
+    std::int64_t a = 0;
+    std::size_t n = 0;  // b - a
+    std::vector<double> want, tol, end;
+    std::vector<int> best;
+    std::vector<std::size_t> from;
+  };
+  Samples sample(const std::vector<std::size_t>& curved, std::int64_t a, std::int64_t b) const {
+    Samples in;
+    in.a = a;
+    const std::size_t n = in.n = static_cast<std::size_t>(b - a);
     const std::size_t k = curved.size();
-    // want/tol/end per servo and millisecond of the interval, computed once.
-    std::vector<double> want(k * (n + 1)), tol(k * (n + 1)), end(k * (n + 1));
+    in.want.resize(k * (n + 1));
+    in.tol.resize(k * (n + 1));
+    in.end.resize(k * (n + 1));
+    in.best.resize(n + 1);
+    in.from.resize(n + 1);
     for (std::size_t i = 0; i < k; ++i) {
       for (std::size_t t = 0; t <= n; ++t) {
         const double at = static_cast<double>(a + static_cast<std::int64_t>(t));
         const double w = intended(curved[i], at).value_or(0);
         const std::optional<Segment> seg = segment_at(curved[i], at);
-        want[i * (n + 1) + t] = w;
-        tol[i * (n + 1) + t] = (seg ? seg->tolerance : 1.0) + 1e-9;
-        end[i * (n + 1) + t] = std::round(w);
+        in.want[i * (n + 1) + t] = w;
+        in.tol[i * (n + 1) + t] = (seg ? seg->tolerance : 1.0) + 1e-9;
+        in.end[i * (n + 1) + t] = std::round(w);
       }
     }
+    return in;
+  }
+
+  // The fewest actions from `start` to b that keep the k servos sampled in `in` within
+  // tolerance at every millisecond, as their end times (b last). Dynamic programming over
+  // boundaries on the 1 ms grid: from each reachable start, lines to later ends are tried while
+  // the slope windows (see farthest()) stay open. When no such sequence reaches b, the actions
+  // reach the farthest boundary any of them reaches (leaving at least min before b), from which
+  // none goes on: the shortfall is there, not wherever a greedy reach happens to get stuck.
+  // That is quadratic in the worst case (minutes of slow, smooth curve, where every line
+  // reaches far): past kFewestBudget candidate ends it gives up, and the caller takes the
+  // greedy farthest reach instead -- within tolerance, perhaps an action or two more.
+  struct Path {
+    std::vector<std::int64_t> ends;
+    bool complete = false;  // the last end is b
+    bool gave_up = false;   // over budget: no ends
+  };
+  static constexpr std::size_t kFewestBudget = 2'000'000;
+  Path fewest(Samples& in, std::size_t k, std::int64_t start) const {
+    const std::size_t n = in.n;
+    const std::size_t first = static_cast<std::size_t>(start - in.a);
+    const std::vector<double>& want = in.want;
+    const std::vector<double>& tol = in.tol;
+    const std::vector<double>& end = in.end;
     constexpr int kNone = 1 << 30;
-    std::vector<int> best(n + 1, kNone);
-    std::vector<std::size_t> from(n + 1, 0);
-    best[0] = 0;
+    std::vector<int>& best = in.best;
+    std::vector<std::size_t>& from = in.from;
+    std::fill(best.begin() + static_cast<std::ptrdiff_t>(first), best.end(), kNone);
+    best[first] = 0;
     const std::size_t min = opt_.min_action_ms, max = opt_.max_action_ms;
     std::vector<double> lo(k), hi(k);
     std::size_t work = 0;
-    for (std::size_t s = 0; s < n; ++s) {
+    for (std::size_t s = first; s < n; ++s) {
       if (best[s] == kNone || best[s] + 1 >= best[n]) continue;
       std::fill(lo.begin(), lo.end(), -1e300);
       std::fill(hi.begin(), hi.end(), 1e300);
       for (std::size_t e = s + 1; e <= std::min(n, s + max); ++e) {
-        if (++work > kFewestBudget) return {};
+        if (++work > kFewestBudget) return {{}, false, true};
         const double span = static_cast<double>(e - s);
         if (e - s >= min && best[s] + 1 < best[e]) {
           bool fits = true;
@@ -204,11 +246,20 @@ class Fitter {
         if (!open) break;
       }
     }
-    if (best[n] == kNone) return {};
-    std::vector<std::int64_t> ends;
-    for (std::size_t t = n; t > 0; t = from[t]) ends.push_back(a + static_cast<std::int64_t>(t));
-    std::reverse(ends.begin(), ends.end());
-    return ends;
+    std::size_t reached = n;
+    if (best[n] == kNone) {
+      reached = first;
+      for (std::size_t t = n - std::min(n, min); t > first && reached == first; --t) {
+        if (best[t] != kNone) reached = t;
+      }
+    }
+    Path path;
+    path.complete = reached == n;
+    for (std::size_t t = reached; t > first; t = from[t]) {
+      path.ends.push_back(in.a + static_cast<std::int64_t>(t));
+    }
+    std::reverse(path.ends.begin(), path.ends.end());
+    return path;
   }
 
   // The farthest end e of an action from `a` (within [a + min, min(a + max, b)], leaving 0 or
