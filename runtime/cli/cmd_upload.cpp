@@ -124,10 +124,14 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (!r.ok()) {
     ctx.err << "seqc: error: " << r.message << "\n";
     ctx.err << "seqc: " << upload::describe_group_state(r.group_state, group) << "\n";
-    if (r.erase_sent) {
+    if (r.erase_sent && r.erase_confirmed) {
       ctx.err << "seqc: sent GroupErase for group " << a.group
-              << ": step 5 was sent but never confirmed, so the group is erased rather than "
-                 "left holding a partial download\n";
+              << " and the controller confirmed it: step 5 was sent but never confirmed, so the "
+                 "group is erased rather than left holding a partial download\n";
+    } else if (r.erase_sent) {
+      ctx.err << "seqc: sent GroupErase for group " << a.group
+              << ", but the controller did not confirm it: the group may hold a partial "
+                 "download; upload again\n";
     }
     if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
     return exit_code_for(r.status);

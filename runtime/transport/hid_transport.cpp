@@ -28,8 +28,47 @@ Bytes undecodable_report(ByteView report) {
 }  // namespace
 
 HidTransport::HidTransport(std::unique_ptr<HidDevice> device, io::Clock& clock,
-                           std::string description)
-    : device_(std::move(device)), clock_(clock), description_(std::move(description)) {}
+                           std::string description, HidReconnect reconnect)
+    : device_(std::move(device)),
+      clock_(clock),
+      description_(std::move(description)),
+      reconnect_(std::move(reconnect)) {}
+
+bool HidTransport::reopen(io::TimePoint deadline) {
+  if (!reconnect_.backend) return false;
+  for (;;) {
+    if (reopen_once()) return true;
+    const io::TimePoint now = clock_.now();
+    if (now >= deadline) return false;
+    clock_.sleep_until(std::min(deadline, now + kReopenPoll));
+  }
+}
+
+bool HidTransport::is_same_device(const HidDeviceInfo& info) const {
+  const HidDeviceInfo& was = reconnect_.device;
+  if (!was.serial_number.empty()) return info.serial_number == was.serial_number;
+  return info.path == was.path;
+}
+
+bool HidTransport::reopen_once() {
+  auto found = find_lobot_devices(*reconnect_.backend);
+  if (!found) return false;
+  const auto same = std::find_if(found->begin(), found->end(),
+                                 [&](const HidDeviceInfo& d) { return is_same_device(d); });
+  if (same == found->end()) return false;  // not back yet, or another controller
+  auto device = reconnect_.backend->open(same->path);
+  if (!device) return false;
+  device_ = std::move(*device);
+  pending_.clear();
+  pending_pos_ = 0;
+  // A controller that re-enumerated may have a new hidraw node: messages name the new one.
+  const std::string old_head = "hid:" + reconnect_.device.path;
+  if (same->path != reconnect_.device.path && description_.rfind(old_head, 0) == 0) {
+    description_ = "hid:" + same->path + description_.substr(old_head.size());
+  }
+  reconnect_.device = *same;
+  return true;
+}
 
 Status HidTransport::write(ByteView bytes) {
   auto frame = lsc::decode_serial(bytes);

@@ -4,6 +4,11 @@
 //   write(): one whole serial frame -> lsc::encode_hid_report (report id 0, zero padding).
 //   read():  one input report -> lsc::decode_hid_report (padding dropped by LEN) ->
 //            lsc::encode_serial, handed out in as many reads as the caller's buffer needs.
+//
+// After an unplug (HangUp), reopen() finds the same controller again, as the serial transport
+// does, polling the backend until its deadline on the clock passed in: a controller with a USB
+// serial number is known by it (its hidraw node may change when it re-enumerates); one without
+// is known by its path. Another controller plugged in meanwhile is never taken for it.
 #pragma once
 
 #include <memory>
@@ -16,10 +21,18 @@
 
 namespace seqc::transport {
 
+// What reopen() needs: the backend the device was opened with (shared, so it outlives the
+// device) and the device as it was found. No backend: reopen() cannot reconnect.
+struct HidReconnect {
+  std::shared_ptr<HidBackend> backend;
+  HidDeviceInfo device;  // path always; serial number and product when enumerated
+};
+
 class HidTransport final : public io::Transport {
  public:
   // `description` is what describe() returns, e.g. "hid:/dev/hidraw3 (0483:5750 LOBOT)".
-  HidTransport(std::unique_ptr<HidDevice> device, io::Clock& clock, std::string description);
+  HidTransport(std::unique_ptr<HidDevice> device, io::Clock& clock, std::string description,
+               HidReconnect reconnect = {});
 
   // Exactly one whole serial frame (55 55 LEN CMD DATA) of at most 64 bytes per call.
   Status write(ByteView bytes) override;
@@ -34,6 +47,9 @@ class HidTransport final : public io::Transport {
   // A serial frame travels in one 64-byte report.
   std::size_t max_frame_bytes() const override { return lsc::kHidReportData; }
   static constexpr io::Duration kReportInterval = std::chrono::milliseconds(1);
+  // Waits until `deadline` for the same controller to come back, looking every kReopenPoll.
+  bool reopen(io::TimePoint deadline) override;
+  static constexpr io::Duration kReopenPoll = std::chrono::milliseconds(50);
 
   // At most this many queued reports are dropped by one discard_input(), so a device that
   // never stops sending cannot hold the caller forever.
@@ -41,12 +57,16 @@ class HidTransport final : public io::Transport {
 
  private:
   std::size_t hand_out(std::span<std::uint8_t> buffer);
+  // One attempt of reopen().
+  bool reopen_once();
+  bool is_same_device(const HidDeviceInfo& info) const;
 
   std::unique_ptr<HidDevice> device_;
   io::Clock& clock_;
   std::string description_;
   Bytes pending_;  // serial bytes of the last report not yet read
   std::size_t pending_pos_ = 0;
+  HidReconnect reconnect_;
 };
 
 }  // namespace seqc::transport

@@ -15,11 +15,22 @@ std::string hid_description(const std::string& path, const std::string& product)
   return "hid:" + path + " (" + ids + (product.empty() ? "" : " " + product) + ")";
 }
 
+// `backend` is `hid`, shared so that reopen() can find the device again after an unplug.
 Result<std::unique_ptr<io::Transport>> open_hid(const PortSpec& spec, io::Clock& clock,
-                                                HidBackend& hid) {
+                                                HidBackend& hid,
+                                                std::shared_ptr<HidBackend> backend) {
   std::string path = spec.path;
   std::string product;
-  if (path.empty()) {
+  HidDeviceInfo identity;
+  if (!path.empty()) {
+    // An explicit path: its serial number, if the backend lists it, tells it apart on reopen.
+    if (auto all = find_lobot_devices(hid)) {
+      for (const auto& d : *all) {
+        if (d.path == path) identity = d;
+      }
+    }
+    identity.path = path;
+  } else {
     auto found = find_lobot_devices(hid);
     if (!found) return found.error();
     if (found->empty()) {
@@ -35,11 +46,13 @@ Result<std::unique_ptr<io::Transport>> open_hid(const PortSpec& spec, io::Clock&
     }
     path = found->front().path;
     product = found->front().product;
+    identity = found->front();
   }
   auto device = hid.open(path);
   if (!device) return device.error();
   return std::unique_ptr<io::Transport>(new HidTransport(
-      std::move(*device), clock, hid_description(path, product.empty() ? "LOBOT" : product)));
+      std::move(*device), clock, hid_description(path, product.empty() ? "LOBOT" : product),
+      HidReconnect{std::move(backend), std::move(identity)}));
 }
 
 Result<std::unique_ptr<io::Transport>> open_serial(const PortSpec& spec, io::Clock& clock,
@@ -64,7 +77,8 @@ Result<std::unique_ptr<io::Transport>> open_port(const PortSpec& spec, io::Clock
     case PortKind::Serial:
       return open_serial(spec, clock, default_baud);
     case PortKind::Hid:
-      return open_hid(spec, clock, hid);
+      // The caller keeps `hid` alive as long as the transport (open_port.hpp): not owned here.
+      return open_hid(spec, clock, hid, std::shared_ptr<HidBackend>(std::shared_ptr<void>(), &hid));
     case PortKind::Emulator:
       break;
   }
@@ -75,8 +89,8 @@ Result<std::unique_ptr<io::Transport>> open_port(const PortSpec& spec, io::Clock
                                                  std::uint32_t default_baud) {
   // Only HID ports start hidapi.
   if (spec.kind == PortKind::Hid) {
-    HidapiBackend hid;
-    return open_hid(spec, clock, hid);
+    auto hid = std::make_shared<HidapiBackend>();
+    return open_hid(spec, clock, *hid, hid);
   }
   if (spec.kind == PortKind::Serial) return open_serial(spec, clock, default_baud);
   return emulator_spec_error(spec);

@@ -14,6 +14,7 @@ namespace seqc::transport {
 
 // Serial: spec.baud, else `default_baud`. Hid with an empty path: the one LOBOT device
 // (error when there is none or more than one). Errors are ready for "seqc: error: ".
+// A HID transport uses `hid` again to reconnect (Transport::reopen): `hid` must outlive it.
 Result<std::unique_ptr<io::Transport>> open_port(const PortSpec& spec, io::Clock& clock,
                                                  std::uint32_t default_baud, HidBackend& hid);
 

@@ -83,7 +83,8 @@ io::ReadResult ControllerLink::read_some(io::TimePoint deadline) {
   return r;
 }
 
-WaitResult ControllerLink::wait_for(const ReplyPredicate& accept, io::TimePoint deadline) {
+WaitResult ControllerLink::wait_for(const ReplyPredicate& accept, io::TimePoint deadline,
+                                    OnInterrupt on_interrupt) {
   WaitResult result;
   for (;;) {
     while (auto reply = next_reply()) {
@@ -95,7 +96,7 @@ WaitResult ControllerLink::wait_for(const ReplyPredicate& accept, io::TimePoint 
       }
       if (v == Verdict::Skip) report_skipped(*reply);
     }
-    if (interrupted()) {
+    if (on_interrupt == OnInterrupt::Stop && interrupted()) {
       result.status = WaitStatus::Interrupted;
       return result;
     }

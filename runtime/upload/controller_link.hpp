@@ -62,6 +62,10 @@ struct WaitResult {
 enum class Verdict { Take, Skip, Consume };
 using ReplyPredicate = std::function<Verdict(const lsc::Reply&)>;
 
+// Whether a wait ends when the interrupt flag is raised. Ignore is for the reply awaited after
+// Ctrl-C while the controller is put in a known state, always with a short deadline.
+enum class OnInterrupt { Stop, Ignore };
+
 struct LinkStats {
   std::size_t frames_sent = 0;
   std::size_t bytes_sent = 0;
@@ -87,7 +91,8 @@ class ControllerLink {
 
   // Reads until `accept` takes a reply or `deadline` passes. Replies already decoded and
   // buffered are looked at first.
-  WaitResult wait_for(const ReplyPredicate& accept, io::TimePoint deadline);
+  WaitResult wait_for(const ReplyPredicate& accept, io::TimePoint deadline,
+                      OnInterrupt on_interrupt = OnInterrupt::Stop);
 
   // Hands every reply that has already arrived (without waiting) to `seen`, which may not
   // take any: used to clear out stale frames before sending. Returns HangUp/Error if the

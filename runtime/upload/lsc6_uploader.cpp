@@ -196,6 +196,11 @@ void Lsc6Run::start_group() {
       link_.clock().now() + wire + opt_.reply_margin);
   if (w.ok()) {
     result_.run_reported = true;
+  } else if (w.status == WaitStatus::Interrupted) {
+    // Ctrl-C while the group was starting: it is stored, but the robot must not move (the
+    // Stop follows in go()).
+    fatal(UploadStatus::Interrupted,
+          "interrupted after starting group " + std::to_string(opt_.group));
   } else {
     note(
         "the board did not answer Run (some copies of its firmware never do): started, "

@@ -10,6 +10,8 @@
 //      the last (it rewrites the count table).
 //   3. Run (with `run`), waiting briefly for 55 55 02 06: copies of the firmware that never
 //      answer Run leave the start unconfirmed, which is reported as such, not as a failure.
+//      Run is sent only after every action was answered. Ctrl-C while waiting for its answer
+//      ends the upload Interrupted and sends Stop: the group is stored, the robot must not move.
 // The board has no battery or any other command with an answer that could serve as a probe or
 // a barrier, so the first frame is the probe: no answer to it after every re-send means no
 // board (NoAnswer).

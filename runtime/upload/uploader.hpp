@@ -80,6 +80,10 @@
 //               upload had not yet stopped the group that was playing), and GroupErase of the
 //               group if step 5 was sent but its storing was not confirmed, so a group written
 //               only in part is never left looking complete (UploadResult says which was sent).
+//               The erase is confirmed only by its reply (55 55 02 08), awaited for step 1's
+//               deadline (the controller erases flash before it answers) on the link's clock,
+//               whatever the interrupt flag says; a controller still busy with step 5 drops
+//               the erase, so without the reply the group counts as Uncertain, not Empty.
 // Group state when an upload ends early: before step 1 was acknowledged the group is
 // unchanged (or, if step 1 was sent, possibly erased); after it, the group is empty: the
 // controller only makes it valid at step 5.
@@ -194,8 +198,9 @@ struct UploadResult {
   bool run_sent = false;
   bool run_reported = false;  // the controller announced the group started
   // Interrupted: what was sent to leave the controller in a known state.
-  bool stop_sent = false;   // GroupStop: no group is playing
-  bool erase_sent = false;  // GroupErase of the group: step 5 was sent but not confirmed
+  bool stop_sent = false;        // GroupStop: no group is playing
+  bool erase_sent = false;       // GroupErase of the group: step 5 was sent but not confirmed
+  bool erase_confirmed = false;  // the controller answered that GroupErase (group empty)
   io::Duration elapsed{0};
   LinkStats link;
 

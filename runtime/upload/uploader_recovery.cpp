@@ -63,9 +63,23 @@ void Uploader::Run::secure_after_interrupt() {
   if (step5_sent_ && !completed_) {
     auto erase = lsc::encode_serial(lsc::Request{lsc::GroupErase{group}});
     result_.erase_sent = erase && static_cast<bool>(link().send_bytes(*erase));
-    if (result_.erase_sent) {
+    if (!result_.erase_sent) return;
+    // Only the reply says the erase was done: a controller still busy storing step 5 drops it.
+    const io::Duration wait = up_.reply_timeout(erase->size(), kEraseReplyBytes, true);
+    const WaitResult w = link().wait_for(
+        [](const lsc::Reply& r) {
+          return std::holds_alternative<lsc::GroupErased>(r) ? Verdict::Take : Verdict::Skip;
+        },
+        clock().now() + wait, OnInterrupt::Ignore);
+    result_.erase_confirmed = w.ok();
+    if (result_.erase_confirmed) {
       committed_unconfirmed_ = false;
       erased_ = true;
+    } else {
+      // Step 5 may have been stored and the erase lost: nothing is known about the group.
+      committed_unconfirmed_ = true;
+      note("the controller did not confirm GroupErase of group " + std::to_string(group) +
+           " within " + seconds_text(wait));
     }
   }
 }

@@ -24,6 +24,8 @@ namespace seqc::upload {
 inline constexpr std::size_t kAckBytes = 6;
 inline constexpr std::size_t kProbeBytes = 4;
 inline constexpr std::size_t kProbeReplyBytes = 6;
+// GroupErase's reply: 55 55 02 08.
+inline constexpr std::size_t kEraseReplyBytes = 4;
 
 inline std::string seconds_text(io::Duration d) {
   char buf[32];

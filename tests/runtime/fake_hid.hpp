@@ -3,6 +3,7 @@
 #pragma once
 
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -62,9 +63,12 @@ class FakeHidBackend final : public HidBackend {
   std::map<std::string, std::string> open_errors;  // path -> error message
   std::vector<std::string> opened;
   std::shared_ptr<FakeHidState> state = std::make_shared<FakeHidState>();
+  // Called before each enumeration (e.g. to plug a device back in at a time on a test clock).
+  std::function<void(FakeHidBackend&)> before_enumerate;
 
   Result<std::vector<HidDeviceInfo>> enumerate(std::uint16_t vendor_id,
                                                std::uint16_t product_id) override {
+    if (before_enumerate) before_enumerate(*this);
     std::vector<HidDeviceInfo> out;
     for (const auto& d : devices) {
       if (d.vendor_id == vendor_id && d.product_id == product_id) out.push_back(d);

@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "runtime/emulator/emulator_transport.hpp"
+#include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/protocol/group_download.hpp"
 #include "runtime/upload/uploader.hpp"
@@ -77,23 +79,120 @@ inline std::string restart_cause(const std::string& reason) {
   return "other";
 }
 
-// Keeps the last notes of an upload, to show how a failure came about.
+// A note, as the recovery it reports, or "" for notes that are no recovery.
+inline std::string note_recovery(const std::string& note) {
+  if (note.find("discarded a late acknowledgement") != std::string::npos) return "late-ack guard";
+  if (note.find("sooner than the wire allows (") != std::string::npos) return "early ack held";
+  if (note.find("discarded a stale acknowledgement") != std::string::npos) {
+    return "stale ack absorbed by a barrier";
+  }
+  if (note.find("discarded an extra acknowledgement") != std::string::npos) {
+    return "extra ack drained";
+  }
+  if (note.find("of a step not sent") != std::string::npos) return "ack of a step not sent ignored";
+  if (note.find("sending it once more") != std::string::npos) return "refusal re-sent once";
+  if (note.find("no known reply") != std::string::npos) return "unknown frame skipped";
+  if (note.find("of an unfinished reply") != std::string::npos) return "partial reply dropped";
+  return "";
+}
+
+// Keeps the last notes of an upload, to show how a failure came about, and counts the
+// recoveries it saw.
 class LastNotes final : public upload::UploadObserver {
  public:
   void on_retry(const upload::RetryEvent& e) override {
     add("re-send " + e.what + ": " + e.reason);
+    ++recoveries[e.what.rfind("barrier", 0) == 0 ? "barrier re-sent"
+                 : e.what.rfind("probe", 0) == 0 ? "probe re-sent"
+                                                 : "frame re-sent"];
   }
   void on_restart(const upload::RestartEvent& e) override {
     add("RESTART: " + e.reason);
     causes.push_back(restart_cause(e.reason));
+    ++recoveries["restart: " + causes.back()];
   }
-  void on_note(const std::string& n) override { add(n); }
+  void on_note(const std::string& n) override {
+    add(n);
+    if (const std::string r = note_recovery(n); !r.empty()) ++recoveries[r];
+  }
+  std::map<std::string, std::size_t> recoveries;
   void add(std::string n) {
     if (notes.size() == 12) notes.erase(notes.begin());
     notes.push_back(std::move(n));
   }
   std::vector<std::string> notes;
   std::vector<std::string> causes;
+};
+
+// The kinds of fault the soak injects, as the tally names them.
+inline const std::vector<std::string>& fault_kinds() {
+  static const std::vector<std::string> kinds{"lost request",     "request framing flipped",
+                                              "busy controller",  "controller reset",
+                                              "port hang-up",     "reply late",
+                                              "reply sent twice", "reply byte flipped"};
+  return kinds;
+}
+
+// The faults the emulator injected in one upload, per kind: the injector's decisions replayed
+// from the same seed over the frames the emulator received and sent (every frame draws the
+// same values whatever the outcome, fault_injector.hpp), keeping only those that took effect
+// (a busy period is counted when its frame was processed). nullopt if the replay does not
+// match what the emulator counted.
+inline std::optional<std::map<std::string, std::size_t>> injected_faults(
+    const emu::XArmEmulator& emulator, const emu::XArmFaults& faults) {
+  std::map<std::string, std::size_t> n;
+  emu::FaultInjector replay(faults);
+  std::size_t framed = 0;
+  for (const emu::ReceivedFrame& rec : emulator.received()) {
+    if (!rec.frame && !rec.dropped_fault) continue;  // unframed bytes draw nothing
+    ++framed;
+    const emu::IncomingFault in = replay.on_request();
+    if (in.hangup) {
+      ++n["port hang-up"];
+    } else if (in.silent) {
+      continue;
+    } else if (in.drop) {
+      ++n["lost request"];
+    } else if (in.corrupt) {
+      ++n["request framing flipped"];
+    } else if (in.reset) {
+      ++n["controller reset"];
+    } else if (in.busy && rec.frame && !rec.dropped_busy) {
+      ++n["busy controller"];
+    }
+  }
+  if (framed != emulator.frames_received()) return std::nullopt;
+  for (std::size_t i = 0; i < emulator.frames_sent(); ++i) {
+    const emu::OutgoingFault out = replay.on_reply();
+    if (out.late) ++n["reply late"];
+    if (out.duplicate) ++n["reply sent twice"];
+    if (out.corrupt) ++n["reply byte flipped"];
+  }
+  return n;
+}
+
+// One kind of fault over the mixed soak: how often it happened, in how many uploads.
+struct FaultTally {
+  std::size_t injected = 0;
+  std::size_t uploads = 0;  // uploads with at least one
+};
+
+// The soak's fault knobs, each of which a pass can inject alone (soak_one's `only`), so that
+// every recovery seen in that pass is that fault's: drop, corrupt (requests and replies), late,
+// duplicate, busy, reset (one per upload, at a random frame), hang-up (one per upload).
+inline const std::vector<std::string>& fault_knobs() {
+  static const std::vector<std::string> knobs{"drop", "corrupt", "late",   "duplicate",
+                                              "busy", "reset",   "hang-up"};
+  return knobs;
+}
+
+// One knob injected alone: the faults that happened and the recoveries that handled them.
+struct IsolatedTally {
+  std::size_t uploads = 0;
+  std::size_t injected = 0;
+  std::size_t quiet = 0;   // uploads that needed no recovery (e.g. late within the margin)
+  std::size_t failed = 0;  // uploads that did not complete
+  std::map<std::string, std::size_t> recoveries;
 };
 
 struct Totals {
@@ -104,15 +203,36 @@ struct Totals {
   std::size_t retries = 0, restarts = 0, reopens = 0;
   std::map<std::string, std::size_t> failures;  // status: first words of the message -> count
   std::map<std::string, std::size_t> restart_causes;
-  std::vector<std::string> first_failures;  // with their last notes (at most 3)
+  std::vector<std::string> first_failures;        // with their last notes (at most 3)
+  std::map<std::string, FaultTally> faults;       // mixed uploads, by kind (fault_kinds())
+  std::map<std::string, IsolatedTally> isolated;  // uploads with one knob alone, by knob
+  std::size_t tally_mismatches = 0;               // uploads whose faults could not be replayed
+
+  // The kinds of fault the mixed soak injects, and the knobs of the isolated passes run, that
+  // never produced a fault in this run.
+  std::vector<std::string> faults_never_seen() const {
+    std::vector<std::string> out;
+    if (uploads > 0) {
+      for (const std::string& kind : fault_kinds()) {
+        auto it = faults.find(kind);
+        if (it == faults.end() || it->second.injected == 0) out.push_back(kind);
+      }
+    }
+    for (const auto& [knob, x] : isolated) {
+      if (x.injected == 0) out.push_back(knob + " (alone)");
+    }
+    return out;
+  }
 
   double completion() const {
     return uploads == 0 ? 0 : static_cast<double>(completed) / static_cast<double>(uploads);
   }
 };
 
-// Upload number i of a soak at `scale`, added to `t`.
-inline void soak_one(std::size_t i, double scale, Totals& t) {
+// Upload number i of a soak at `scale`, added to `t`. With `only` (one of fault_knobs()),
+// that fault alone is injected, at four times the rate (reset and hang-up: once per upload),
+// and its faults and recoveries are tallied in t.isolated[only] instead of t.faults.
+inline void soak_one(std::size_t i, double scale, Totals& t, const std::string& only = "") {
   emu::SplitMix64 plan_rng(20240611 + i);
   emu::XArmConfig config;
   config.baud = (i % 2 == 0) ? 0 : 115200;
@@ -129,9 +249,26 @@ inline void soak_one(std::size_t i, double scale, Totals& t) {
   config.faults.busy = rate;
   config.faults.busy_for = (i % 4 == 3) ? 700ms : 400ms;
   config.faults.reset = kResetRate * scale;
-  const bool hangup = plan_rng.unit() < kHangupChance * scale;
+  bool hangup = plan_rng.unit() < kHangupChance * scale;
+  const std::size_t at_frame = 1 + plan_rng.next() % 1030;
+  if (!only.empty()) {
+    emu::XArmFaults alone;
+    alone.seed = config.faults.seed;
+    alone.frame_gap = config.faults.frame_gap;
+    alone.late_by = config.faults.late_by;
+    alone.busy_for = config.faults.busy_for;
+    const double more = 4 * rate;
+    if (only == "drop") alone.drop = more;
+    if (only == "corrupt") alone.corrupt = more;
+    if (only == "late") alone.late_ack = more;
+    if (only == "duplicate") alone.duplicate_ack = more;
+    if (only == "busy") alone.busy = more;
+    if (only == "reset") alone.reset_at = at_frame;
+    config.faults = alone;
+    hangup = only == "hang-up";
+  }
   if (hangup) {
-    config.faults.hangup_at = 1 + plan_rng.next() % 1030;
+    config.faults.hangup_at = at_frame;
     config.faults.back_after = 2s;
   }
 
@@ -152,6 +289,24 @@ inline void soak_one(std::size_t i, double scale, Totals& t) {
     return;
   }
   const upload::UploadResult r = uploader.upload(*plan);
+
+  const auto injected = injected_faults(emulator, config.faults);
+  if (!injected) ++t.tally_mismatches;
+  if (!only.empty()) {
+    IsolatedTally& x = t.isolated[only];
+    ++x.uploads;
+    if (injected) {
+      for (const auto& [kind, count] : *injected) x.injected += count;
+    }
+    if (notes.recoveries.empty()) ++x.quiet;
+    if (!r.ok()) ++x.failed;
+    for (const auto& [what, count] : notes.recoveries) x.recoveries[what] += count;
+  } else if (injected) {
+    for (const auto& [kind, count] : *injected) {
+      t.faults[kind].injected += count;
+      ++t.faults[kind].uploads;
+    }
+  }
 
   ++t.uploads;
   t.retries += static_cast<std::size_t>(r.retries);
@@ -184,6 +339,47 @@ inline void soak_one(std::size_t i, double scale, Totals& t) {
   }
 }
 
+// Per kind of fault: how often it happened in the mixed soak; per knob injected alone, the
+// recoveries that handled it.
+inline std::string fault_table(const Totals& t) {
+  std::string out;
+  char buf[200];
+  if (t.uploads > 0) {
+    out += "faults injected in the mixed soak:\n";
+    for (const std::string& kind : fault_kinds()) {
+      auto it = t.faults.find(kind);
+      const FaultTally f = it == t.faults.end() ? FaultTally{} : it->second;
+      std::snprintf(buf, sizeof buf, "  %-24s %6zu in %5zu uploads%s\n", kind.c_str(), f.injected,
+                    f.uploads, f.injected == 0 ? "  <-- NEVER HAPPENED" : "");
+      out += buf;
+    }
+  }
+  if (!t.isolated.empty()) out += "each fault alone, and the recoveries that handled it:\n";
+  for (const auto& [knob, x] : t.isolated) {
+    std::snprintf(buf, sizeof buf,
+                  "  %-10s %5zu faults in %4zu uploads (%zu needed no recovery, %zu failed)%s\n",
+                  knob.c_str(), x.injected, x.uploads, x.quiet, x.failed,
+                  x.injected == 0 ? "  <-- NEVER HAPPENED" : "");
+    out += buf;
+    for (const auto& [what, n] : x.recoveries) {
+      out += "      " + what + " x" + std::to_string(n) + "\n";
+    }
+  }
+  if (t.tally_mismatches > 0) {
+    out += "  uploads whose faults could not be replayed: " + std::to_string(t.tally_mismatches) +
+           "\n";
+  }
+  return out;
+}
+
+// Each knob alone, `per_knob` uploads each (numbered after the mixed soak's `first`).
+inline void soak_isolated(std::size_t first, std::size_t per_knob, double scale, Totals& t) {
+  std::size_t i = first;
+  for (const std::string& knob : fault_knobs()) {
+    for (std::size_t k = 0; k < per_knob; ++k) soak_one(i++, scale, t, knob);
+  }
+}
+
 inline std::string report(const Totals& t, double scale) {
   char buf[600];
   std::snprintf(buf, sizeof buf,
@@ -201,6 +397,7 @@ inline std::string report(const Totals& t, double scale) {
     out += "  failure x" + std::to_string(n) + ": " + what + "\n";
   }
   for (const auto& f : t.first_failures) out += "  " + f + "\n";
+  out += fault_table(t);
   return out;
 }
 

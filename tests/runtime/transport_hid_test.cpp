@@ -216,6 +216,71 @@ TEST(OpenHidPort, AnExplicitPathIsOpenedAsGivenAndErrorsPassThrough) {
   EXPECT_EQ(denied.error().message, "permission denied opening /dev/hidraw8");
 }
 
+// Reconnecting after an unplug (Transport::reopen): the controller is looked for every 50 ms
+// of the test clock until the deadline.
+struct HidReopen : ::testing::Test {
+  FakeHidBackend hid;
+  io::ManualClock clock;
+  std::unique_ptr<io::Transport> t;
+  io::TimePoint unplugged{0};
+
+  void open_and_unplug(HidDeviceInfo device) {
+    hid.devices = {std::move(device)};
+    auto opened = open_port(hid_port(), clock, 9600, hid);
+    ASSERT_TRUE(opened) << opened.error().message;
+    t = std::move(*opened);
+    hid.state->script.push_back({HidRead::State::Gone, 0, "No such device"});
+    Bytes buf(8);
+    ASSERT_EQ(t->read(buf, clock.now() + 100ms).status, io::ReadStatus::HangUp);
+    hid.devices.clear();
+    unplugged = clock.now();
+  }
+  // From `after` past the unplug on, the backend lists `device`.
+  void plug_in(HidDeviceInfo device, io::Duration after) {
+    hid.before_enumerate = [this, device, after](FakeHidBackend& b) {
+      if (clock.now() >= unplugged + after) b.devices = {device};
+    };
+  }
+};
+
+TEST_F(HidReopen, TheSameControllerIsFoundUnderItsNewNodeAndUsedAgain) {
+  open_and_unplug(lobot("/dev/hidraw3", "0001A"));
+  plug_in(lobot("/dev/hidraw4", "0001A"), 2s);
+  ASSERT_TRUE(t->reopen(unplugged + 10s));
+  EXPECT_EQ(clock.now(), unplugged + 2s);
+  EXPECT_EQ(hid.opened, (std::vector<std::string>{"/dev/hidraw3", "/dev/hidraw4"}));
+  EXPECT_EQ(t->describe(), "hid:/dev/hidraw4 (0483:5750 LOBOT)");
+  // Both ways work again: GetBatteryVoltage out, its reply 55 55 04 0F 4C 1D in.
+  ASSERT_TRUE(t->write(Bytes{0x55, 0x55, 0x02, 0x0f}).ok());
+  EXPECT_EQ(hid.state->written.back(), padded({0x00, 0x55, 0x55, 0x02, 0x0f}, 65));
+  hid.state->reports.push_back(padded({0x55, 0x55, 0x04, 0x0f, 0x4c, 0x1d}, 64));
+  Bytes buf(16);
+  const io::ReadResult r = t->read(buf, clock.now() + 100ms);
+  ASSERT_EQ(r.status, io::ReadStatus::Data);
+  EXPECT_EQ(Bytes(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(r.count)),
+            (Bytes{0x55, 0x55, 0x04, 0x0f, 0x4c, 0x1d}));
+}
+
+TEST_F(HidReopen, AnotherControllerIsNotTakenForItAndTheWaitEndsAtTheDeadline) {
+  open_and_unplug(lobot("/dev/hidraw3", "0001A"));
+  plug_in(lobot("/dev/hidraw3", "0002B"), 1s);
+  EXPECT_FALSE(t->reopen(unplugged + 5s));
+  EXPECT_EQ(clock.now(), unplugged + 5s);
+  EXPECT_EQ(hid.opened, std::vector<std::string>{"/dev/hidraw3"});
+}
+
+TEST_F(HidReopen, WithoutASerialNumberTheControllerIsKnownByItsPath) {
+  open_and_unplug(lobot("/dev/hidraw3"));
+  plug_in(lobot("/dev/hidraw4"), 1s);
+  EXPECT_FALSE(t->reopen(unplugged + 3s));
+  EXPECT_EQ(hid.opened, std::vector<std::string>{"/dev/hidraw3"});
+
+  plug_in(lobot("/dev/hidraw3"), 4s);
+  ASSERT_TRUE(t->reopen(unplugged + 10s));
+  EXPECT_EQ(clock.now(), unplugged + 4s);
+  EXPECT_EQ(hid.opened, (std::vector<std::string>{"/dev/hidraw3", "/dev/hidraw3"}));
+}
+
 TEST(OpenPort, EmulatorSpecsAreTheCallersJob) {
   FakeHidBackend hid;
   io::ManualClock clock;

@@ -7,7 +7,9 @@
 // Timing follows the emulator: a request is processed when its last byte arrives, keeps the
 // controller busy (busy, or erase_busy for step 1); a request arriving while busy is dropped;
 // the reply is ready when processing ends, plus `late` if scripted. Replies go out in order
-// of readiness, so a late reply can come after a later one.
+// of readiness, so a late reply can come after a later one. GroupErase is answered with its
+// empty reply (55 55 02 08) unless `erase_unanswered`. After a hang-up, reopen() brings the
+// link back if `back_after` is set and that time has come by the deadline.
 #pragma once
 
 #include <algorithm>
@@ -30,14 +32,23 @@ namespace seqc::upload::testing {
 using namespace std::chrono_literals;
 
 struct FakeScript {
-  std::set<std::size_t> drop;                  // request n is lost
-  std::map<std::size_t, io::Duration> late;    // request n's reply comes this much later
-  std::set<std::size_t> duplicate;             // request n's reply is sent twice
+  std::set<std::size_t> drop;                // request n is lost
+  std::map<std::size_t, io::Duration> late;  // request n's reply comes this much later
+  std::set<std::size_t> duplicate;           // request n's reply is sent twice
+  // Request n's reply is followed back to back, in the same burst, by these bytes: a stale
+  // reply the controller had queued behind it, which the host reads together with it.
+  std::map<std::size_t, Bytes> trailing;
   io::Duration duplicate_gap{0};               // between a reply and its duplicate
   std::map<std::size_t, std::size_t> corrupt;  // request n's reply: byte k is xor-ed with ff
   std::set<std::size_t> refuse;                // request n is answered "<step> 01", no effect
   std::optional<std::size_t> hangup_at;        // the link closes when request n arrives
   std::optional<std::size_t> silent_after;     // no effect, no reply from request n+1 on
+  // A power dip as request n arrives: the request is lost, a download in progress is forgotten
+  // (its group stays empty) and the controller is deaf for boot_time.
+  std::optional<std::size_t> reset_at;
+  io::Duration boot_time = 300ms;
+  bool erase_unanswered = false;           // GroupErase erases but sends no reply
+  std::optional<io::Duration> back_after;  // after a hang-up the port can be opened again then
   io::Duration busy = 2ms;
   io::Duration erase_busy = 60ms;
   double seconds_per_byte = 0;  // write() and replies take this per byte on the clock
@@ -79,6 +90,18 @@ class FakeController final : public io::Transport {
     std::erase_if(out_, [&](const Pending& p) { return p.at <= clock_.now(); });
   }
   std::string describe() const override { return "fake controller"; }
+  bool reopen(io::TimePoint deadline) override {
+    if (!hung_up_ || !script_.back_after) return false;
+    const io::TimePoint back = hung_up_at_ + *script_.back_after;
+    if (back > deadline) {
+      clock_.sleep_until(deadline);
+      return false;
+    }
+    clock_.sleep_until(std::max(back, clock_.now()));
+    hung_up_ = false;
+    ++reopens_;
+    return true;
+  }
   double seconds_per_byte() const override { return script_.seconds_per_byte; }
 
   // What the controller holds in `group` (nullopt = empty).
@@ -90,6 +113,7 @@ class FakeController final : public io::Transport {
   std::size_t busy_dropped() const { return busy_dropped_; }
   std::size_t download_acks_sent() const { return acks_sent_; }
   bool hung_up() const { return hung_up_; }
+  std::size_t reopens() const { return reopens_; }
   // Called with each request number as it arrives (e.g. to raise the interrupt flag).
   std::function<void(std::size_t)> on_request;
 
@@ -110,7 +134,13 @@ class FakeController final : public io::Transport {
       bytes[it->second % bytes.size()] ^= 0xff;
     }
     if (auto it = script_.late.find(n); it != script_.late.end()) ready += it->second;
-    queue(ready + wire(bytes.size()), bytes);
+    if (auto it = script_.trailing.find(n); it != script_.trailing.end()) {
+      Bytes burst = bytes;
+      burst.insert(burst.end(), it->second.begin(), it->second.end());
+      queue(ready + wire(burst.size()), std::move(burst));
+    } else {
+      queue(ready + wire(bytes.size()), bytes);
+    }
     if (script_.duplicate.count(n) != 0) {
       queue(ready + script_.duplicate_gap + wire(2 * bytes.size()), bytes);
     }
@@ -126,14 +156,20 @@ class FakeController final : public io::Transport {
     const std::size_t n = ++count_;
     received_.push_back(frame);
     if (on_request) on_request(n);
-    if (script_.hangup_at && n >= *script_.hangup_at) {
+    if (script_.hangup_at && n == *script_.hangup_at) {
       hung_up_ = true;
+      hung_up_at_ = clock_.now();
       out_.clear();
       return;
     }
     if (script_.silent_after && n > *script_.silent_after) return;
     if (script_.drop.count(n) != 0) return;
     const io::TimePoint now = clock_.now();
+    if (script_.reset_at == n) {
+      downloader_.abort();
+      busy_until_ = now + script_.boot_time;
+      return;
+    }
     if (now < busy_until_) {
       ++busy_dropped_;
       return;
@@ -162,6 +198,11 @@ class FakeController final : public io::Transport {
       emit(lsc::encode(lsc::Reply{lsc::BatteryVoltage{7400}}).value(), busy_until_, n);
     } else if (std::holds_alternative<lsc::GroupStop>(*request)) {
       emit(lsc::encode(lsc::Reply{lsc::GroupStopped{}}).value(), busy_until_, n);
+    } else if (const auto* erase = std::get_if<lsc::GroupErase>(&*request)) {
+      store_.erase(erase->group);
+      if (!script_.erase_unanswered) {
+        emit(lsc::encode(lsc::Reply{lsc::GroupErased{}}).value(), busy_until_, n);
+      }
     } else if (const auto* run = std::get_if<lsc::GroupRun>(&*request)) {
       if (store_.group(run->group)) {
         emit(lsc::encode(lsc::Reply{lsc::GroupStarted{run->group, run->times}}).value(),
@@ -182,6 +223,8 @@ class FakeController final : public io::Transport {
   std::size_t acks_sent_ = 0;
   io::TimePoint busy_until_{0};
   bool hung_up_ = false;
+  io::TimePoint hung_up_at_{0};
+  std::size_t reopens_ = 0;
 };
 
 }  // namespace seqc::upload::testing
