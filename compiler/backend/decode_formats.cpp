@@ -195,6 +195,21 @@ std::optional<RecordLine> record_fields(const std::string& l) {
   return RecordLine{l.substr(0, a), l.substr(a + 1, b - a - 1), l.substr(b + 1, c - b - 1)};
 }
 
+// Why a record line's bytes had no effect, from its status ("" for ok): `dropped:<reason>` is
+// a frame the emulator dropped on purpose, `unframed` bytes it could not frame; `busy` and
+// `fault` are how records marked drops before they carried a reason.
+std::string record_problem(std::string_view status) {
+  if (status == "ok") return "";
+  if (status.starts_with("dropped:")) {
+    return "dropped by the emulator (" + std::string(status.substr(8)) + ")";
+  }
+  if (status == "busy" || status == "fault") {
+    return "dropped by the emulator (" + std::string(status) + ")";
+  }
+  if (status == "unframed") return "not a frame: the emulator ignored these bytes";
+  return "unknown status '" + std::string(status) + "'";
+}
+
 DecodeResult decode_record(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
   Bytes all;
@@ -226,6 +241,9 @@ DecodeResult decode_record(std::string_view text) {
     std::string what = ft.messages.empty() ? to_hex(*bytes) : ft.messages.front();
     if (ft.messages.empty() && !ft.problems.empty()) what += " (" + ft.problems.front() + ")";
     t.row(fmt::format("{} {:<8} {}", f->time, f->status, what));
+    if (const std::string problem = record_problem(f->status); !problem.empty()) {
+      t.issue(fmt::format("line {}", i + 1), problem);
+    }
   }
   return t.finish(fmt::format("{} record(s)", n));
 }

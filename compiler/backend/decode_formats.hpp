@@ -25,7 +25,8 @@ const char* to_string(DecodeFormat format);
 DecodeFormat detect_format(std::string_view text);
 
 // Decodes `text` as `format` (Auto: detect_format). Bytes that are not frames, frames that do
-// not decode and downloads that do not add up are issues, marked '!' in the table.
+// not decode and downloads that do not add up are issues, marked '!' in the table; so is every
+// record line whose status is not `ok` (a frame the emulator dropped, bytes it could not frame).
 DecodeResult decode_text(std::string_view text, DecodeFormat format);
 
 // The LSC-6 dialect's frames: each request, and for a download the group it builds, checked

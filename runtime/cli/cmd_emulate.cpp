@@ -18,6 +18,7 @@
 #include "runtime/emulator/group_dump.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
+#include "runtime/emulator/received_record.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
@@ -45,44 +46,6 @@ struct EmulateOptions {
   CLI::Option* record_opt = nullptr;
   CLI::Option* dump_groups_opt = nullptr;
 };
-
-std::string seconds(io::TimePoint at) {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
-  std::string frac = std::to_string(us % 1000000);
-  return std::to_string(us / 1000000) + "." + std::string(6 - frac.size(), '0') + frac;
-}
-
-std::string csv_field(std::string text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-// One CSV line per piece the controller received.
-std::string xarm_record(const emu::XArmEmulator& emu) {
-  std::string out = "time_s,status,bytes,message\n";
-  for (const auto& r : emu.received()) {
-    std::string status = "ok";
-    std::string message;
-    if (r.dropped_fault) {
-      status = "fault";
-    } else if (r.dropped_busy) {
-      status = "busy";
-    } else if (!r.frame) {
-      status = "unframed";
-    }
-    if (r.frame) {
-      auto request = lsc::decode_request(*r.frame);
-      message = request ? lsc::describe(*request) : request.error().message;
-    }
-    out += seconds(r.at) + "," + status + "," + to_hex(r.raw) + "," + csv_field(message) + "\n";
-  }
-  return out;
-}
 
 ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   if (o.device == "lsc6") {
@@ -209,7 +172,8 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   }
 
   if (o.record_opt->count() > 0) {
-    const std::string text = xarm ? xarm_record(xarm_emu) : emu::timeline_csv(rasp_emu.timeline());
+    const std::string text =
+        xarm ? emu::xarm_record_csv(xarm_emu) : emu::timeline_csv(rasp_emu.timeline());
     if (auto ok = io::write_file_atomically(o.record, text); !ok) {
       ctx.err << "seqc: error: --record " << o.record << ": " << ok.error().message << "\n";
       return ExitCode::FileError;

@@ -7,40 +7,11 @@
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/emulator/pty_server.hpp"
+#include "runtime/emulator/received_record.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/protocol/lsc6_messages.hpp"
 
 namespace seqc::cli {
-namespace {
-
-std::string seconds(io::TimePoint at) {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
-  std::string frac = std::to_string(us % 1000000);
-  return std::to_string(us / 1000000) + "." + std::string(6 - frac.size(), '0') + frac;
-}
-
-// One CSV line per frame the receiver completed (the same columns as the xarm record).
-std::string lsc6_record(const emu::Lsc6Emulator& emu) {
-  std::string out = "time_s,status,bytes,message\n";
-  for (const auto& r : emu.received()) {
-    const char* status = r.dropped_fault ? "fault" : r.dropped_busy ? "busy" : "ok";
-    std::string message;
-    if (auto frame = lsc::decode_serial(r.raw)) {
-      auto request = lsc6::decode_request(*frame);
-      message = request ? lsc6::describe(*request) : "ignored: " + request.error().message;
-    }
-    if (message.find_first_of(",\"") != std::string::npos) {
-      std::string quoted = "\"";
-      for (char c : message) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-      message = quoted + "\"";
-    }
-    out += seconds(r.at) + "," + status + "," + to_hex(r.raw) + "," + message + "\n";
-  }
-  return out;
-}
-
-}  // namespace
-
 ExitCode run_emulate_lsc6(const Lsc6EmulateArgs& args, Context& ctx) {
   emu::Lsc6Config config;
   if (auto ok = emu::apply_lsc6_options(args.options, config); !ok) {
@@ -80,7 +51,7 @@ ExitCode run_emulate_lsc6(const Lsc6EmulateArgs& args, Context& ctx) {
   ctx.err << "seqc: received " << board.received().size() << " frames, "
           << board.received_bytes().size() << " bytes\n";
   if (args.record) {
-    if (auto ok = io::write_file_atomically(*args.record, lsc6_record(board)); !ok) {
+    if (auto ok = io::write_file_atomically(*args.record, emu::lsc6_record_csv(board)); !ok) {
       ctx.err << "seqc: error: --record " << *args.record << ": " << ok.error().message << "\n";
       return ExitCode::FileError;
     }

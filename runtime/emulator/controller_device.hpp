@@ -7,11 +7,47 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/bytes.hpp"
 
 namespace seqc::emu {
+
+// Why a controller dropped a whole frame on purpose (None: it was taken, or it was never a
+// frame). The --record CSV writes each drop with its reason, so a record shows every frame the
+// host sent that had no effect.
+enum class DropReason : std::uint8_t {
+  None,
+  Busy,          // arrived while the controller was busy (or its one-frame buffer was full)
+  FaultDrop,     // lost on the line (fault `drop`)
+  FaultCorrupt,  // a framing byte corrupted (fault `corrupt`): the controller ignored it
+  FaultSilent,   // after the controller fell silent (fault `silent-after`)
+  FaultHangUp,   // the frame that hung up the link (fault `hangup-at`)
+  FaultReset,    // taken by a power dip (faults `reset`, `reset-at`)
+};
+
+// "busy", "fault-drop", "fault-corrupt", "fault-silent", "fault-hangup", "fault-reset"; "" for
+// None.
+constexpr std::string_view drop_reason_name(DropReason reason) {
+  switch (reason) {
+    case DropReason::None:
+      return "";
+    case DropReason::Busy:
+      return "busy";
+    case DropReason::FaultDrop:
+      return "fault-drop";
+    case DropReason::FaultCorrupt:
+      return "fault-corrupt";
+    case DropReason::FaultSilent:
+      return "fault-silent";
+    case DropReason::FaultHangUp:
+      return "fault-hangup";
+    case DropReason::FaultReset:
+      return "fault-reset";
+  }
+  return "";
+}
 
 class ControllerDevice {
  public:

@@ -39,6 +39,7 @@ IncomingFault FaultInjector::on_request() {
 }
 
 OutgoingFault FaultInjector::on_reply() {
+  ++replies_;
   OutgoingFault f;
   f.late = out_.unit() < faults_.late_ack;
   f.duplicate = out_.unit() < faults_.duplicate_ack;

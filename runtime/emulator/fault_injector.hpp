@@ -58,6 +58,7 @@ class FaultInjector {
 
   bool silent() const { return silent_; }
   std::size_t frames_seen() const { return frames_; }
+  std::size_t replies_seen() const { return replies_; }
 
  private:
   XArmFaults faults_;
@@ -67,6 +68,7 @@ class FaultInjector {
   // leaves the drops, corruptions and reply faults of the same seed unchanged.
   SplitMix64 extra_;
   std::size_t frames_ = 0;
+  std::size_t replies_ = 0;
   bool silent_ = false;
 };
 

@@ -20,10 +20,14 @@ Result<std::size_t> EmulatedHidDevice::write(ByteView report) {
         (report.empty() ? std::string("nowhere") : to_hex(report.first(1))));
   }
   written_.emplace_back(report.begin(), report.end());
-  // The frame is what LEN says; the padding never reaches the controller's parser.
+  // The frame is what LEN says; the padding never reaches the controller's parser. The parser
+  // reads at least the header and LEN before it can judge LEN: a LEN below 2 still hands it
+  // those three bytes, so it abandons the frame instead of waiting inside it for a LEN that
+  // the next report would supply.
   const ByteView data = report.subspan(1);
-  const std::size_t len =
-      data.size() >= 3 && data[0] == 0x55 && data[1] == 0x55 ? std::size_t{data[2]} + 2 : 0;
+  const std::size_t len = data.size() >= 3 && data[0] == 0x55 && data[1] == 0x55
+                              ? std::max<std::size_t>(std::size_t{data[2]} + 2, 3)
+                              : 0;
   const std::size_t n = std::min(len, data.size());
   const io::TimePoint at =
       std::max(clock_.now(), next_slot_) + transport::HidTransport::kReportInterval;

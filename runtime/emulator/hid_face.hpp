@@ -5,10 +5,12 @@
 // Reports as the controller's USB HID interface carries them (docs/protocol/servo-controller.md,
 // "Framing"): an output report is 65 bytes for hid_write, report id 0 then the serial frame
 // zero-padded to 64 bytes; an input report is 64 bytes starting at 55 55, one frame each, zero
-// padded. A write that is not such a report is refused, as the kernel would refuse a report of
-// the wrong size. Time: one report per kReportInterval (a full-speed interrupt endpoint polled
-// every 1 ms frame); the frame reaches the emulator when its report is delivered. Everything in
-// emulated time on the shared ManualClock.
+// padded. Only the frame reaches the controller's parser, never the padding; a frame whose LEN
+// is below 2 still hands it the header and LEN, so the parser abandons it as on the serial line
+// instead of waiting inside it for the next report. A write that is not such a report is refused,
+// as the kernel would refuse a report of the wrong size. Time: one report per kReportInterval (a
+// full-speed interrupt endpoint polled every 1 ms frame); the frame reaches the emulator when its
+// report is delivered. Everything in emulated time on the shared ManualClock.
 #pragma once
 
 #include <deque>

@@ -116,8 +116,10 @@ void Lsc6Emulator::complete_frame(io::TimePoint at) {
   r.raw.insert(r.raw.end(), rx_.begin() + 1, rx_.begin() + msg_len_);
   if (config_.drop > 0 && rng_.unit() < config_.drop) {
     r.dropped_fault = true;
+    r.dropped = DropReason::FaultDrop;
   } else if (held_since_) {
     r.dropped_busy = true;
+    r.dropped = DropReason::Busy;
   } else {
     std::copy_n(rx_.begin(), msg_len_, cmd_.begin());
     held_since_ = at;

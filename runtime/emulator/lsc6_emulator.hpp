@@ -67,6 +67,7 @@ struct Lsc6Received {
   Bytes raw;                  // the frame as completed by the receiver
   bool dropped_busy = false;  // the command buffer was still full
   bool dropped_fault = false;
+  DropReason dropped = DropReason::None;  // Busy or FaultDrop when one of those is set
 };
 
 class Lsc6Emulator final : public ControllerDevice {

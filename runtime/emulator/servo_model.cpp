@@ -10,6 +10,7 @@ ServoBank::ServoBank(const ServoModelConfig& config) {
   s.limits.position_min = config.min;
   s.limits.position_max = config.max;
   servos_.assign(config.count, s);
+  for (std::size_t i = 0; i < servos_.size(); ++i) servos_[i].id = static_cast<std::uint8_t>(i + 1);
   for (const auto& [id, position] : config.initial) {
     if (id >= 1 && id <= servos_.size()) servos_[id - 1].from = servos_[id - 1].to = position;
   }
@@ -19,17 +20,21 @@ bool ServoBank::has(std::uint8_t id) const { return find(id) != nullptr; }
 
 std::vector<std::uint8_t> ServoBank::ids() const {
   std::vector<std::uint8_t> out;
-  for (std::size_t i = 0; i < servos_.size(); ++i) out.push_back(static_cast<std::uint8_t>(i + 1));
+  for (const Servo& s : servos_) out.push_back(s.id);
   return out;
 }
 
 const ServoBank::Servo* ServoBank::find(std::uint8_t id) const {
-  if (id == 0 || id > servos_.size()) return nullptr;
-  return &servos_[id - 1u];
+  for (const Servo& s : servos_) {
+    if (s.id == id) return &s;
+  }
+  return nullptr;
 }
 ServoBank::Servo* ServoBank::find(std::uint8_t id) {
-  if (id == 0 || id > servos_.size()) return nullptr;
-  return &servos_[id - 1u];
+  for (Servo& s : servos_) {
+    if (s.id == id) return &s;
+  }
+  return nullptr;
 }
 
 std::uint16_t ServoBank::at_time(const Servo& s, io::TimePoint at) {
@@ -45,23 +50,23 @@ std::uint16_t ServoBank::at_time(const Servo& s, io::TimePoint at) {
 
 void ServoBank::move(std::uint8_t id, std::uint16_t target, io::Duration duration,
                      io::TimePoint start) {
-  Servo* s = find(id);
-  if (!s) return;
-  const std::uint16_t here = at_time(*s, start);
-  s->from = here;
-  s->to = std::clamp(target, s->limits.position_min, s->limits.position_max);
-  s->t0 = start;
-  s->t1 = start + std::max(duration, io::Duration{0});
-  s->powered = true;
+  for_each(id, [&](Servo& s) {
+    const std::uint16_t here = at_time(s, start);
+    s.from = here;
+    s.to = std::clamp(target, s.limits.position_min, s.limits.position_max);
+    s.t0 = start;
+    s.t1 = start + std::max(duration, io::Duration{0});
+    s.powered = true;
+  });
 }
 
 void ServoBank::power_off(std::uint8_t id, io::TimePoint at) {
-  Servo* s = find(id);
-  if (!s) return;
-  const std::uint16_t here = at_time(*s, at);
-  s->from = s->to = here;
-  s->t0 = s->t1 = at;
-  s->powered = false;
+  for_each(id, [&](Servo& s) {
+    const std::uint16_t here = at_time(s, at);
+    s.from = s.to = here;
+    s.t0 = s.t1 = at;
+    s.powered = false;
+  });
 }
 
 bool ServoBank::pose_by_hand(std::uint8_t id, std::uint16_t position, io::TimePoint at) {
@@ -83,10 +88,10 @@ std::uint16_t ServoBank::position(std::uint8_t id, io::TimePoint at) const {
 }
 
 void ServoBank::adjust_offset(std::uint8_t id, std::int8_t offset) {
-  if (Servo* s = find(id)) s->offset = offset;
+  for_each(id, [&](Servo& s) { s.offset = offset; });
 }
 void ServoBank::write_offset(std::uint8_t id) {
-  if (Servo* s = find(id)) s->stored_offset = s->offset;
+  for_each(id, [&](Servo& s) { s.stored_offset = s.offset; });
 }
 std::int8_t ServoBank::offset(std::uint8_t id) const {
   const Servo* s = find(id);
@@ -98,10 +103,10 @@ std::int8_t ServoBank::stored_offset(std::uint8_t id) const {
 }
 
 void ServoBank::set_mode(std::uint8_t id, lsc::ServoMode mode, std::uint16_t milliseconds) {
-  if (Servo* s = find(id)) {
-    s->mode = mode;
-    s->mode_ms = milliseconds;
-  }
+  for_each(id, [&](Servo& s) {
+    s.mode = mode;
+    s.mode_ms = milliseconds;
+  });
 }
 lsc::ServoMode ServoBank::mode(std::uint8_t id) const {
   const Servo* s = find(id);
@@ -114,6 +119,10 @@ std::uint16_t ServoBank::mode_milliseconds(std::uint8_t id) const {
 
 void ServoBank::write_limits(const lsc::BusServoLimits& limits) {
   for (auto& s : servos_) s.limits = limits;
+}
+void ServoBank::write_id(std::uint8_t id) {
+  if (id > kMaxServoId) return;
+  for (auto& s : servos_) s.id = id;
 }
 lsc::BusServoLimits ServoBank::limits(std::uint8_t id) const {
   const Servo* s = find(id);

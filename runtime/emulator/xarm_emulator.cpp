@@ -59,18 +59,23 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
   }
   if (fault.hangup || fault.silent || fault.drop) {
     rec.dropped_fault = true;
+    rec.dropped = fault.hangup   ? DropReason::FaultHangUp
+                  : fault.silent ? DropReason::FaultSilent
+                                 : DropReason::FaultDrop;
     received_.push_back(std::move(rec));
     return;
   }
   if (fault.corrupt) {
     rec.raw[fault.corrupt_offset] = static_cast<std::uint8_t>(rec.raw[fault.corrupt_offset] ^ 0xff);
     rec.dropped_fault = true;
+    rec.dropped = DropReason::FaultCorrupt;
     received_.push_back(std::move(rec));
     return;
   }
   if (fault.reset) {
     // The dip takes the frame with it; the controller boots and is deaf meanwhile.
     rec.dropped_fault = true;
+    rec.dropped = DropReason::FaultReset;
     received_.push_back(std::move(rec));
     ++resets_;
     power_cycle(at);
@@ -81,6 +86,7 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
   rec.frame = frame;
   if (at < busy_until_) {
     rec.dropped_busy = true;
+    rec.dropped = DropReason::Busy;
     received_.push_back(std::move(rec));
     return;
   }
@@ -189,14 +195,20 @@ XArmEmulator::Processed XArmEmulator::process(const lsc::Frame& frame, io::TimeP
         } else if constexpr (std::is_same_v<T, lsc::ServoSpeed>) {
           servos_.set_mode(m.servo, m.mode, m.milliseconds);
         } else if constexpr (std::is_same_v<T, lsc::BusServoInfoWrite>) {
-          servos_.write_limits(m.limits);
+          if (m.id_only) {
+            servos_.write_id(m.servo);
+          } else {
+            servos_.write_limits(m.limits);
+          }
         } else if constexpr (std::is_same_v<T, lsc::BusServoInfoRead>) {
-          if (!servos_.has(1)) return;
+          const std::vector<std::uint8_t> ids = servos_.ids();
+          if (ids.empty()) return;
+          const std::uint8_t first = ids.front();
           lsc::BusServoInfo r;
-          r.id = 1;
-          r.limits = servos_.limits(1);
-          r.offset = servos_.offset(1);
-          r.position = servos_.position(1, at);
+          r.id = first;
+          r.limits = servos_.limits(first);
+          r.offset = servos_.offset(first);
+          r.position = servos_.position(first, at);
           r.temp = config_.servo_temperature_c;
           r.millivolts = config_.battery_mv;
           reply(r);

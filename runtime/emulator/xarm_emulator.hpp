@@ -3,6 +3,8 @@
 // never reads a clock; callers pass the time at which bytes arrive and up to which time runs.
 //
 // Behaviour (request -> effect; reply, if any):
+// Servos are addressed as on the bus (servo_model.hpp): id 254 reaches every servo, and a read
+// of 254 is answered by none (docs/protocol/readings.md).
 //   MultiServoMove      servos move linearly to their targets over the time; 0xff00 = stay
 //   GroupDownload 1-5   the enforced handshake of group_store.hpp; ack 55 55 04 05 <step> 00|01
 //   GroupRun            plays a stored group (nothing if the group is empty);
@@ -16,13 +18,15 @@
 //   MultiServoOff       the servos stop where they are and go limp
 //   ServoPositionRead   55 55 LEN 15 count {id posLo posHi}, positions at the time the
 //                       request is processed (also mid-move); unknown ids are left out
-//   ServoOffsetAdjust   volatile offset (-128..127, else ignored); ServoOffsetWrite keeps it
+//   ServoOffsetAdjust   volatile offset (-128..127, else ignored), as a short or, in the
+//                       one-byte form, an sbyte; ServoOffsetWrite keeps it
 //   ServoOffsetRead     55 55 LEN 17 count {id offset}; unknown ids are left out
 //   ServoSpeed          stores mode (servo/motor) and milliseconds per servo
 //   BusServoInfoWrite   every servo on the bus takes the limits (kept over power cycles);
-//                       positions are clamped to them from then on
-//   BusServoInfoRead    55 55 LEN 1c with servo 1's info (the emulated bus answers for its
-//                       first servo), battery millivolts and the configured temperature
+//                       positions are clamped to them from then on. The id-only form
+//                       (55 55 03 1b id): every servo takes the id (0..253, kept; else ignored)
+//   BusServoInfoRead    55 55 LEN 1c with the first servo's info (the emulated bus answers
+//                       for its first servo), battery millivolts and the configured temperature
 // While playing, the controller sends GroupFinished 55 55 05 08 G tLo tHi when a run of
 // `times` loops ends (times = 0 loops forever).
 //
@@ -74,10 +78,11 @@ inline constexpr bool kGroupStoppedHasData = false;
 
 struct ReceivedFrame {
   io::TimePoint at{0};
-  Bytes raw;                        // as the controller saw it (after injected corruption)
-  std::optional<lsc::Frame> frame;  // nullopt: could not be framed (garbage, bad LEN, cut)
-  bool dropped_busy = false;        // arrived while the controller was busy
-  bool dropped_fault = false;       // lost, corrupted, unanswered or hung up by a fault
+  Bytes raw;                              // as the controller saw it (after injected corruption)
+  std::optional<lsc::Frame> frame;        // nullopt: could not be framed (garbage, bad LEN, cut)
+  bool dropped_busy = false;              // arrived while the controller was busy
+  bool dropped_fault = false;             // lost, corrupted, unanswered or hung up by a fault
+  DropReason dropped = DropReason::None;  // which of those, and which fault
 };
 
 class XArmEmulator final : public ControllerDevice {
@@ -134,6 +139,8 @@ class XArmEmulator final : public ControllerDevice {
   const ServoBank& servos() const { return servos_; }
   // Framed requests received so far (the count faults are numbered by).
   std::size_t frames_received() const { return faults_.frames_seen(); }
+  // Frames sent so far (replies and notifications; the count reply faults are drawn for).
+  std::size_t frames_sent() const { return faults_.replies_seen(); }
 
  private:
   struct Processed {

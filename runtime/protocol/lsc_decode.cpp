@@ -119,7 +119,11 @@ Result<Request> decode_request(const Frame& frame) {
     case Command::ServoOffsetRead:
       return decode_ids_as<ServoOffsetRead>(d, "ServoOffsetRead");
     case Command::ServoOffsetAdjust: {
-      if (auto ok = expect_size(d, 3, "ServoOffsetAdjust"); !ok) return ok.error();
+      // reading: `id offset:sbyte` (2 bytes) as well as the table's `id offset:short`.
+      if (d.size() == 2) {
+        return Request{ServoOffsetAdjust{d[0], static_cast<std::int8_t>(d[1]), true}};
+      }
+      if (auto ok = expect_size(d, 3, "ServoOffsetAdjust (2 or 3 bytes)"); !ok) return ok.error();
       FieldReader r(d);
       const std::uint8_t servo = r.u8();
       return Request{ServoOffsetAdjust{servo, r.i16()}};
@@ -138,6 +142,13 @@ Result<Request> decode_request(const Frame& frame) {
       return Request{m};
     }
     case Command::BusServoInfoWrite: {
+      // reading: the id alone (1 byte), which every servo on the bus takes as its id.
+      if (d.size() == 1) {
+        BusServoInfoWrite m;
+        m.servo = d[0];
+        m.id_only = true;
+        return Request{m};
+      }
       if (auto ok = expect_size(d, 1 + kLimitsBytes, "BusServoInfoWrite"); !ok) {
         return ok.error();
       }

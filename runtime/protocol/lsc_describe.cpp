@@ -100,7 +100,7 @@ struct Describer {
   }
   std::string operator()(const ServoOffsetAdjust& m) const {
     return "ServoOffsetAdjust servo=" + std::to_string(m.servo) +
-           " offset=" + std::to_string(m.offset);
+           " offset=" + std::to_string(m.offset) + (m.one_byte ? " (one-byte form)" : "");
   }
   std::string operator()(const ServoSpeed& m) const {
     const char* mode = m.mode == ServoMode::Servo   ? "servo"
@@ -110,6 +110,8 @@ struct Describer {
            " milliseconds=" + std::to_string(m.milliseconds);
   }
   std::string operator()(const BusServoInfoWrite& m) const {
+    if (m.id_only)
+      return "BusServoInfoWrite id-only: every servo takes id " + std::to_string(m.servo);
     return "BusServoInfoWrite servo=" + std::to_string(m.servo) + " " + limits_text(m.limits);
   }
   std::string operator()(const BusServoInfoRead&) const { return "BusServoInfoRead"; }

@@ -90,6 +90,16 @@ Result<Frame> encode_one(const ServoOffsetRead& m) {
   return encode_ids(Command::ServoOffsetRead, m.servos, "ServoOffsetRead");
 }
 Result<Frame> encode_one(const ServoOffsetAdjust& m) {
+  if (m.one_byte) {
+    if (m.offset < -128 || m.offset > 127) {
+      return make_error("ServoOffsetAdjust: offset " + std::to_string(m.offset) +
+                        " does not fit the one-byte form (-128..127)");
+    }
+    return FieldWriter(cmd_of(Command::ServoOffsetAdjust))
+        .u8(m.servo)
+        .i8(static_cast<std::int8_t>(m.offset))
+        .finish("ServoOffsetAdjust");
+  }
   return FieldWriter(cmd_of(Command::ServoOffsetAdjust))
       .u8(m.servo)
       .i16(m.offset)
@@ -108,6 +118,12 @@ Result<Frame> encode_one(const ServoSpeed& m) {
       .finish("ServoSpeed");
 }
 Result<Frame> encode_one(const BusServoInfoWrite& m) {
+  if (m.id_only) {
+    if (m.limits != BusServoLimits{}) {
+      return make_error("BusServoInfoWrite: the id-only form carries no limits");
+    }
+    return FieldWriter(cmd_of(Command::BusServoInfoWrite)).u8(m.servo).finish("BusServoInfoWrite");
+  }
   if (auto ok = check_limits(m.limits, "BusServoInfoWrite"); !ok) return ok.error();
   FieldWriter w(cmd_of(Command::BusServoInfoWrite));
   w.u8(m.servo);

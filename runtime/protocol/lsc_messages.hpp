@@ -130,6 +130,9 @@ struct ServoOffsetRead {
 struct ServoOffsetAdjust {  // volatile: lost at power-off unless written
   std::uint8_t servo = 0;
   std::int16_t offset = 0;
+  // reading (docs/protocol/readings.md): `id offset:sbyte`, the one-byte form a public arm
+  // library sends, is accepted too; set, the frame carries that form (offset -128..127).
+  bool one_byte = false;
   friend bool operator==(const ServoOffsetAdjust&, const ServoOffsetAdjust&) = default;
 };
 enum class ServoMode : std::uint8_t { Servo = 0, Motor = 1 };
@@ -152,6 +155,10 @@ struct BusServoLimits {
 struct BusServoInfoWrite {  // reaches every servo on the bus
   std::uint8_t servo = 0;
   BusServoLimits limits;
+  // reading (docs/protocol/readings.md): the frame carries the id alone (`55 55 03 1B id`), as a
+  // public arm library sends it to set a servo's id; every servo on the bus takes that id and
+  // `limits` is unused.
+  bool id_only = false;
   friend bool operator==(const BusServoInfoWrite&, const BusServoInfoWrite&) = default;
 };
 struct BusServoInfoRead {

@@ -31,10 +31,10 @@ INSTANTIATE_TEST_SUITE_P(Inputs, DecodeFormats,
                          ::testing::Values(Case{"lsc6-upload.hex", "lsc6-upload", 0},
                                            Case{"lsc6-broken.hex", "lsc6-broken", 1},
                                            Case{"upload.trace", "trace", 0},
-                                           Case{"lsc6-record.csv", "lsc6-record", 0},
+                                           Case{"lsc6-record.csv", "lsc6-record", 1},
                                            Case{"car.hex", "car", 0}),
-                         [](const auto& info) {
-                           std::string name = info.param.golden;
+                         [](const auto& test_info) {
+                           std::string name = test_info.param.golden;
                            for (char& ch : name) ch = ch == '-' ? '_' : ch;
                            return name;
                          });

@@ -74,5 +74,36 @@ TEST(RaspblockEmulator, BadChecksumRejectedAndCounted) {
   EXPECT_EQ(board.bad_checksums(), 1u);
 }
 
+// The header, function and length rules after a packet was taken, and a half-received packet
+// followed by a whole one (docs/protocol/raspblock.md).
+TEST(RaspblockEmulator, RejectionsAfterTrafficLeaveTheStateAlone) {
+  RaspblockEmulator board;
+  board.receive(hex("ff fe 02 03 03 07 d0 df"), at_ms(0));         // servo 3 to 2000
+  board.receive(hex("ff fe 09 01 00 0a"), at_ms(10));              // function 9: none such
+  board.receive(hex("ff fe 02 05 01 05 dc 00 00 e9"), at_ms(20));  // function 2 has LEN 3 or 4
+  board.receive(hex("ff fd 02 03 01 05 dc e7"), at_ms(30));        // bad second header byte
+  // Half of a servo 3 packet, then a whole servo 1 packet: the half takes the next two bytes
+  // as its data and checksum and fails; the whole one is found after it.
+  board.receive(hex("ff fe 02 03 03 07"), at_ms(35));
+  board.receive(hex("ff fe 02 03 01 05 dc e7"), at_ms(40));  // servo 1 to 1500
+  board.receive(hex("ff fe 02 03 03 05 dc e9"), at_ms(50));  // servo 3 to 1500
+
+  const std::vector<RaspblockChange> want = {
+      change(0, F::Servo3, std::nullopt, 2000),
+      change(40, F::Servo1, std::nullopt, 1500),
+      change(50, F::Servo3, 2000, 1500),
+  };
+  EXPECT_EQ(board.timeline(), want);
+  ASSERT_EQ(board.rejections().size(), 3u);
+  EXPECT_EQ(board.rejections()[0].reason, "Raspblock packet rejected: unknown function 9");
+  EXPECT_EQ(board.rejections()[0].at, at_ms(10));
+  EXPECT_EQ(board.rejections()[1].reason,
+            "Raspblock packet rejected: function 2 cannot have LEN 5");
+  EXPECT_EQ(board.rejections()[2].reason, "Raspblock packet: checksum fe, expected 0e");
+  EXPECT_EQ(board.rejections()[2].at, at_ms(40));
+  EXPECT_EQ(board.bad_checksums(), 1u);
+  EXPECT_EQ(board.packets().size(), 3u);
+}
+
 }  // namespace
 }  // namespace seqc::emu::test

@@ -102,7 +102,7 @@ TEST(LscRange, RequestDataLengthMustMatchExactly) {
   EXPECT_FALSE(request_from("55 55 03 0F 00").ok());                       // battery data
   EXPECT_FALSE(request_from("55 55 06 14 04 01 02 03").ok());              // count 4, 3 ids
   EXPECT_FALSE(request_from("55 55 06 15 02 01 02 03").ok());              // count 2, 3 ids
-  EXPECT_FALSE(request_from("55 55 04 18 03 EC").ok());                    // offset short
+  EXPECT_FALSE(request_from("55 55 03 18 03").ok());                       // no offset
   EXPECT_FALSE(request_from("55 55 03 1C 00").ok());                       // info read data
   EXPECT_FALSE(request_from("55 55 02 99").ok());                          // unknown command
 }

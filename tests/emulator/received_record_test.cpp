@@ -1,0 +1,123 @@
+// The --record CSV (received_record.hpp): every frame an emulator dropped on purpose is marked
+// `dropped:<reason>`, and `seqc decode` of the record reports each such line, and each piece
+// that was never a frame, as an issue. The expected lines are written by hand.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "compiler/backend/decode_formats.hpp"
+#include "runtime/emulator/received_record.hpp"
+#include "tests/emulator/emu_test_util.hpp"
+
+namespace seqc::emu::test {
+namespace {
+
+constexpr const char* kHeader = "time_s,status,bytes,message\n";
+
+TEST(ReceivedRecord, XArmMarksABusyDropAndUnframedBytes) {
+  XArmConfig config;
+  config.command_time = 5ms;  // a frame keeps the controller busy for 5 ms
+  XArmEmulator emu(config);
+  emu.receive(hex("55 55 02 0f"), at_ms(0));
+  emu.receive(hex("55 55 02 0f"), at_ms(1));
+  emu.receive(hex("55 55 01"), at_ms(10));
+  emu.receive(hex("aa"), at_ms(20));
+  emu.receive(hex("55 55 02 07"), at_ms(30));
+  const std::string csv = xarm_record_csv(emu);
+  EXPECT_EQ(csv, std::string(kHeader) +
+                     "0.000000,ok,55 55 02 0f,GetBatteryVoltage\n"
+                     "0.001000,dropped:busy,55 55 02 0f,GetBatteryVoltage\n"
+                     "0.010000,unframed,55 55 01,\n"
+                     "0.020000,unframed,aa,\n"
+                     "0.030000,ok,55 55 02 07,GroupStop\n");
+
+  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  EXPECT_EQ(d.issues, (std::vector<std::string>{
+                          "line 3: dropped by the emulator (busy)",
+                          "line 4: not a frame: the emulator ignored these bytes",
+                          "line 5: not a frame: the emulator ignored these bytes",
+                      }));
+  EXPECT_NE(d.table.find("0.001000 dropped:busy GetBatteryVoltage\n"
+                         "! line 3: dropped by the emulator (busy)\n"),
+            std::string::npos)
+      << d.table;
+  EXPECT_NE(d.table.find("# 5 record(s), 3 issue(s)\n"), std::string::npos) << d.table;
+}
+
+// One emulator per fault, each fed the same two battery requests, 100 ms apart.
+std::string record_with(const char* faults) {
+  XArmConfig config;
+  auto parsed = parse_faults(faults);
+  EXPECT_TRUE(parsed.ok()) << faults;
+  if (parsed) config.faults = *parsed;
+  XArmEmulator emu(config);
+  emu.receive(hex("55 55 02 0f"), at_ms(0));
+  emu.receive(hex("55 55 02 0f"), at_ms(100));
+  return xarm_record_csv(emu);
+}
+
+TEST(ReceivedRecord, XArmNamesTheFaultThatDroppedEachFrame) {
+  EXPECT_EQ(record_with("drop=1"),
+            std::string(kHeader) +
+                "0.000000,dropped:fault-drop,55 55 02 0f,GetBatteryVoltage\n"
+                "0.100000,dropped:fault-drop,55 55 02 0f,GetBatteryVoltage\n");
+  EXPECT_EQ(record_with("silent-after=1"),
+            std::string(kHeader) +
+                "0.000000,ok,55 55 02 0f,GetBatteryVoltage\n"
+                "0.100000,dropped:fault-silent,55 55 02 0f,GetBatteryVoltage\n");
+  EXPECT_EQ(record_with("reset-at=2"),
+            std::string(kHeader) +
+                "0.000000,ok,55 55 02 0f,GetBatteryVoltage\n"
+                "0.100000,dropped:fault-reset,55 55 02 0f,GetBatteryVoltage\n");
+  // The frame that hangs up is recorded; nothing after it reaches the controller.
+  EXPECT_EQ(record_with("hangup-at=1"),
+            std::string(kHeader) + "0.000000,dropped:fault-hangup,55 55 02 0f,GetBatteryVoltage\n");
+
+  const backend::DecodeResult d =
+      backend::decode_text(record_with("silent-after=1"), backend::DecodeFormat::Record);
+  EXPECT_EQ(d.issues, (std::vector<std::string>{"line 3: dropped by the emulator (fault-silent)"}));
+}
+
+TEST(ReceivedRecord, Lsc6MarksAFrameLostWhileTheBufferWasFull) {
+  Lsc6Config config;
+  config.baud = 0;
+  Lsc6Emulator emu(config);
+  // EraseAll keeps the board busy about 46 ms; the first Stop waits in the buffer, the second
+  // finds it full.
+  emu.receive(hex("55 55 02 08"), at_ms(0));
+  emu.receive(hex("55 55 02 07"), at_ms(1));
+  emu.receive(hex("55 55 02 07"), at_ms(2));
+  const std::string csv = lsc6_record_csv(emu);
+  EXPECT_EQ(csv, std::string(kHeader) +
+                     "0.000000,ok,55 55 02 08,EraseAll\n"
+                     "0.001000,ok,55 55 02 07,Stop\n"
+                     "0.002000,dropped:busy,55 55 02 07,Stop\n");
+  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  EXPECT_EQ(d.issues, (std::vector<std::string>{"line 4: dropped by the emulator (busy)"}));
+}
+
+TEST(ReceivedRecord, Lsc6MarksAFrameLostOnTheLine) {
+  Lsc6Config config;
+  config.baud = 0;
+  config.drop = 1.0;
+  Lsc6Emulator emu(config);
+  emu.receive(hex("55 55 05 06 01 01 00"), at_ms(250));
+  EXPECT_EQ(lsc6_record_csv(emu),
+            std::string(kHeader) +
+                "0.250000,dropped:fault-drop,55 55 05 06 01 01 00,Run group=1 times=1\n");
+}
+
+TEST(ReceivedRecord, DecodeStillFlagsTheOlderStatuses) {
+  // Records written before drops carried a reason said `busy` and `fault`.
+  const std::string csv = std::string(kHeader) +
+                          "0.100000,ok,55 55 02 0f,GetBatteryVoltage\n"
+                          "0.200000,busy,55 55 02 0f,GetBatteryVoltage\n"
+                          "0.300000,fault,55 55 02 0f,\n";
+  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  EXPECT_EQ(d.issues, (std::vector<std::string>{"line 3: dropped by the emulator (busy)",
+                                                "line 4: dropped by the emulator (fault)"}));
+}
+
+}  // namespace
+}  // namespace seqc::emu::test
