@@ -36,7 +36,7 @@ TEST_P(DeviceHelp, MatchesGolden) {
   EXPECT_EQ(r.err, "");
   const std::string path = kGoldenDir + name + ".txt";
   if (seqc::testing::updating_goldens()) {
-    std::ofstream(path, std::ios::binary) << r.out;
+    EXPECT_NE(seqc::testing::write_golden(path, r.out), seqc::testing::GoldenWrite::Failed) << path;
     return;
   }
   EXPECT_EQ(r.out, read_file(path)) << path;

@@ -55,11 +55,12 @@ inline SeqcRun seqc(const fs::path& dir, const std::string& args,
   return r;
 }
 
-// Compares `actual` with the golden file, or rewrites it under SEQC_UPDATE_GOLDEN=1.
+// Compares `actual` with the golden file, or under SEQC_UPDATE_GOLDEN=1 writes it through
+// write_golden (which reports every file it changes).
 inline void expect_golden(const fs::path& golden, const std::string& actual) {
   if (seqc::testing::updating_goldens()) {
-    fs::create_directories(golden.parent_path());
-    std::ofstream(golden, std::ios::binary) << actual;
+    EXPECT_NE(seqc::testing::write_golden(golden, actual), seqc::testing::GoldenWrite::Failed)
+        << golden;
     return;
   }
   ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run with SEQC_UPDATE_GOLDEN=1";

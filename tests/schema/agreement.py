@@ -2,20 +2,28 @@
 """The JSON Schema and `seqc check` agree on which files are valid.
 
 Every file is judged twice: by the schema (python3-jsonschema, after PyYAML reads the file, as
-an editor would) and by `seqc check` (exit 0, warnings allowed). Any disagreement fails, except
-the files in ALLOWED below, each with the reason a schema cannot express the check. An allowed
-file on which they agree also fails, so the list never goes stale. Corpus files state what they
-expect on their first line (`# expect: valid|invalid - why`), and seqc must agree with that too.
+an editor would) and by `seqc check` (valid: no errors, warnings allowed). Any disagreement
+fails, except the files in ALLOWED below, each with the reason a schema cannot express the
+check. An allowed file on which they agree also fails, so the list never goes stale. Corpus
+files state what they expect on their first line (`# expect: valid|invalid - why`), and seqc
+must agree with that too.
+
+seqc checks every file in one process (one per file is slow under the sanitizers): each file's
+verdict is its summary line (tests/seqc_check_batch.py), and the run's exit status must be the
+one docs/cli.md gives for those verdicts. A file in disagreement is checked again alone, only
+to quote its diagnostics.
 
 Usage: agreement.py SEQC SCHEMA FILE...
 """
 import json
 import os
-import subprocess
 import sys
 
 import jsonschema
 import yaml
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import seqc_check_batch as batch  # noqa: E402 (tests/seqc_check_batch.py)
 
 # Checks a schema cannot express, by file. Keys are paths relative to the repository.
 ALLOWED = {
@@ -125,18 +133,29 @@ def main():
     jsonschema.Draft7Validator.check_schema(schema)
     validator = jsonschema.Draft7Validator(schema)
     problems, allowed_seen, agree = documentation_problems(schema), set(), 0
+    together = batch.run(seqc, ["check", *files])
+    states, unattributed = batch.verdicts(files, together.stdout)
+    problems += [f"seqc check: {p}" for p in unattributed]
+    status = batch.expected_status(states.values())
+    if together.returncode != status:
+        problems.append(f"seqc check of every file: exit status {together.returncode}, "
+                        f"docs/cli.md gives {status} for these verdicts")
+
+    def stderr_of(path):
+        return batch.run(seqc, ["check", path]).stderr
+
     for path in files:
         rel = os.path.relpath(path, root)
         by_schema, why = schema_verdict(validator, path)
-        run = subprocess.run([seqc, "check", path], capture_output=True, text=True)
-        by_seqc = run.returncode == 0
+        by_seqc = states[path] == "valid"
         with open(path, encoding="utf-8", errors="replace") as f:
             first = f.readline()
         if first.startswith("# expect: "):
             expected = first.split()[2] == "valid"
             if expected != by_seqc:
                 problems.append(f"{rel}: expects {'valid' if expected else 'invalid'}, seqc "
-                                f"says {'valid' if by_seqc else 'invalid'}: {run.stderr[:300]}")
+                                f"says {'valid' if by_seqc else 'invalid'}: "
+                                f"{stderr_of(path)[:300]}")
         if by_schema == by_seqc:
             agree += 1
             if rel in ALLOWED:
@@ -146,7 +165,7 @@ def main():
         if rel in ALLOWED:
             allowed_seen.add(rel)
             continue
-        side = ("the schema accepts it, seqc rejects it:\n    " + run.stderr.strip()[:400]
+        side = ("the schema accepts it, seqc rejects it:\n    " + stderr_of(path).strip()[:400]
                 if by_schema else f"seqc accepts it, the schema rejects it: {why}")
         problems.append(f"{rel}: {side}")
     for rel in sorted(set(ALLOWED) - allowed_seen):

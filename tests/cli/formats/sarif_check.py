@@ -3,11 +3,20 @@
 
 The rules below are written from the specification's text, object by object: which
 properties are required, their types and ranges, and which property names each object may
-have. Usage: sarif_check.py SEQC FILE... (each file checked alone and all together).
+have. It also checks the exit status: the one docs/cli.md gives (0 every file valid, 1 any has
+errors, 5 any could not be read), the same as the text form's.
+
+The files are checked in few processes (each is slow under the sanitizers): the text form once,
+to learn which files are valid; then SARIF for the invalid ones together, the valid ones
+together, and all of them, whose results must be the two sets' results, in order.
+Usage: sarif_check.py SEQC FILE...
 """
 import json
-import subprocess
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+import seqc_check_batch as batch  # noqa: E402 (tests/seqc_check_batch.py)
 
 errors = []
 
@@ -163,33 +172,58 @@ def check_log(log, where):
     return results
 
 
-def run_seqc(seqc, files):
-    p = subprocess.run([seqc, "check", "--format", "sarif", *files], capture_output=True,
-                       text=True)
+def run_sarif(seqc, files, where, status):
+    """The SARIF log of `seqc check --format sarif FILES`, checked, and its results; the run
+    must exit with `status` and print nothing on stderr."""
+    p = batch.run(seqc, ["check", "--format", "sarif", *files])
+    if p.returncode != status:
+        fail(where, f"exit status {p.returncode}, docs/cli.md gives {status}")
     if p.stderr:
-        fail(" ".join(files), f"stderr is not empty: {p.stderr!r}")
+        fail(where, f"stderr is not empty: {p.stderr!r}")
     try:
-        return json.loads(p.stdout), p.returncode
+        log = json.loads(p.stdout)
     except json.JSONDecodeError as e:
-        fail(" ".join(files), f"not JSON: {e}")
-        return None, p.returncode
+        fail(where, f"not JSON: {e}")
+        return None, []
+    count = check_log(log, where)
+    results = [r for run in log.get("runs", []) if isinstance(run, dict)
+               for r in run.get("results", [])] if isinstance(log, dict) else []
+    if count != len(results):
+        fail(where, f"{count} results checked, {len(results)} found")
+    errors = sum(1 for r in results if isinstance(r, dict) and r.get("level") == "error")
+    if (errors > 0) != (status != 0):
+        fail(where, f"{errors} error results with exit status {p.returncode}")
+    return log, results
 
 
 def main():
     seqc, files = sys.argv[1], sys.argv[2:]
-    total = 0
-    for f in files:
-        log, _ = run_seqc(seqc, [f])
-        if log is not None:
-            total += check_log(log, f)
-    log, code = run_seqc(seqc, files)
-    if log is not None:
-        together = check_log(log, "all files")
-        if together != total:
-            fail("all files", f"{together} results together, {total} one by one")
+    text = batch.run(seqc, ["check", *files])
+    states, problems = batch.verdicts(files, text.stdout)
+    for p in problems:
+        fail("text form", p)
+    invalid = [f for f in files if states[f] != "valid"]
+    valid = [f for f in files if states[f] == "valid"]
+    if not invalid or not valid:
+        fail("files", f"{len(invalid)} invalid and {len(valid)} valid files: give both kinds")
+    if text.returncode != batch.expected_status(states.values()):
+        fail("text form", f"exit status {text.returncode}, docs/cli.md gives "
+                          f"{batch.expected_status(states.values())}")
+    sets = {}
+    for name, group in (("invalid files", invalid), ("valid files", valid),
+                        ("all files", invalid + valid)):
+        if group:
+            status = batch.expected_status(states[f] for f in group)
+            sets[name] = run_sarif(seqc, group, name, status)
+    together = sets.get("all files", (None, []))[1]
+    apart = sets.get("invalid files", (None, []))[1] + sets.get("valid files", (None, []))[1]
+    if together != apart:
+        fail("all files", f"{len(together)} results together, {len(apart)} in the two sets "
+                          "(or they differ)")
     for e in errors:
         print("FAIL:", e, file=sys.stderr)
-    print(f"SARIF: {len(files)} files, {total} results checked, {len(errors)} problems")
+    print(f"SARIF: {len(files)} files ({len(invalid)} invalid), {len(together)} results "
+          f"checked, {len(errors)} problems")
     return 1 if errors else 0
 
 
