@@ -69,8 +69,10 @@ def run(cmd, cwd=None, timeout=None, log=None):
 
 
 def sync_scratch(root, scratch):
-    """Copies the tracked and untracked-but-not-ignored files into the scratch copy, keeping
-    mtimes, so its build only redoes what changed since the last run."""
+    """Copies the tracked and untracked-but-not-ignored files into the scratch copy. Only files
+    whose content differs are written, and they get a new modification time (not the source's),
+    so the scratch build redoes exactly what changed since its last run, even when the source
+    file is older than an object the scratch build made from a previous version of it."""
     files = subprocess.run(["git", "ls-files", "-z", "-c", "-o", "--exclude-standard"], cwd=root,
                            check=True, capture_output=True).stdout.split(b"\0")
     os.makedirs(scratch, exist_ok=True)
@@ -81,14 +83,17 @@ def sync_scratch(root, scratch):
         dst = os.path.join(scratch.encode(), rel)
         if not os.path.isfile(src):
             continue
-        st = os.stat(src)
+        with open(src, "rb") as f:
+            content = f.read()
         try:
-            dt = os.stat(dst)
-            if dt.st_mtime_ns == st.st_mtime_ns and dt.st_size == st.st_size:
-                continue
+            with open(dst, "rb") as f:
+                if f.read() == content:
+                    continue
         except FileNotFoundError:
             os.makedirs(os.path.dirname(dst), exist_ok=True)
-        shutil.copy2(src, dst)
+        with open(dst, "wb") as f:
+            f.write(content)
+        shutil.copymode(src, dst)
 
 
 def main():
