@@ -7,6 +7,7 @@ when they all pass, *no longer applies* when its text is not found exactly once 
 on: update the entry), and is *stillborn* when it does not build (a bad entry, not a test gap).
 """
 import argparse
+import json
 import os
 import shutil
 import subprocess
@@ -156,7 +157,8 @@ def main():
                 with open(path, "w", encoding="utf-8") as f:
                     f.write(original.replace(find, e["replace"].replace("<newline>", "\n")))
                 with open(log_path, "w") as log:
-                    status, _ = run(["cmake", "--build", build], log=log)
+                    status, _ = run(["cmake", "--build", build, "--target",
+                                     *targets_of(build, e.get("tests"))], log=log)
                     if status != 0:
                         outcome, detail = "stillborn", "does not build"
                     else:
@@ -193,6 +195,24 @@ def main():
           f"{counts['no longer applies']} no longer apply, {counts['stillborn']} stillborn "
           f"(of {len(results)})")
     return 0 if counts["survived"] == 0 and counts["stillborn"] == 0 else 1
+
+
+def targets_of(build, tests):
+    """The build targets a mutation's tests run: each test command's executable, and any
+    executable of the build tree among its arguments (the python checks get `seqc` that way),
+    so a mutation relinks only what its tests use. Everything, when the tests cannot be listed."""
+    cmd = ["ctest", "--test-dir", build, "--show-only=json-v1", "-E", DEFAULT_EXCLUDE]
+    cmd += ["-R", tests] if tests else []
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        return ["all"]
+    targets = {"seqc"}  # tests that run the binary name it only at compile time (SEQC_BIN)
+    for t in json.loads(p.stdout).get("tests", []):
+        for word in t.get("command", []):
+            if word.startswith(build + os.sep) and os.access(word, os.X_OK) and \
+                    os.path.isfile(word):
+                targets.add(os.path.basename(word))
+    return sorted(targets)
 
 
 def first_failure(log_path):
