@@ -80,6 +80,16 @@ TEST(RaspblockStream, PidGimbalDrivesAndAServo) {
             want);
 }
 
+TEST(RaspblockStream, DegreesRoundToTheNearestMicrosecond) {
+  // 5deg = 500 + 5 x 2000/180 = 555.56 us: sent as 556 (02 2c), not cut to 555;
+  // 02+03+03+02+2c = 0x36.
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "sequence:\n"
+                      "  - move: {servo3: 5deg}\n"
+                      "    time: 100ms\n"),
+            (std::vector<std::string>{"0: ff fe 02 03 03 02 2c 36", "100: " + kStop}));
+}
+
 TEST(RaspblockStream, RepeatWithBeatsAndAWait) {
   const std::string right = "ff fe 03 08 01 00 19 00 00 00 00 01 26";  // x=25: 03+08+01+19+01
   const std::string left = "ff fe 03 08 01 00 19 00 00 00 00 05 2a";   // x=-25: X|Z bits = 05
