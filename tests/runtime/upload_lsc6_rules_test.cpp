@@ -14,6 +14,7 @@
 
 #include "runtime/upload/lsc6_uploader.hpp"
 #include "tests/runtime/upload_lsc6_fake_board.hpp"
+#include "tests/runtime/upload_test_util.hpp"
 
 namespace seqc::upload {
 namespace {
@@ -22,20 +23,6 @@ using namespace std::chrono_literals;
 using testing::FakeLsc6Board;
 using testing::Lsc6Script;
 using Lines = std::vector<std::string>;
-
-class Events final : public UploadObserver {
- public:
-  void on_retry(const RetryEvent& e) override {
-    lines.push_back("retry " + e.what + " " + std::to_string(e.attempt) + "/" +
-                    std::to_string(e.max_attempts) + ": " + e.reason);
-  }
-  void on_restart(const RestartEvent& e) override {
-    lines.push_back("restart " + std::to_string(e.attempt) + "/" + std::to_string(e.max_attempts) +
-                    ": " + e.reason);
-  }
-  void on_note(const std::string& n) override { lines.push_back("note: " + n); }
-  std::vector<std::string> lines;
-};
 
 struct Lsc6Upload {
   io::ManualClock clock;

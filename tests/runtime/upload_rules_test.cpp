@@ -25,26 +25,6 @@ constexpr std::size_t kStep2 = 5;
 constexpr std::size_t kStep5 = 17;
 constexpr std::size_t action(std::size_t k) { return 7 + k; }
 
-// Every event but progress, in order, as one line each.
-class Events final : public UploadObserver {
- public:
-  void on_progress(const UploadProgress& p) override {
-    if (progress) progress(p);
-  }
-  void on_retry(const RetryEvent& e) override {
-    lines.push_back("retry " + e.what + " " + std::to_string(e.attempt) + "/" +
-                    std::to_string(e.max_attempts) + ": " + e.reason);
-  }
-  void on_restart(const RestartEvent& e) override {
-    lines.push_back("restart " + std::to_string(e.attempt) + "/" + std::to_string(e.max_attempts) +
-                    ": " + e.reason);
-  }
-  void on_note(const std::string& n) override { lines.push_back("note: " + n); }
-
-  std::function<void(const UploadProgress&)> progress;
-  std::vector<std::string> lines;
-};
-
 struct Upload {
   io::ManualClock clock;
   std::atomic<bool> interrupted{false};

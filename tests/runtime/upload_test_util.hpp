@@ -104,4 +104,25 @@ inline void expect_completed_after(const Outcome& o, int restarts) {
   EXPECT_EQ(*o.stored, o.actions);
 }
 
+// Every event an uploader reports but progress, in order, one line each, for tests that assert
+// the path an upload took (which re-sends, restarts and notes), not only where it ended.
+class Events final : public UploadObserver {
+ public:
+  void on_progress(const UploadProgress& p) override {
+    if (progress) progress(p);
+  }
+  void on_retry(const RetryEvent& e) override {
+    lines.push_back("retry " + e.what + " " + std::to_string(e.attempt) + "/" +
+                    std::to_string(e.max_attempts) + ": " + e.reason);
+  }
+  void on_restart(const RestartEvent& e) override {
+    lines.push_back("restart " + std::to_string(e.attempt) + "/" + std::to_string(e.max_attempts) +
+                    ": " + e.reason);
+  }
+  void on_note(const std::string& n) override { lines.push_back("note: " + n); }
+
+  std::function<void(const UploadProgress&)> progress;
+  std::vector<std::string> lines;
+};
+
 }  // namespace seqc::upload
