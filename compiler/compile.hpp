@@ -6,8 +6,10 @@
 // turns it into controller frames.
 //
 // Robot kinds are an extension point: a profile (lang/profiles.hpp) names its RobotKind, and
-// each kind has its own program type in the Program variant. Today there is one kind, the
-// servo controller (xArm / LSC boards) with its stored action groups.
+// each kind has its own program type in the Program variant: the servo controller (xArm / LSC
+// boards) with its stored action groups, and the Raspblock car with its timed packet stream.
+// A profile also names the board that runs its programs (RobotInfo::board), which the runtime
+// looks up in its table of boards; the compiler itself never chooses between boards.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +32,7 @@ struct CompileOptions {
 };
 
 enum class RobotKind {
-  ServoController,  // xArm / LSC-16 / LSC-32: keyframes stored as a GroupDownload action group
+  ServoController,  // xArm / LSC-16 / LSC-32 / LSC-6: keyframes stored as an action group
   Raspblock,        // Yahboom Raspblock car board: a timed packet stream, played live
 };
 
@@ -46,7 +48,8 @@ struct ServoInfo {
 };
 
 struct RobotInfo {
-  std::string profile;  // "xarm", "lsc-16", "lsc-32"
+  std::string profile;  // "xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "raspblock"
+  std::string board;    // the board that runs it (RobotProfile::board): "xarm", "lsc6", ...
   RobotKind kind = RobotKind::ServoController;
   std::vector<ServoInfo> servos;  // in id order
   // The highest id the file's `servos:` section names (0 when it names none).
@@ -77,13 +80,14 @@ struct ServoProgram {
   std::uint64_t duration_ms() const;
 };
 
-// One alternative per RobotKind (a streamed car program will join this variant).
+// One alternative per RobotKind.
 using Program = std::variant<ServoProgram, RaspblockProgram>;
 
 struct CompileOutput {
   SourceManager sources;
   Diagnostics diagnostics;
   std::optional<Program> program;  // set iff !diagnostics.has_errors(options.strict)
+  std::string board;               // the program's RobotInfo::board, set with program
   // Set when the main file itself could not be read (a file error, not a mistake in it).
   std::optional<std::string> read_error;
 

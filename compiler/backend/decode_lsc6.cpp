@@ -72,7 +72,7 @@ class Lsc6Decoder {
     total_ms_ += a.time_ms;
     std::string servos;
     for (const lsc6::Target& t : a.servos) {
-      servos += fmt::format("{}{}={}", servos.empty() ? "" : " ", t.channel, t.pulse_us);
+      servos += fmt::format("{}{}={}", servos.empty() ? "" : " ", t.id, t.position);
     }
     out_.table += fmt::format("{:<6} {:>5} {:>5} {:>5} {:>7}  {}\n", out_.frames, a.group, a.total,
                               a.index, a.time_ms, servos);
@@ -84,10 +84,10 @@ class Lsc6Decoder {
                         a.servos.size()));
     }
     for (const lsc6::Target& t : a.servos) {
-      if (t.channel < lsc6::kFirstChannel || t.channel > lsc6::kLastChannel ||
-          t.pulse_us < lsc6::kMinPulse || t.pulse_us > lsc6::kMaxPulse) {
-        issue(fmt::format("channel {} at {} us is not an output 1-6 at 500-2500 us", t.channel,
-                          t.pulse_us));
+      if (t.id < lsc6::kFirstChannel || t.id > lsc6::kLastChannel || t.position < lsc6::kMinPulse ||
+          t.position > lsc6::kMaxPulse) {
+        issue(fmt::format("channel {} at {} us is not an output 1-6 at 500-2500 us", t.id,
+                          t.position));
       }
     }
     if (a.index == 0) {

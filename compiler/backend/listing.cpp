@@ -14,52 +14,6 @@ std::string servo_label(const compiler::ServoProgram& program, std::uint8_t id) 
   return s != nullptr ? fmt::format("{}({})", s->name, id) : fmt::format("servo({})", id);
 }
 
-std::string join_counts(const std::vector<std::uint8_t>& counts) {
-  std::string s;
-  for (std::uint8_t c : counts) s += (s.empty() ? "" : " ") + std::to_string(c);
-  return s;
-}
-
-// The labelled fields of a GroupDownload step (the only requests a download plan holds).
-struct FieldsOf {
-  std::string operator()(const lsc::GroupDownloadOpen& m) const {
-    return fmt::format("step 1 open | group {} | block counts {}", m.group,
-                       join_counts(m.block_counts));
-  }
-  std::string operator()(const lsc::GroupDownloadSize& m) const {
-    return fmt::format("step 2 size | group {} | block {} | count {} | pad 00", m.group, m.block,
-                       m.count);
-  }
-  std::string operator()(const lsc::GroupDownloadBlocks& m) const {
-    return fmt::format("step 3 blocks | group {} | pad 00 | blocks used {}", m.group,
-                       m.block_count);
-  }
-  std::string operator()(const lsc::GroupDownloadAction& m) const {
-    return fmt::format(
-        "step 4 action | group {} | block {} | index {} | marker 0b | time {} ms | servos {}",
-        m.group, m.block, m.index, m.time_ms, m.servos.size());
-  }
-  std::string operator()(const lsc::GroupDownloadClose& m) const {
-    return fmt::format("step 5 close | group {}", m.group);
-  }
-  template <class Other>
-  std::string operator()(const Other& other) const {
-    return lsc::describe(lsc::Request{other});
-  }
-};
-
-std::string fields(const DialectRequest& request) {
-  if (const auto* lsc6_request = std::get_if<lsc6::Request>(&request)) {
-    if (const auto* a = std::get_if<lsc6::DownloadAction>(lsc6_request)) {
-      return fmt::format(
-          "download action | group {} | total {} | index {} | time {} ms | servos {}", a->group,
-          a->total, a->index, a->time_ms, a->servos.size());
-    }
-    return lsc6::describe(*lsc6_request);
-  }
-  return std::visit(FieldsOf{}, std::get<lsc::Request>(request));
-}
-
 }  // namespace
 
 std::string location_text(const compiler::Location& at, const compiler::SourceManager& sources) {
@@ -69,26 +23,22 @@ std::string location_text(const compiler::Location& at, const compiler::SourceMa
 
 std::string render_hex(const std::vector<PlannedFrame>& plan) {
   std::string out;
-  for (const PlannedFrame& p : plan) out += to_hex(p.serial) + "\n";
+  for (const PlannedFrame& p : plan) out += to_hex(p.bytes) + "\n";
   return out;
 }
 
 std::string render_listing(const compiler::ServoProgram& program,
                            const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                           const compiler::SourceManager& sources) {
+                           const compiler::SourceManager& sources, std::string_view storage) {
   const std::size_t n = program.keyframes.size();
-  const std::size_t blocks = (n + lsc::kActionsPerBlock - 1) / lsc::kActionsPerBlock;
-  const std::string storage = uses_lsc6_dialect(program)
-                                  ? std::string(" (LSC-6 dialect)")
-                                  : fmt::format(" in {} block{}", blocks, blocks == 1 ? "" : "s");
   std::string out = fmt::format("# robot {}, group {}: {} action{}{}, {} frames, {}\n",
                                 program.robot.profile, group, n, n == 1 ? "" : "s", storage,
                                 plan.size(), compiler::format_seconds(program.duration_ms()));
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const PlannedFrame& p = plan[i];
-    out += fmt::format("frame {}: {}\n", i + 1, to_hex(p.serial));
-    out += fmt::format("  header 55 55 | len {} | cmd {:02x} | {}\n", p.serial.size() - 2,
-                       p.frame.cmd, fields(p.request));
+    out += fmt::format("frame {}: {}\n", i + 1, to_hex(p.bytes));
+    out += fmt::format("  header 55 55 | len {} | cmd {:02x} | {}\n", p.bytes.size() - 2,
+                       p.bytes[3], p.fields);
     if (!p.keyframe) continue;
     const compiler::Keyframe& k = program.keyframes[*p.keyframe];
     out += fmt::format("  action {} at {} ms from {}:", *p.keyframe + 1, k.start_ms,
@@ -131,7 +81,7 @@ std::string render_json(const compiler::ServoProgram& program,
   }
   out += "\n  ],\n  \"frames\": [";
   for (std::size_t i = 0; i < plan.size(); ++i) {
-    out += fmt::format("{}\n    \"{}\"", i == 0 ? "" : ",", to_hex(plan[i].serial));
+    out += fmt::format("{}\n    \"{}\"", i == 0 ? "" : ",", to_hex(plan[i].bytes));
   }
   out += "\n  ]\n}\n";
   return out;

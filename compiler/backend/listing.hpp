@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "compiler/backend/servo_backend.hpp"
@@ -14,11 +15,12 @@ namespace seqc::backend {
 // One serial frame per line: lowercase two-digit hex separated by single spaces, send order.
 std::string render_hex(const std::vector<PlannedFrame>& plan);
 
-// Every frame with every field labelled, and for step-4 frames the action it carries
-// (start time, servo name and id, position, the source line).
+// Every frame with every field labelled, and for the frames that store an action the action it
+// carries (start time, servo name and id, position, the source line). `storage` ends the
+// heading's count of actions, as the board stores them: " in 2 blocks", " (LSC-6 dialect)".
 std::string render_listing(const compiler::ServoProgram& program,
                            const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                           const compiler::SourceManager& sources);
+                           const compiler::SourceManager& sources, std::string_view storage);
 
 // {"robot": ..., "group": ..., "duration_ms": ..., "servos": [...], "keyframes": [...],
 //  "frames": ["55 55 ...", ...]}

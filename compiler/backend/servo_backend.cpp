@@ -13,57 +13,22 @@ std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program) 
   return actions;
 }
 
-bool uses_lsc6_dialect(const compiler::ServoProgram& program) {
-  return program.robot.profile == "lsc-6";
-}
-
-namespace {
-
-Result<std::vector<PlannedFrame>> plan_lsc6(const compiler::ServoProgram& program,
-                                            std::uint8_t group) {
+Result<std::vector<PlannedFrame>> plan_lsc6_download(const compiler::ServoProgram& program,
+                                                     std::uint8_t group) {
   std::vector<lsc6::PlannedAction> actions;
   for (const compiler::Keyframe& k : program.keyframes) {
-    lsc6::PlannedAction a{k.time_ms, {}};
-    for (const lsc::ServoTarget& t : k.targets) a.servos.push_back({t.id, t.position});
-    actions.push_back(std::move(a));
+    actions.push_back(lsc6::PlannedAction{k.time_ms, k.targets});
   }
   auto plan = lsc6::plan_download(group, actions);
   if (!plan) return plan.error();
-  std::vector<PlannedFrame> out;
-  for (std::size_t i = 0; i < plan->size(); ++i) {
-    lsc6::Request request{(*plan)[i]};
-    auto frame = lsc6::encode(request);
-    if (!frame) return frame.error();
-    auto serial = lsc::encode_serial(*frame);
-    if (!serial) return serial.error();
-    out.push_back(PlannedFrame{std::move(request), std::move(*frame), std::move(*serial), i});
-  }
-  return out;
+  return plan_frames(*plan);
 }
-
-}  // namespace
 
 Result<std::vector<PlannedFrame>> plan_download(const compiler::ServoProgram& program,
                                                 std::uint8_t group) {
-  if (uses_lsc6_dialect(program)) return plan_lsc6(program, group);
-  const std::vector<lsc::GroupAction> actions = to_actions(program);
-  auto plan = lsc::plan_group_download(group, actions);
+  auto plan = lsc::plan_group_download(group, to_actions(program));
   if (!plan) return plan.error();
-  std::vector<PlannedFrame> out;
-  out.reserve(plan->size());
-  std::size_t next_action = 0;
-  for (lsc::Request& request : *plan) {
-    auto frame = lsc::encode(request);
-    if (!frame) return frame.error();
-    auto serial = lsc::encode_serial(*frame);
-    if (!serial) return serial.error();
-    PlannedFrame p{std::move(request), std::move(*frame), std::move(*serial), std::nullopt};
-    if (lsc::group_download_step(std::get<lsc::Request>(p.request)) == 4) {
-      p.keyframe = next_action++;
-    }
-    out.push_back(std::move(p));
-  }
-  return out;
+  return plan_frames(*plan);
 }
 
 std::vector<std::uint8_t> used_servo_ids(const compiler::ServoProgram& program) {
@@ -89,6 +54,19 @@ std::vector<TimedMove> live_moves(const compiler::ServoProgram& program) {
       }
       m.move.servos.push_back(e);
     }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::vector<TimedLsc6Move> live_lsc6_moves(const compiler::ServoProgram& program) {
+  std::vector<TimedLsc6Move> out;
+  out.reserve(program.keyframes.size());
+  for (const compiler::Keyframe& k : program.keyframes) {
+    TimedLsc6Move m;
+    m.send_ms = k.start_ms;
+    m.move.time_ms = k.time_ms;
+    m.move.servos = k.targets;
     out.push_back(std::move(m));
   }
   return out;

@@ -70,6 +70,7 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
       break;
     }
   }
+  if (out.program) out.board = robot->info.board;
   return out;
 }
 

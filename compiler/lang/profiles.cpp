@@ -16,7 +16,7 @@ const std::vector<RobotProfile>& profiles() {
   // clang-format off
   static const std::vector<RobotProfile> table = {
       // xArm bus servos: 0-1000 over 0-240 degrees, 500 = centre, ids 1-6.
-      {"xarm", RobotKind::ServoController, 1, 6, 0, 1000, 500, 0.0, 1000.0 / 240.0,
+      {"xarm", RobotKind::ServoController, "xarm", 1, 6, 0, 1000, 500, 0.0, 1000.0 / 240.0,
        {{"claw", 1},
         {"wrist_roll", 2},
         {"wrist_pitch", 3},
@@ -26,20 +26,20 @@ const std::vector<RobotProfile>& profiles() {
        "servo", kRatedDegreesPerSecond * 1000.0 / 240.0},
       // Any LewanSoul/Hiwonder bus servos on the controller (humanoids, hexapods, the .d6a files
       // of Hiwonder's tools): ids 1-32 named s1..s32, the xArm's units and speed.
-      {"bus", RobotKind::ServoController, 1, 32, 0, 1000, 500, 0.0, 1000.0 / 240.0, {},
+      {"bus", RobotKind::ServoController, "xarm", 1, 32, 0, 1000, 500, 0.0, 1000.0 / 240.0, {},
        "s", kRatedDegreesPerSecond * 1000.0 / 240.0},
       // PWM boards: 500-2500 us, 1500 = neutral; 0-180 degrees is the usual hobby-servo travel.
-      {"lsc-16", RobotKind::ServoController, 0, 15, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+      {"lsc-16", RobotKind::ServoController, "xarm", 0, 15, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
-      {"lsc-32", RobotKind::ServoController, 0, 31, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+      {"lsc-32", RobotKind::ServoController, "xarm", 0, 31, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0},
       // LSC-6 / LeArm: six PWM outputs that its firmware numbers 1-6 (docs/protocol/lsc-6.md);
       // uploads use that board's own dialect.
-      {"lsc-6", RobotKind::ServoController, 1, 6, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+      {"lsc-6", RobotKind::ServoController, "lsc6", 1, 6, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0, lsc6::kMaxActions},
       // Yahboom Raspblock car board: servos 1-4 at 500-2500 us; its gimbal and rocker are
       // outputs of the board itself (lang/raspblock_lowering.cpp).
-      {"raspblock", RobotKind::Raspblock, 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
+      {"raspblock", RobotKind::Raspblock, "raspblock", 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "servo"},
   };
   // clang-format on
@@ -71,6 +71,7 @@ RobotInfo robot_from_profile(const RobotProfile& profile) {
   RobotInfo robot;
   robot.profile = std::string(profile.name);
   robot.kind = profile.kind;
+  robot.board = std::string(profile.board);
   for (int id = profile.first_id; id <= profile.last_id; ++id) {
     ServoInfo s;
     s.id = static_cast<std::uint8_t>(id);

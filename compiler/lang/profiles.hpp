@@ -2,7 +2,8 @@
 // own servo definitions are applied.
 //
 // This table is where a new robot kind plugs in: add a RobotKind (compile.hpp), a profile row
-// here, and the lowering for that kind (lang/compile.cpp dispatches on the profile's kind).
+// here, and the lowering for that kind (lang/compile.cpp dispatches on the profile's kind). A
+// new board for an existing kind needs only a row naming its board.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,9 @@ namespace seqc::compiler {
 struct RobotProfile {
   std::string_view name;
   RobotKind kind = RobotKind::ServoController;
+  // The board that runs its programs: a key of the runtime's table of boards
+  // (runtime/boards/board.hpp), copied into RobotInfo::board.
+  std::string_view board;
   std::uint8_t first_id = 0;  // ids (bus ids or PWM channels) the controller accepts
   std::uint8_t last_id = 0;
   int min = 0;  // position range in device units

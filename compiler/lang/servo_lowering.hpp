@@ -10,8 +10,6 @@
 
 namespace seqc::compiler {
 
-inline constexpr std::uint32_t kDefaultResolutionMs = 100;
-
 // The program is returned even when errors were reported (the caller decides); keyframes stop
 // at the group's 1,020-action budget.
 ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,

@@ -109,7 +109,6 @@ class ServoLowering {
   std::vector<const YamlNode*> sections_running_;  // for cycle detection
   Track* track_ = nullptr;
   std::map<std::size_t, std::pair<std::string, Location>> claimed_;  // in the running block
-  std::optional<double> file_tolerance_;
   bool mirrored_ = false;
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
   std::uint64_t min_actions_ = 0;

@@ -1,17 +1,48 @@
-// seqc compile FILE [--group N] [--emit hex|listing|json] [-o OUT] [--strict]
-#include <map>
+// seqc compile FILE [--group N] [--emit hex|listing|json] [-o OUT] [--strict] [--dry-run]
+// The board the file is for renders it (runtime/boards); --dry-run lists what `seqc upload`
+// would send, from the board's own uploader run against a recording transport.
 #include <string>
 
-#include "compiler/backend/listing.hpp"
-#include "compiler/backend/raspblock_stream.hpp"
-#include "compiler/backend/servo_backend.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/dry_run.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/cli/group_dialect.hpp"
-#include "runtime/cli/session_text.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
+namespace {
+
+boards::Emit emit_of(const std::string& name) {
+  if (name == "listing") return boards::Emit::Listing;
+  if (name == "json") return boards::Emit::Json;
+  return boards::Emit::Hex;
+}
+
+// The text to write; on failure the message for "seqc: error: " and, in `code`, its status.
+Result<std::string> compiled_text(const compiler::CompileOutput& output, const std::string& file,
+                                  std::uint8_t group, bool dry_run, const std::string& emit,
+                                  ExitCode& code) {
+  const boards::Board& board = boards::board_for(output);
+  code = ExitCode::InvalidInput;
+  if (!dry_run || board.plan == nullptr) {
+    // A board without storage has nothing to upload: --dry-run lists its program as --emit does.
+    auto text = board.render(output, emit_of(emit), group);
+    if (!text) return make_error(file + ": " + text.error().message);
+    return text;
+  }
+  auto plan = boards::plan_for(board, output, group);
+  if (!plan) return make_error(file + ": " + plan.error().message);
+  upload::UploadOptions options;
+  options.group = group;
+  boards::DryRun dry = boards::dry_run(board, *plan, options);
+  if (!dry.result.ok()) {
+    code = ExitCode::Internal;
+    return make_error("internal: " + dry.result.message);
+  }
+  return std::move(dry.text);
+}
+
+}  // namespace
 
 void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   struct Options {
@@ -43,51 +74,20 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
-    if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
-      // The Raspblock has no storage: its program is a timed stream (--group does not apply).
-      auto frames = backend::plan_stream(*car);
-      if (!frames) {
-        ctx.err << "seqc: error: " << frames.error().message << "\n";
-        result.code = ExitCode::Internal;
-        return;
-      }
-      const std::string text = opts->emit == "hex" ? backend::render_stream_hex(*frames)
-                               : opts->emit == "listing"
-                                   ? backend::render_stream_listing(*car, *frames, c.output.sources)
-                                   : backend::render_stream_json(*car, *frames);
-      if (opts->output.empty() || opts->output == "-") {
-        ctx.out << text;
-      } else if (auto written = io::write_file_atomically(opts->output, text); !written) {
-        ctx.err << "seqc: error: cannot write '" << opts->output << "': " << written.error().message
-                << "\n";
-        result.code = ExitCode::FileError;
-      }
+    if (!c.output.program) return;
+    ExitCode failed = ExitCode::Ok;
+    auto text = compiled_text(c.output, opts->file, static_cast<std::uint8_t>(opts->group),
+                              opts->dry_run, opts->emit, failed);
+    if (!text) {
+      ctx.err << "seqc: error: " << text.error().message << "\n";
+      result.code = failed;
       return;
-    }
-    const compiler::ServoProgram* program = c.output.servo_program();
-    if (program == nullptr) return;
-    const auto group = static_cast<std::uint8_t>(opts->group);
-    auto plan = backend::plan_download(*program, group);
-    if (!plan) {
-      ctx.err << "seqc: error: " << opts->file << ": " << plan.error().message << "\n";
-      result.code = ExitCode::InvalidInput;
-      return;
-    }
-    std::string text;
-    if (opts->dry_run) {
-      text = dialect_for(*plan)->session_hex(group, false, 1);
-    } else if (opts->emit == "hex") {
-      text = backend::render_hex(*plan);
-    } else if (opts->emit == "listing") {
-      text = backend::render_listing(*program, *plan, group, c.output.sources);
-    } else {
-      text = backend::render_json(*program, *plan, group, c.output.sources);
     }
     if (opts->output.empty() || opts->output == "-") {
-      ctx.out << text;
+      ctx.out << *text;
       return;
     }
-    if (auto written = io::write_file_atomically(opts->output, text); !written) {
+    if (auto written = io::write_file_atomically(opts->output, *text); !written) {
       ctx.err << "seqc: error: " << written.error().message << "\n";
       result.code = ExitCode::FileError;
     }

@@ -1,34 +1,23 @@
-// `seqc emulate xarm|lsc6|raspblock`: serves a device emulator on a pseudo-terminal. The slave's
-// path is the one line on stdout; progress and the Raspblock's state changes go to stderr.
-// On exit, --record writes what was received and --dump-groups (xarm, lsc6) the stored groups.
-// The LSC-6 board is served by emulate_lsc6.cpp.
-#include <algorithm>
+// `seqc emulate xarm|lsc6|raspblock`: serves a device emulator on a pseudo-terminal (the
+// board's server, runtime/emulator/emulator_serve.hpp). The slave's path is the one line on
+// stdout; progress and the Raspblock's state changes go to stderr. On exit, --record writes what
+// was received and --dump-groups the stored groups of a board that stores them.
 #include <atomic>
-#include <chrono>
-#include <cstdint>
 #include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/board.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/emulate_lsc6.hpp"
-#include "runtime/emulator/group_dump.hpp"
-#include "runtime/emulator/pty_server.hpp"
-#include "runtime/emulator/raspblock_emulator.hpp"
-#include "runtime/emulator/received_record.hpp"
-#include "runtime/emulator/xarm_emulator.hpp"
+#include "runtime/emulator/emulator_serve.hpp"
 #include "runtime/io/disk.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/raspblock.hpp"
 
 namespace seqc::cli {
 namespace {
-
-// The servo controller's UART rate (docs/protocol/servo-controller.md, Framing).
-constexpr std::uint32_t kXArmBaud = 9600;
 
 struct EmulateOptions {
   std::string device;
@@ -47,146 +36,127 @@ struct EmulateOptions {
   CLI::Option* dump_groups_opt = nullptr;
 };
 
-ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
-  if (o.device == "lsc6") {
-    if (!o.positions.empty()) {
-      ctx.err << "seqc: error: --positions applies to the xarm emulator only\n";
-      return ExitCode::Usage;
-    }
-    Lsc6EmulateArgs args;
-    if (o.baud_opt->count() > 0) args.baud = o.baud;
-    args.options = o.faults;
-    if (o.seed_opt->count() > 0) args.seed = o.seed;
-    if (o.link_opt->count() > 0) args.link = o.link;
-    if (o.record_opt->count() > 0) args.record = o.record;
-    if (o.dump_groups_opt->count() > 0) args.dump_groups = o.dump_groups;
-    return run_emulate_lsc6(args, ctx);
+// What the server reports while it runs, said on the command's streams.
+class Events final : public emu::ServeEvents {
+ public:
+  explicit Events(Context& ctx) : ctx_(ctx) {}
+  void serving(const std::string& path, const std::string& device,
+               const std::string& settings) override {
+    ctx_.out << path << "\n" << std::flush;
+    ctx_.err << "seqc: emulating " << device << " on " << path << settings << "; Ctrl-C to stop\n";
+    ctx_.err.flush();
   }
-  const bool xarm = o.device == "xarm";
-  if (!xarm && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
-    ctx.err << "seqc: error: --faults and --seed apply to the xarm emulator only (the Raspblock "
-               "board never replies)\n";
-    return ExitCode::Usage;
+  void hung_up(std::size_t frame, io::Duration back_in) override {
+    ctx_.err << "seqc: emulated hang-up at frame " << frame << " (--faults hangup-at); back in "
+             << std::chrono::duration<double>(back_in).count() << " s\n";
+    ctx_.err.flush();
   }
-  if (!xarm && o.dump_groups_opt->count() > 0) {
-    ctx.err << "seqc: error: --dump-groups applies to the xarm emulator only (the Raspblock "
-               "board stores no groups)\n";
-    return ExitCode::Usage;
+  void back(const std::string& path) override {
+    ctx_.out << path << "\n" << std::flush;
+    ctx_.err << "seqc: the device is back on " << path << "\n";
+    ctx_.err.flush();
   }
-  emu::XArmConfig config;
-  config.baud = o.baud_opt->count() > 0 ? o.baud : kXArmBaud;
-  if (xarm) {
-    auto faults = emu::parse_faults(o.faults);
-    if (!faults) {
-      ctx.err << "seqc: error: --faults: " << faults.error().message << "\n";
-      return ExitCode::Usage;
-    }
-    config.faults = *faults;
-    if (o.seed_opt->count() > 0) config.faults.seed = o.seed;
-    auto positions = emu::parse_positions(o.positions);
-    if (!positions) {
-      ctx.err << "seqc: error: --positions: " << positions.error().message << "\n";
-      return ExitCode::Usage;
-    }
-    config.initial_positions = *positions;
-    for (const auto& [id, position] : *positions) {
-      config.servo_count = std::max<std::size_t>(config.servo_count, id);
-    }
-  } else if (!o.positions.empty()) {
-    ctx.err << "seqc: error: --positions applies to the xarm emulator only\n";
-    return ExitCode::Usage;
-  }
+  std::ostream* log() override { return &ctx_.err; }
 
-  emu::PtyOptions pty_options;
-  pty_options.baud = xarm ? config.baud : (o.baud_opt->count() > 0 ? o.baud : raspblock::kBaud);
-  if (o.link_opt->count() > 0) pty_options.link = o.link;
-  std::optional<emu::PtyServer> server;
-  if (auto opened = emu::PtyServer::open(pty_options); opened) {
-    server.emplace(std::move(*opened));
-  } else {
-    ctx.err << "seqc: error: cannot create a pseudo-terminal: " << opened.error().message << "\n";
-    return ExitCode::PortUnavailable;
+ private:
+  Context& ctx_;
+};
+
+// The option checks `board`'s emulator takes; an empty string when they pass.
+std::string refused_option(const EmulateOptions& o, const boards::Board& board) {
+  const unsigned takes = board.emulator_options;
+  if (!(takes & boards::kFaults) && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
+    return "--faults and --seed apply to the xarm emulator only (" +
+           std::string(board.no_faults_reason) + ")";
   }
-  ctx.out << server->slave_path() << "\n" << std::flush;
+  if (!(takes & boards::kDumpGroups) && o.dump_groups_opt->count() > 0) {
+    return "--dump-groups applies to the xarm emulator only (" +
+           std::string(board.no_groups_reason) + ")";
+  }
+  if (!(takes & boards::kPositions) && !o.positions.empty()) {
+    return "--positions applies to the xarm emulator only";
+  }
+  return "";
+}
+
+ExitCode write_output(Context& ctx, const char* option, const std::string& path,
+                      const std::string& text) {
+  if (auto ok = io::write_file_atomically(path, text); !ok) {
+    ctx.err << "seqc: error: " << option << " " << path << ": " << ok.error().message << "\n";
+    return ExitCode::FileError;
+  }
+  return ExitCode::Ok;
+}
+
+ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
+  const boards::Board* board = boards::board_for_emulator(o.device);
+  if (board == nullptr || board->serve == nullptr) {
+    ctx.err << "seqc: error: internal: no emulator " << o.device << "\n";
+    return ExitCode::Internal;
+  }
+  if (const std::string why = refused_option(o, *board); !why.empty()) {
+    ctx.err << "seqc: error: " << why << "\n";
+    return ExitCode::Usage;
+  }
+  emu::ServeOptions options;
+  if (o.baud_opt->count() > 0) options.baud = o.baud;
+  options.faults = o.faults;
+  if (o.seed_opt->count() > 0) options.seed = o.seed;
+  options.positions = o.positions;
+  if (o.link_opt->count() > 0) options.link = o.link;
+  options.record = o.record_opt->count() > 0;
+  options.dump_groups = o.dump_groups_opt->count() > 0;
 
   std::atomic<bool> never{false};
   const std::atomic<bool>& stop = ctx.interrupted ? *ctx.interrupted : never;
-
-  emu::XArmEmulator xarm_emu(config);
-  emu::RaspblockEmulator rasp_emu;
-  emu::ControllerPtyDevice xarm_dev(xarm_emu);
-  emu::RaspblockPtyDevice rasp_dev(rasp_emu, &ctx.err);
-  if (xarm) {
-    ctx.err << "seqc: emulating an xArm controller on " << server->slave_path() << " ("
-            << (config.baud ? std::to_string(config.baud) + " baud" : std::string("unpaced"))
-            << ", faults: " << emu::describe_faults(config.faults) << "); Ctrl-C to stop\n";
-  } else {
-    ctx.err << "seqc: emulating a Raspblock board on " << server->slave_path()
-            << "; state changes follow; Ctrl-C to stop\n";
-  }
-  ctx.err.flush();
-
-  auto stopped =
-      server->serve(xarm ? static_cast<emu::PtyDevice&>(xarm_dev) : rasp_dev, ctx.clock, stop);
-  // A hang-up with back-after: the device comes back on a new terminal (--link follows it).
-  while (xarm && stopped && *stopped == emu::PtyServer::Stopped::HangUp &&
-         config.faults.back_after) {
-    ctx.err << "seqc: emulated hang-up at frame " << xarm_emu.frames_received()
-            << " (--faults hangup-at); back in "
-            << std::chrono::duration<double>(*config.faults.back_after).count() << " s\n";
-    ctx.err.flush();
-    const io::TimePoint back = ctx.clock.now() + *config.faults.back_after;
-    while (!stop.load() && ctx.clock.now() < back) {
-      ctx.clock.sleep_until(std::min(back, ctx.clock.now() + std::chrono::milliseconds(50)));
-    }
-    if (stop.load()) break;
-    const io::TimePoint resume = xarm_emu.now() + *config.faults.back_after;
-    server.reset();
-    auto opened = emu::PtyServer::open(pty_options);
-    if (!opened || !xarm_dev.reconnect(resume)) {
-      ctx.err << "seqc: error: cannot serve the device again"
-              << (opened ? std::string() : ": " + opened.error().message) << "\n";
-      return ExitCode::PortUnavailable;
-    }
-    server.emplace(std::move(*opened));
-    ctx.out << server->slave_path() << "\n" << std::flush;
-    ctx.err << "seqc: the device is back on " << server->slave_path() << "\n";
-    ctx.err.flush();
-    stopped = server->serve(xarm_dev, ctx.clock, stop, resume - io::TimePoint{0});
-  }
+  Events events(ctx);
+  const emu::ServeResult r = board->serve(options, ctx.clock, stop, events);
   ExitCode code = ExitCode::Ok;
-  if (!stopped) {
-    ctx.err << "seqc: error: " << stopped.error().message << "\n";
-    code = ExitCode::DeviceFailure;
-  } else if (*stopped == emu::PtyServer::Stopped::HangUp) {
-    ctx.err << "seqc: emulated hang-up at frame " << xarm_emu.frames_received()
-            << " (--faults hangup-at)\n";
+  switch (r.status) {
+    case emu::ServeStatus::Stopped:
+      break;
+    case emu::ServeStatus::BadFaults:
+      ctx.err << "seqc: error: --faults: " << r.detail << "\n";
+      return ExitCode::Usage;
+    case emu::ServeStatus::BadPositions:
+      ctx.err << "seqc: error: --positions: " << r.detail << "\n";
+      return ExitCode::Usage;
+    case emu::ServeStatus::NoTerminal:
+      ctx.err << "seqc: error: cannot create a pseudo-terminal: " << r.detail << "\n";
+      return ExitCode::PortUnavailable;
+    case emu::ServeStatus::NotBack:
+      ctx.err << "seqc: error: cannot serve the device again"
+              << (r.detail.empty() ? std::string() : ": " + r.detail) << "\n";
+      return ExitCode::PortUnavailable;
+    case emu::ServeStatus::Failed:
+      ctx.err << "seqc: error: " << r.detail << "\n";
+      code = ExitCode::DeviceFailure;
+      break;
+    case emu::ServeStatus::HungUp:
+      ctx.err << "seqc: emulated hang-up at frame " << r.hung_up_at_frame
+              << " (--faults hangup-at)\n";
+      break;
   }
-  if (xarm) {
-    ctx.err << "seqc: received " << xarm_emu.frames_received() << " frames, "
-            << xarm_emu.received_bytes().size() << " bytes\n";
-  } else {
-    ctx.err << "seqc: received " << rasp_emu.packets().size() << " packets, "
-            << rasp_emu.rejections().size() << " rejected (" << rasp_emu.bad_checksums()
-            << " bad checksums)\n";
+  ctx.err << "seqc: received " << r.received << "\n";
+  if (options.record) {
+    if (ExitCode c = write_output(ctx, "--record", o.record, r.record); c != ExitCode::Ok) return c;
   }
-
-  if (o.record_opt->count() > 0) {
-    const std::string text =
-        xarm ? emu::xarm_record_csv(xarm_emu) : emu::timeline_csv(rasp_emu.timeline());
-    if (auto ok = io::write_file_atomically(o.record, text); !ok) {
-      ctx.err << "seqc: error: --record " << o.record << ": " << ok.error().message << "\n";
-      return ExitCode::FileError;
-    }
-  }
-  if (o.dump_groups_opt->count() > 0) {
-    if (auto ok = io::write_file_atomically(o.dump_groups, emu::dump_groups(xarm_emu)); !ok) {
-      ctx.err << "seqc: error: --dump-groups " << o.dump_groups << ": " << ok.error().message
-              << "\n";
-      return ExitCode::FileError;
+  if (options.dump_groups) {
+    if (ExitCode c = write_output(ctx, "--dump-groups", o.dump_groups, r.groups);
+        c != ExitCode::Ok) {
+      return c;
     }
   }
   return code;
+}
+
+// What `seqc emulate` serves, in the table's order: each board's own emulator.
+std::vector<std::string> served_devices() {
+  std::vector<std::string> names;
+  for (const boards::Board* b : boards::all_boards()) {
+    if (b->serve != nullptr && !b->emulators.empty()) names.emplace_back(b->emulators.front());
+  }
+  return names;
 }
 
 }  // namespace
@@ -200,7 +170,7 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("device", opts->device,
                   "xarm (servo controller), lsc6 (LSC-6 / LeArm board) or raspblock (car board)")
       ->required()
-      ->check(CLI::IsMember({"xarm", "lsc6", "raspblock"}));
+      ->check(CLI::IsMember(served_devices()));
   opts->baud_opt =
       cmd->add_option("--baud", opts->baud,
                       "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "

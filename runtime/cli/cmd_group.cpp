@@ -7,10 +7,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/board.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
-#include "runtime/cli/lsc6_commands.hpp"
+#include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -29,15 +31,6 @@ Result<GroupTarget> parse_group_target(const std::string& text) {
   auto g = parse_group(text);
   if (!g) return g.error();
   return GroupTarget{*g, false};
-}
-
-bool saw_start(const ControllerSession& s, std::uint8_t group) {
-  for (const lsc::Reply& r : s.notifications()) {
-    if (auto* started = std::get_if<lsc::GroupStarted>(&r); started && started->group == group) {
-      return true;
-    }
-  }
-  return false;
 }
 
 struct RunOptions {
@@ -61,19 +54,32 @@ ExitCode run_group(Context& ctx, const RunOptions& o) {
     }
     times = static_cast<std::uint16_t>(o.times);
   }
-  if (is_lsc6_board(o.device.profile(), o.device.port)) {
-    return lsc6_run(ctx, o.device, *group, times);
-  }
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::GroupRun{*group, times})) return ExitCode::DeviceFailure;
-    const std::string how = o.forever ? "looping until `seqc group stop`"
-                                      : std::to_string(times) + (times == 1 ? " time" : " times");
-    if (saw_start(s, *group)) {
-      summarize(ctx, "group " + std::to_string(*group) + " started, " + how);
-    } else {
-      summarize(ctx, "group " + std::to_string(*group) + ": run sent, " + how);
-      ctx.err << "seqc: warning: the controller did not report group " << int{*group}
-              << " starting; it may be empty (store one with `seqc upload`)\n";
+  const boards::Board& board = device_board(o.device);
+  if (board.run_frame == nullptr) return refuse_command(ctx, board, o.device.command);
+  return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
+    const boards::RunOutcome r = boards::run_group(board, line, *group, times);
+    if (!r.ok()) return report_outcome(ctx, r, line, port, board);
+    const std::string g = "group " + std::to_string(*group);
+    switch (r.started) {
+      case boards::Confirmation::Reported:
+        if (board.run_note.empty()) {
+          summarize(ctx, g + " started, " + times_text(times));
+        } else {
+          // The board answers before it looks at the group: the answer says only that it heard.
+          summarize(ctx, g + ": run accepted, " + times_text(times));
+          ctx.err << "seqc: note: " << board.run_note << "\n";
+        }
+        break;
+      case boards::Confirmation::NotReported:
+        summarize(ctx, g + ": run sent, " + times_text(times));
+        ctx.err << "seqc: warning: " << board.called << " did not report " << g
+                << " starting; it may be empty (store one with `seqc upload`)\n";
+        break;
+      case boards::Confirmation::NeverAnswered:
+        summarize(ctx, g + ": run sent, " + times_text(times));
+        ctx.err << "seqc: warning: no answer within " << io::duration_text(line.timeout) << ": "
+                << board.unconfirmed_run << "\n";
+        break;
     }
     return ExitCode::Ok;
   });
@@ -84,16 +90,16 @@ struct StopOptions {
 };
 
 ExitCode stop_group(Context& ctx, const StopOptions& o) {
-  if (is_lsc6_board(o.device.profile(), o.device.port)) return lsc6_stop(ctx, o.device);
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.tell(lsc::GroupStop{})) return ExitCode::DeviceFailure;
-    std::string which;
-    for (const lsc::Reply& r : s.notifications()) {
-      if (auto* stopped = std::get_if<lsc::GroupStopped>(&r); stopped && stopped->detail) {
-        which = " (group " + std::to_string(stopped->detail->group) + ")";
-      }
+  const boards::Board& board = device_board(o.device);
+  if (board.stop == nullptr) return refuse_command(ctx, board, o.device.command);
+  return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
+    const boards::StopOutcome r = board.stop(line);
+    if (!r.ok()) return report_outcome(ctx, r, line, port, board);
+    if (r.stopped == boards::Confirmation::NeverAnswered) {
+      summarize(ctx, "stop sent (the " + std::string(board.name) + " does not confirm it)");
+    } else {
+      summarize(ctx, "stopped" + (r.group ? " (group " + std::to_string(*r.group) + ")" : ""));
     }
-    summarize(ctx, "stopped" + which);
     return ExitCode::Ok;
   });
 }
@@ -110,13 +116,18 @@ ExitCode erase_group(Context& ctx, const EraseOptions& o) {
   auto target =
       o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true}) : parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
-  if (is_lsc6_board(o.device.profile(), o.device.port)) {
-    return lsc6_erase(ctx, o.device, target->all);
+  const boards::Board& board = device_board(o.device);
+  if (board.erase == nullptr) return refuse_command(ctx, board, o.device.command);
+  if (!target->all && !board.erases_one_group) {
+    return usage_error(ctx, "the " + std::string(board.name) +
+                                " cannot erase one group: its erase command wipes every group on "
+                                "the board, whatever the number; to do that, give --all");
   }
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    if (!s.ask<lsc::GroupErased>(lsc::GroupErase{target->group}, "the erase confirmation")) {
-      return ExitCode::DeviceFailure;
-    }
+  return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
+    const std::optional<std::uint8_t> which =
+        target->all ? std::nullopt : std::optional<std::uint8_t>(target->group);
+    const boards::Outcome r = board.erase(line, which);
+    if (!r.ok()) return report_outcome(ctx, r, line, port, board);
     summarize(ctx, target->all ? "every group erased" : target->text() + " erased");
     return ExitCode::Ok;
   });

@@ -9,10 +9,11 @@
 #include <CLI/CLI.hpp>
 
 #include "compiler/source/units.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
-#include "runtime/cli/lsc6_commands.hpp"
 #include "runtime/cli/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
@@ -102,12 +103,18 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
                std::to_string(t->position);
   }
   const std::string said = "moving " + summary + " over " + compiler::format_seconds(*ms);
-  if (is_lsc6_board(o.device.profile(), o.device.port)) {
-    lsc6::Move lsc6_move_request{*ms, {}};
-    for (const auto& e : move.servos) lsc6_move_request.servos.push_back({e.id, *e.position});
-    return lsc6_move(ctx, o.device, lsc6_move_request, said);
-  }
-  return tell_on_controller(ctx, o.device, move, said + "\n");
+  const boards::Board& board = device_board(o.device);
+  if (board.move == nullptr) return refuse_command(ctx, board, o.device.command);
+  std::vector<lsc::ServoTarget> targets;
+  for (const auto& e : move.servos) targets.push_back({e.id, *e.position});
+  return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
+    const boards::Outcome r = board.move(line, targets, *ms);
+    if (!r.ok()) return report_outcome(ctx, r, line, port, board);
+    summarize(ctx, board.confirms_moves
+                       ? said
+                       : said + " (the " + std::string(board.name) + " does not confirm moves)");
+    return ExitCode::Ok;
+  });
 }
 
 // ---- mode ----------------------------------------------------------------------------------

@@ -1,55 +1,37 @@
 // seqc show SHOW.yaml: several performers on one clock (compiler/lang/show.hpp). Every file is
 // checked first; then each stored performer's group is uploaded (progress per performer), and
-// nothing starts unless every upload completed. Then everything starts at one instant: a
-// single schedule, on ctx.clock's absolute deadlines, holds each stored performer's GroupRun at
-// t = 0 and each streamed performer's packets at their times; frames for different ports are
-// written in that one loop, so "one instant" is one deadline, not several programs' guesses.
-// The report gives each performer's start (how long after the common deadline its first frame
-// went out), the skew between performers, and the lateness of streamed frames.
+// nothing starts unless every upload completed. Then everything starts at one instant
+// (boards::perform): one player, one track per performer, a stored performer's run command at
+// t = 0 and a streamed performer's frames at their times, so "one instant" is one deadline, not
+// several programs' guesses. The report gives each performer's start (how long after the common
+// deadline its first frame went out) and, for a stored one, whether the board said it started;
+// the skew between performers; and the lateness of streamed frames.
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "compiler/backend/raspblock_stream.hpp"
-#include "compiler/backend/servo_backend.hpp"
 #include "compiler/lang/show.hpp"
-#include "runtime/cli/board_port.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/ports.hpp"
+#include "runtime/boards/show.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/cli/group_dialect.hpp"
-#include "runtime/cli/port_open.hpp"
-#include "runtime/player/player.hpp"
-#include "runtime/upload/controller_link.hpp"
+#include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
-#include "runtime/upload/uploader.hpp"
 
 namespace seqc::cli {
 namespace {
 
+// How long a stored performer's board is given to confirm its start.
+constexpr io::Duration kReplyTimeout = std::chrono::seconds(1);
+
 struct Stage {  // one performer, opened
   const compiler::Performer* performer = nullptr;
-  std::optional<OpenedPort> controller;  // a stored performer
-  std::optional<OpenedBoard> board;      // a streamed one
-  io::Transport* transport = nullptr;
-  std::vector<io::Duration> lateness;
-  std::optional<io::Duration> first;  // when its first frame went out, after the start
-  std::size_t frames = 0;
+  const boards::Board* board = nullptr;
+  std::optional<boards::OpenedPort> port;
 };
-
-struct Cue {
-  io::Duration at{0};
-  std::size_t stage = 0;
-  Bytes bytes;
-};
-
-std::string ms(io::Duration d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f ms", std::chrono::duration<double, std::milli>(d).count());
-  return buf;
-}
 
 ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage) {
   stage.performer = &p;
@@ -57,47 +39,38 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage) {
     ctx.err << "seqc: error: performer '" << p.name << "' has no port in the show file\n";
     return ExitCode::Usage;
   }
-  if (p.output.servo_program() != nullptr) {
-    PortOpenResult opened = open_controller_port(p.port, ctx);
-    if (!opened.port) {
-      ctx.err << "seqc: error: " << p.name << ": " << opened.failure.message << "\n";
-      return opened.failure.code;
-    }
-    stage.controller = std::move(opened.port);
-    stage.transport = stage.controller->transport.get();
-    return ExitCode::Ok;
+  stage.board = &boards::board_for(p.output);
+  const boards::PortRequest request{p.port, stage.board};
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  if (!opened.port) {
+    const BoardError e = port_failure(opened.failure, request, p.file);
+    ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";
+    return e.code;
   }
-  ExitCode code = ExitCode::Ok;
-  auto board = open_board_port(p.port, p.file, ctx, code);
-  if (!board) {
-    ctx.err << "seqc: error: " << p.name << ": " << board.error().message << "\n";
-    return code;
-  }
-  stage.board = std::move(*board);
-  stage.transport = stage.board->link.get();
+  stage.port = std::move(opened.port);
   return ExitCode::Ok;
 }
 
 // Stores a performer's group; false (with the reason said) if it did not complete.
 bool upload_stage(Context& ctx, Stage& stage) {
   const compiler::Performer& p = *stage.performer;
-  auto planned =
-      backend::plan_download(*p.output.servo_program(), static_cast<std::uint8_t>(p.group));
+  const auto group = static_cast<std::uint8_t>(p.group);
+  auto planned = boards::plan_for(*stage.board, p.output, group);
   if (!planned) {
     ctx.err << "seqc: error: " << p.name << ": " << planned.error().message << "\n";
     return false;
   }
-  const std::unique_ptr<GroupDialect> dialect = dialect_for(std::move(planned).value());
+  io::Transport& transport = *stage.port->transport;
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: " << p.name << ": uploading " << p.output.servo_program()->keyframes.size()
-            << " actions into group " << p.group << " on " << stage.transport->describe() << "\n";
+    ctx.err << "seqc: " << p.name << ": uploading " << planned->actions << " actions into group "
+            << p.group << " on " << transport.describe() << "\n";
   }
   upload::UploadOptions options;
-  options.group = static_cast<std::uint8_t>(p.group);
+  options.group = group;
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
-  const upload::UploadResult r = dialect->upload(*stage.transport, *stage.controller->clock,
-                                                 ctx.interrupted, options, &progress);
+  const boards::Line line{transport, *stage.port->clock, ctx.interrupted};
+  const upload::UploadResult r = boards::upload(*stage.board, line, *planned, options, &progress);
   progress.finish();
   if (!r.ok()) {
     ctx.err << "seqc: error: " << p.name << ": " << r.message << "\n";
@@ -108,51 +81,60 @@ bool upload_stage(Context& ctx, Stage& stage) {
   return true;
 }
 
-ExitCode perform(Context& ctx, std::vector<Stage>& stages) {
-  std::vector<Cue> cues;
-  for (std::size_t i = 0; i < stages.size(); ++i) {
-    const compiler::Performer& p = *stages[i].performer;
-    if (stages[i].controller) {
-      auto run = lsc::encode_serial(lsc::GroupRun{static_cast<std::uint8_t>(p.group), 1});
-      cues.push_back({io::Duration{0}, i, run ? *run : Bytes{}});
-    } else {
-      auto frames = backend::plan_stream(*p.output.raspblock_program());
-      if (!frames) return ExitCode::Internal;
-      for (const auto& f : *frames)
-        cues.push_back({std::chrono::milliseconds(f.at_ms), i, f.bytes});
-    }
+// "GroupRun 2 sent 0.00 ms after the start; the controller reported it started", or a streamed
+// performer's packets and their lateness.
+std::string start_text(const Stage& s, const boards::PerformerReport& p) {
+  const std::string first = io::ms_text(p.track.first.value_or(io::Duration{0}), 2);
+  if (!p.run) {
+    const player::LatenessSummary late = player::summarize(p.track.lateness);
+    return std::to_string(p.track.sent) + " packets sent, the first " + first +
+           " after the start; lateness p50 " + io::ms_text(late.p50, 2) + ", p99 " +
+           io::ms_text(late.p99, 2) + ", max " + io::ms_text(late.max, 2);
   }
-  std::stable_sort(cues.begin(), cues.end(),
-                   [](const Cue& a, const Cue& b) { return a.at < b.at; });
-  io::Clock& clock = ctx.clock;
-  // A short lead so the first deadline is in the future for every performer.
-  const io::TimePoint start = clock.now() + std::chrono::milliseconds(20);
-  for (const Cue& c : cues) {
-    const io::TimePoint deadline = start + c.at;
-    while (clock.now() < deadline) {
-      if (ctx.interrupted != nullptr && ctx.interrupted->load()) break;
-      clock.sleep_until(std::min(deadline, clock.now() + std::chrono::milliseconds(20)));
-    }
-    if (ctx.interrupted != nullptr && ctx.interrupted->load()) {
-      for (Stage& s : stages) {  // the safe state: groups stopped, the car at zero speed
-        auto stop = s.controller ? lsc::encode_serial(lsc::GroupStop{})
-                                 : Result<Bytes>(backend::stop_frame());
-        if (stop) (void)s.transport->write(*stop);
-      }
+  const std::string said = p.run->started == boards::Confirmation::Reported
+                               ? std::string(s.board->called) + " reported it started"
+                               : std::string(s.board->unconfirmed_run);
+  return std::string(s.board->run_name) + " " + std::to_string(s.performer->group) + " sent " +
+         first + " after the start; " + said;
+}
+
+ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const boards::ShowReport& r) {
+  if (!r.error.empty()) {
+    ctx.err << "seqc: error: " << r.error << "\n";
+    return ExitCode::Internal;
+  }
+  switch (r.play.end) {
+    case player::PlayEnd::Completed:
+      break;
+    case player::PlayEnd::Interrupted:
       ctx.err << "seqc: interrupted: stopped every performer\n";
       return ExitCode::Interrupted;
-    }
-    Stage& s = stages[c.stage];
-    const io::TimePoint before = clock.now();
-    if (auto ok = s.transport->write(c.bytes); !ok) {
-      ctx.err << "seqc: error: " << s.performer->name << ": " << ok.error().message << "\n";
+    case player::PlayEnd::WriteFailed:
+      ctx.err << "seqc: error: " << stages[r.play.failed_track.value_or(0)].performer->name << ": "
+              << r.play.error << "; stopped every performer\n";
       return ExitCode::DeviceFailure;
-    }
-    s.lateness.push_back(before - deadline);
-    if (!s.first) s.first = before - start;
-    ++s.frames;
   }
-  return ExitCode::Ok;
+  ExitCode code = ExitCode::Ok;
+  io::Duration earliest = io::Duration::max(), latest = io::Duration::min();
+  for (std::size_t i = 0; i < stages.size(); ++i) {
+    const boards::PerformerReport& p = r.performers[i];
+    const io::Duration first = p.track.first.value_or(io::Duration{0});
+    earliest = std::min(earliest, first);
+    latest = std::max(latest, first);
+    if (p.run && !p.run->ok()) {
+      const Stage& s = stages[i];
+      const BoardError e =
+          outcome_text(*p.run, s.port->transport->describe(), kReplyTimeout, s.board->called);
+      ctx.err << "seqc: error: " << s.performer->name << ": " << e.message << "\n";
+      code = e.code;
+      continue;
+    }
+    if (ctx.verbosity >= 0) {
+      ctx.err << "seqc: " << stages[i].performer->name << ": " << start_text(stages[i], p) << "\n";
+    }
+  }
+  summarize(ctx, "start skew between performers: " + io::ms_text(latest - earliest, 2));
+  return code;
 }
 
 ExitCode run_show(Context& ctx, const std::string& path, bool strict) {
@@ -165,7 +147,7 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict) {
     if (ExitCode c = open_stage(ctx, show.performers[i], stages[i]); c != ExitCode::Ok) return c;
   }
   for (Stage& s : stages) {
-    if (s.controller && !upload_stage(ctx, s)) {
+    if (s.board->plan != nullptr && !upload_stage(ctx, s)) {
       ctx.err << "seqc: nothing was started\n";
       return ExitCode::DeviceFailure;
     }
@@ -174,25 +156,15 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict) {
     ctx.err << "seqc: show " << show.name << ": starting " << stages.size()
             << " performers at one instant\n";
   }
-  const ExitCode code = perform(ctx, stages);
-  if (code != ExitCode::Ok) return code;
-  io::Duration earliest = io::Duration::max(), latest = io::Duration::min();
-  for (const Stage& s : stages) {
-    earliest = std::min(earliest, *s.first);
-    latest = std::max(latest, *s.first);
-    if (ctx.verbosity < 0) continue;
-    const player::LatenessSummary late = player::summarize(s.lateness);
-    ctx.err << "seqc: " << s.performer->name << ": "
-            << (s.controller ? "GroupRun " + std::to_string(s.performer->group) + " sent"
-                             : std::to_string(s.frames) + " packets sent, the first")
-            << " " << ms(*s.first) << " after the start"
-            << (s.controller ? std::string()
-                             : "; lateness p50 " + ms(late.p50) + ", p99 " + ms(late.p99) +
-                                   ", max " + ms(late.max))
-            << "\n";
+  std::vector<boards::Performer> performers;
+  for (Stage& s : stages) {
+    const compiler::Performer& p = *s.performer;
+    performers.push_back(
+        {p.name, s.board, &*s.port, &p.output, static_cast<std::uint8_t>(p.group)});
   }
-  summarize(ctx, "start skew between performers: " + ms(latest - earliest));
-  return ExitCode::Ok;
+  const boards::ShowReport report =
+      boards::perform(performers, ctx.clock, ctx.interrupted, kReplyTimeout);
+  return report_show(ctx, stages, report);
 }
 
 }  // namespace

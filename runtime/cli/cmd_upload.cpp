@@ -1,6 +1,6 @@
 // seqc upload FILE [--port P] [--group N] [--run [--times K|--forever]] [--dry-run]
 //                  [--trace FILE] [--strict] [--retries N]
-// Compiles FILE, downloads it into an action group of the servo controller (runtime/upload)
+// Compiles FILE, stores it in an action group of the board the file is for (runtime/boards)
 // and, with --run, starts it. An invalid file sends nothing and opens no port.
 #include <fstream>
 #include <memory>
@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "compiler/backend/servo_backend.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/dry_run.hpp"
+#include "runtime/boards/ports.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/cli/group_dialect.hpp"
-#include "runtime/cli/port_open.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
 
@@ -33,46 +33,55 @@ struct UploadArgs {
   int retries = 4;
 };
 
-ExitCode exit_code_for(upload::UploadStatus s) {
-  switch (s) {
-    case upload::UploadStatus::Completed:
-      return ExitCode::Ok;
-    case upload::UploadStatus::Interrupted:
-      return ExitCode::Interrupted;
-    case upload::UploadStatus::BadPlan:
-      return ExitCode::Internal;
-    default:
-      return ExitCode::DeviceFailure;
-  }
-}
-
 std::string plural(std::size_t n, const char* word) {
   return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
+}
+
+// Why the upload failed, and what was done to leave the group in a known state.
+void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r) {
+  ctx.err << "seqc: error: " << r.message << "\n";
+  ctx.err << "seqc: "
+          << upload::describe_group_state(r.group_state, static_cast<std::uint8_t>(a.group))
+          << "\n";
+  if (r.erase_sent && r.erase_confirmed) {
+    ctx.err << "seqc: sent GroupErase for group " << a.group
+            << " and the controller confirmed it: step 5 was sent but never confirmed, so the "
+               "group is erased rather than left holding a partial download\n";
+  } else if (r.erase_sent) {
+    ctx.err << "seqc: sent GroupErase for group " << a.group
+            << ", but the controller did not confirm it: the group may hold a partial "
+               "download; upload again\n";
+  }
+  if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
 }
 
 ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   Compiled c = compile_and_report(ctx, a.file, a.strict);
   if (c.code != ExitCode::Ok) return c.code;
   if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
-  const compiler::ServoProgram* program = c.output.servo_program();
-  if (program == nullptr) {
-    ctx.err << "seqc: error: " << a.file << ": not a servo controller program\n";
-    return ExitCode::InvalidInput;
-  }
+  const boards::Board& board = boards::board_for(c.output);
   const auto group = static_cast<std::uint8_t>(a.group);
-  auto planned = backend::plan_download(*program, group);
+  auto planned = boards::plan_for(board, c.output, group);
   if (!planned) {
     ctx.err << "seqc: error: " << a.file << ": " << planned.error().message << "\n";
     return ExitCode::InvalidInput;
   }
-  const std::unique_ptr<GroupDialect> dialect = dialect_for(std::move(planned).value());
-  const std::size_t actions = program->keyframes.size();
+  const boards::Plan& plan = *planned;
+  upload::UploadOptions options;
+  options.group = group;
+  options.retries = a.retries;
+  options.run = a.run;
+  options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
 
   if (a.dry_run) {
-    ctx.out << dialect->session_hex(group, a.run,
-                                    static_cast<std::uint16_t>(a.forever ? 0 : a.times));
+    const boards::DryRun dry = boards::dry_run(board, plan, options);
+    if (!dry.result.ok()) {
+      ctx.err << "seqc: error: internal: " << dry.result.message << "\n";
+      return ExitCode::Internal;
+    }
+    ctx.out << dry.text;
     if (ctx.verbosity >= 0)
-      ctx.err << "seqc: dry run: " << plural(actions, "action") << " for group " << a.group
+      ctx.err << "seqc: dry run: " << plural(plan.actions, "action") << " for group " << a.group
               << "; nothing was sent\n";
     return ExitCode::Ok;
   }
@@ -86,12 +95,14 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     }
   }
 
-  PortOpenResult opened = open_controller_port(a.port, ctx);
+  const boards::PortRequest request{a.port, &board};
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
   if (!opened.port) {
-    ctx.err << "seqc: error: " << opened.failure.message << "\n";
-    return opened.failure.code;
+    const BoardError e = port_failure(opened.failure, request, a.file);
+    ctx.err << "seqc: error: " << e.message << "\n";
+    return e.code;
   }
-  OpenedPort& port = *opened.port;
+  boards::OpenedPort& port = *opened.port;
   io::Clock& clock = *port.clock;
   std::unique_ptr<upload::TraceTransport> trace;
   io::Transport* transport = port.transport.get();
@@ -100,42 +111,29 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     transport = trace.get();
   }
 
-  if (const std::string why = dialect->too_big_for(*transport); !why.empty()) {
-    ctx.err << "seqc: error: " << a.file << ": " << why << "\n";
+  if (const auto i = boards::first_too_big(plan, *transport)) {
+    ctx.err << "seqc: error: " << a.file << ": " << plan.frames[*i].short_what << " is a "
+            << plan.frames[*i].bytes.size() << "-byte frame, and " << transport->describe()
+            << " carries at most " << transport->max_frame_bytes()
+            << " bytes in one report; nothing was sent (a serial port takes any frame)\n";
     return ExitCode::InvalidInput;
   }
-  upload::UploadOptions options;
-  options.group = group;
-  options.retries = a.retries;
-  options.run = a.run;
-  options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
   if (ctx.verbosity > 0) {
-    ctx.err << "upload: " << plural(actions, "action") << " into group " << a.group << " on "
-            << transport->describe() << " (" << dialect->board() << " dialect)\n";
+    ctx.err << "upload: " << plural(plan.actions, "action") << " into group " << a.group << " on "
+            << transport->describe() << " (" << board.name << " dialect)\n";
   }
-  const upload::UploadResult r =
-      dialect->upload(*transport, clock, ctx.interrupted, options, &progress);
+  const boards::Line line{*transport, clock, ctx.interrupted};
+  const upload::UploadResult r = boards::upload(board, line, plan, options, &progress);
   progress.finish();
 
-  const double secs = std::chrono::duration<double>(r.elapsed).count();
-  const std::string where = transport->describe() + (port.emulated() ? ", emulated time" : "");
   if (!r.ok()) {
-    ctx.err << "seqc: error: " << r.message << "\n";
-    ctx.err << "seqc: " << upload::describe_group_state(r.group_state, group) << "\n";
-    if (r.erase_sent && r.erase_confirmed) {
-      ctx.err << "seqc: sent GroupErase for group " << a.group
-              << " and the controller confirmed it: step 5 was sent but never confirmed, so the "
-                 "group is erased rather than left holding a partial download\n";
-    } else if (r.erase_sent) {
-      ctx.err << "seqc: sent GroupErase for group " << a.group
-              << ", but the controller did not confirm it: the group may hold a partial "
-                 "download; upload again\n";
-    }
-    if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
+    report_failure(ctx, a, r);
     return exit_code_for(r.status);
   }
+  const double secs = std::chrono::duration<double>(r.elapsed).count();
+  const std::string where = transport->describe() + (port.emulated ? ", emulated time" : "");
   std::string detail = fmt::format("{}, {:.1f} s", where, secs);
   if (r.retries > 0) detail += ", " + plural(static_cast<std::size_t>(r.retries), "re-send");
   if (r.restarts > 0) detail += ", " + plural(static_cast<std::size_t>(r.restarts), "restart");
@@ -152,7 +150,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
       ctx.err << "seqc: group " << a.group << " started (" << times << ")\n";
     } else {
       ctx.err << "seqc: asked the controller to run group " << a.group << " (" << times << "); "
-              << dialect->unconfirmed_run() << "\n";
+              << board.unconfirmed_run << "\n";
     }
   }
   return ExitCode::Ok;

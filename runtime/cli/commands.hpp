@@ -47,8 +47,9 @@ void add_teach_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_plot_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
 
-// For `seqc upload` (cmd_play.cpp): if `output` holds a Raspblock program, explains on `err`
-// that the board has no storage and points to `seqc play`, and returns true.
+// For `seqc upload` (cmd_play.cpp): if `output` is for a board that stores nothing (the
+// Raspblock), explains on `err` that it has no storage and points to `seqc play`, and returns
+// true.
 bool explain_no_storage(const compiler::CompileOutput& output, const std::string& path,
                         std::ostream& err);
 

@@ -1,5 +1,6 @@
-// Everything a subcommand may touch outside itself, passed in (see docs/architecture.md), so
-// tests run subcommands in-process with string streams, a manual clock and fake ports.
+// Everything a subcommand may touch outside itself, passed in, so tests run subcommands
+// in-process with string streams, a manual clock and emulated boards. The emulator fields reach
+// the boards library as boards::Hooks (board_text.hpp, hooks_of).
 #pragma once
 
 #include <atomic>

@@ -1,16 +1,13 @@
 // What the device commands (group, battery, servo, offset, bus-info, play) share: the
 // --port/--timeout options, opening the controller, and one request at a time with its reply.
 //
-// Requests the controller answers (battery, positions, offsets, bus info, erase) wait for that
-// reply. Requests it does not answer (moves, run, stop, speed, offsets adjust/write, ...) are
-// followed by a confirmation: GetBatteryVoltage, sent at most twice. The controller answers in
-// the order it receives, so its reply shows the command arrived before it and the link works;
-// without one, "no reply" would be indistinguishable from "done". Group notifications that
-// arrive meanwhile (started, stopped, finished) are kept for the command to report.
-//
-// Failures become a message for "seqc: error: " and an exit status: no reply or a hang-up ->
-// DeviceFailure, Ctrl-C -> Interrupted. The session never sleeps or reads the wall clock; all
-// waiting is the link's, on the injected clock.
+// The exchange itself is boards::XarmSession (runtime/boards/xarm_session.hpp): requests the
+// controller answers wait for that reply; requests it does not answer are followed by a
+// GetBatteryVoltage confirmation, sent at most twice; group notifications that arrive meanwhile
+// are kept. ControllerSession adds the words: the session's first failure becomes a message for
+// "seqc: error: " and an exit status (no reply or a hang-up -> DeviceFailure, Ctrl-C ->
+// Interrupted). Nothing here sleeps or reads the wall clock; all waiting is the link's, on the
+// injected clock.
 #pragma once
 
 #include <functional>
@@ -20,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/xarm_session.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 #include "runtime/io/clock.hpp"
@@ -59,12 +57,11 @@ struct DeviceError {
   std::string message;
 };
 
-class ControllerSession final : private upload::LinkObserver {
+class ControllerSession final {
  public:
   // `port_name` is what messages call the device ("emu:xarm", "/dev/ttyUSB0 at 9600 baud").
   // Becomes the link's observer, to keep the notifications it skips.
   ControllerSession(upload::ControllerLink& link, io::Duration timeout, std::string port_name);
-  ~ControllerSession() override;
   ControllerSession(const ControllerSession&) = delete;
   ControllerSession& operator=(const ControllerSession&) = delete;
 
@@ -72,40 +69,25 @@ class ControllerSession final : private upload::LinkObserver {
   // `what` names the awaited reply for the message, e.g. "the battery voltage".
   template <class R>
   std::optional<R> ask(const lsc::Request& request, const std::string& what) {
-    auto reply = exchange(
-        request, [](const lsc::Reply& r) { return std::holds_alternative<R>(r); }, what);
-    if (!reply) return std::nullopt;
-    return std::get<R>(*reply);
+    return session_.ask<R>(request, what);
   }
 
   // Sends a request the controller does not answer and confirms it arrived (see above).
-  bool tell(const lsc::Request& request);
+  bool tell(const lsc::Request& request) { return session_.tell(request); }
 
   // Group notifications received so far, in order.
-  const std::vector<lsc::Reply>& notifications() const { return notifications_; }
-  const std::optional<DeviceError>& error() const { return error_; }
-  upload::ControllerLink& link() { return link_; }
-  io::Duration timeout() const { return timeout_; }
+  const std::vector<lsc::Reply>& notifications() const { return session_.notifications(); }
+  // The session's first failure, worded.
+  const std::optional<DeviceError>& error() const;
+  upload::ControllerLink& link() { return session_.link(); }
+  io::Duration timeout() const { return session_.timeout(); }
   const std::string& port_name() const { return port_name_; }
+  boards::XarmSession& session() { return session_; }
 
  private:
-  void on_notification(const lsc::Reply& reply) override { notifications_.push_back(reply); }
-  std::optional<lsc::Reply> exchange(const lsc::Request& request,
-                                     const std::function<bool(const lsc::Reply&)>& want,
-                                     const std::string& what);
-  // Drains, sends, waits up to the timeout for a reply `want` takes.
-  upload::WaitResult round_trip(const lsc::Request& request,
-                                const std::function<bool(const lsc::Reply&)>& want);
-  void fail_wait(const upload::WaitResult& result, const std::string& what);
-  bool send(const lsc::Request& request);
-  void fail(ExitCode code, std::string message);
-  void drain();
-
-  upload::ControllerLink& link_;
-  io::Duration timeout_;
+  boards::XarmSession session_;
   std::string port_name_;
-  std::vector<lsc::Reply> notifications_;
-  std::optional<DeviceError> error_;
+  mutable std::optional<DeviceError> error_;  // worded from session_.failure() when first asked
 };
 
 // Opens the controller `options` names, runs `body`, and prints a failure as
@@ -113,12 +95,24 @@ class ControllerSession final : private upload::LinkObserver {
 // The --timeout text is checked first (usage error).
 using SessionBody = std::function<ExitCode(ControllerSession&)>;
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body);
+// The board a device command talks to: the one --port's emulator stands in for, else the --robot
+// profile's, else the first one discovery finds. A board of another family than the one
+// discovery finds does not count: an emulator of it is refused when it is opened
+// (boards::PortProblem::WrongEmulator), a --robot profile of it is ignored.
+const boards::Board& device_board(const DeviceOptions& options);
+// Opens the port `options` names for `board` and runs `body` with the line to it and the port's
+// description for messages. The --timeout text is checked first (usage error); a port that does
+// not open is said on ctx.err. Returns body's status, or the failure's.
+using LineBody = std::function<ExitCode(const boards::Line& line, const std::string& port)>;
+ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::Board& board,
+                      const LineBody& body);
+// Says `outcome`'s failure on ctx.err, naming the far end as `board` calls it; returns its status.
+ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,
+                        const std::string& port, const boards::Board& board);
+
 // run_on_controller for one request the controller does not answer: tells it and, once it is
-// confirmed, prints `done` on ctx.out.
+// confirmed, says `done` (summarize).
 ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const lsc::Request& request,
                             const std::string& done);
-
-// "1 s", "250 ms".
-std::string describe_duration(io::Duration d);
 
 }  // namespace seqc::cli

@@ -1,24 +1,25 @@
 #include "runtime/cli/servo_play.hpp"
 
-#include <algorithm>
-#include <cstdio>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
-#include "compiler/backend/servo_backend.hpp"
 #include "compiler/source/units.hpp"
-#include "runtime/cli/lsc6_commands.hpp"
+#include "runtime/boards/live.hpp"
+#include "runtime/boards/ports.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/play_progress.hpp"
-#include "runtime/cli/port_open.hpp"
-#include "runtime/player/player.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
+#include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
 namespace {
 
-// How often Ctrl-C is looked at while the last move finishes.
-constexpr io::Duration kPollInterval = std::chrono::milliseconds(20);
+std::uint64_t duration_ms(const compiler::CompileOutput& compiled) {
+  if (const compiler::ServoProgram* p = compiled.servo_program()) return p->duration_ms();
+  if (const compiler::RaspblockProgram* p = compiled.raspblock_program()) return p->duration_ms;
+  return 0;
+}
 
 std::string where(const compiler::CompileOutput& compiled, const compiler::Keyframe& k) {
   if (k.source.file == compiler::kNoFile || k.source.file >= compiled.sources.file_count()) {
@@ -27,190 +28,181 @@ std::string where(const compiler::CompileOutput& compiled, const compiler::Keyfr
   return " (" + compiled.sources.path(k.source.file) + ":" + std::to_string(k.source.line) + ")";
 }
 
-std::string ms_text(io::Duration d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f ms", std::chrono::duration<double, std::milli>(d).count());
-  return buf;
-}
-
-// One frame per keyframe, in the program's dialect.
-Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::ServoProgram& program) {
-  std::vector<player::ScheduledFrame> frames;
-  if (backend::uses_lsc6_dialect(program)) {
-    for (const compiler::Keyframe& k : program.keyframes) {
-      lsc6::Move move{k.time_ms, {}};
-      for (const lsc::ServoTarget& t : k.targets) move.servos.push_back({t.id, t.position});
-      auto bytes = lsc6::encode_serial(lsc6::Request{move});
-      if (!bytes) return bytes.error();
-      frames.push_back({std::chrono::milliseconds(k.start_ms), std::move(*bytes)});
-    }
-    return frames;
-  }
-  for (const backend::TimedMove& m : backend::live_moves(program)) {
-    auto bytes = lsc::encode_serial(m.move);
-    if (!bytes) return bytes.error();
-    frames.push_back({std::chrono::milliseconds(m.send_ms), std::move(*bytes)});
-  }
-  return frames;
-}
-
 std::string link_text(const io::Transport& t) {
   if (t.seconds_per_byte() > 0) {
     return "at " + std::to_string(static_cast<long>(10.0 / t.seconds_per_byte() + 0.5)) + " baud";
   }
-  return "at one report per " + ms_text(t.frame_interval());
+  return "at one report per " + io::ms_text(t.frame_interval(), 1);
 }
 
-// False when a move cannot go over the link at all, or the link cannot keep the schedule and
-// late moves are not allowed (said why).
-bool schedule_fits(Context& ctx, const compiler::CompileOutput& compiled,
-                   const std::vector<player::ScheduledFrame>& frames, const io::Transport& t,
-                   const LivePlayOptions& o) {
-  if (const std::size_t limit = t.max_frame_bytes(); limit > 0) {
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      if (frames[i].bytes.size() > limit) {
-        ctx.err << "seqc: error: move " << i + 1 << " is a " << frames[i].bytes.size()
-                << "-byte frame, and " << t.describe() << " carries at most " << limit
-                << " bytes in one report; nothing was sent\n";
-        return false;
-      }
-    }
-  }
-  const player::ScheduleCheck c =
-      player::check_schedule(frames, t.seconds_per_byte(), t.frame_interval());
-  if (!c.first_late) return true;
-  const compiler::ServoProgram& program = *compiled.servo_program();
+// The first late move of a schedule the link cannot keep, and by how much.
+std::string late_text(const compiler::CompileOutput& compiled, const boards::LiveReport& r,
+                      const io::Transport& t) {
+  const player::ScheduleCheck& c = r.check;
   const std::size_t i = *c.first_late;
-  const compiler::Keyframe& k = program.keyframes[i];
-  const std::string what =
-      "move " + std::to_string(i + 1) + " of " + std::to_string(frames.size()) + " at " +
-      compiler::format_seconds(k.start_ms) + where(compiled, k) + " would leave " +
-      ms_text(c.late_by) + " late: " + link_text(t) + " the move before it takes " +
-      ms_text(c.wire_time) + " on the wire (" + std::to_string(c.late_frames) + " of " +
-      std::to_string(frames.size()) + " moves late, the worst by " + ms_text(c.worst) + ")";
-  const std::string fix = "store it on the controller and run it there: seqc upload " +
-                          (o.file.empty() ? std::string("FILE") : o.file) + " --run";
-  if (o.allow_late) {
-    ctx.err << "seqc: warning: " << t.describe() << " cannot keep this schedule: " << what
-            << "; playing it late (--allow-late)\n  hint: " << fix << "\n";
-    return true;
-  }
-  ctx.err << "seqc: error: " << t.describe() << " cannot keep this schedule: " << what << "\n"
-          << "  hint: " << fix << "\n"
-          << "  hint: or play it late anyway with --allow-late\n";
-  return false;
+  const compiler::Keyframe& k = compiled.servo_program()->keyframes[i];
+  const std::string n = std::to_string(r.frames.size());
+  return "move " + std::to_string(i + 1) + " of " + n + " at " +
+         compiler::format_seconds(k.start_ms) + where(compiled, k) + " would leave " +
+         io::ms_text(c.late_by, 1) + " late: " + link_text(t) + " the move before it takes " +
+         io::ms_text(c.wire_time, 1) + " on the wire (" + std::to_string(c.late_frames) + " of " +
+         n + " moves late, the worst by " + io::ms_text(c.worst, 1) + ")";
 }
 
-// Streams `frames` and waits for the last move to end; says how it went.
-ExitCode stream(Context& ctx, const compiler::CompileOutput& compiled,
-                const std::vector<player::ScheduledFrame>& frames, io::Transport& transport,
-                io::Clock& clock) {
-  const compiler::ServoProgram& program = *compiled.servo_program();
-  if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: playing " << frames.size() << " moves ("
-            << compiler::format_seconds(program.duration_ms()) << ") live on "
-            << transport.describe() << "; Ctrl-C stops\n";
-  }
-  player::PlayOptions options;
-  options.interrupted = ctx.interrupted;
-  options.drain = true;
-  options.seconds_per_byte = transport.seconds_per_byte();
-  PlayProgress progress(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0, ctx.terminal_columns,
-                        std::chrono::milliseconds(program.duration_ms()), frames.size());
-  options.on_sent = [&](std::size_t i, const player::FrameTiming&) {
-    progress.on_sent(i, frames[i].at);
-  };
-  const player::PlayReport report = player::play(frames, transport, clock, options);
-  progress.finish();
-  const std::size_t sent = report.sent;
+// A servo board's report: moves, measured once each had left.
+ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
+                    const boards::LiveReport& r, const boards::Line& line, const PlayArgs& args,
+                    const boards::Board& board) {
+  const io::Transport& t = line.transport;
+  const std::string fix = "store it on the controller and run it there: seqc upload " +
+                          (args.file.empty() ? std::string("FILE") : args.file) + " --run";
+  const std::size_t sent = r.play.sent;
   const auto last_step = [&] {
     if (sent == 0) return std::string("before the first step");
-    const compiler::Keyframe& k = program.keyframes[sent - 1];
-    return "after step " + std::to_string(sent) + " of " + std::to_string(frames.size()) + " at " +
-           compiler::format_seconds(k.start_ms) + where(compiled, k);
+    const compiler::Keyframe& k = compiled.servo_program()->keyframes[sent - 1];
+    return "after step " + std::to_string(sent) + " of " + std::to_string(r.frames.size()) +
+           " at " + compiler::format_seconds(k.start_ms) + where(compiled, k);
   };
-  switch (report.end) {
-    case player::PlayEnd::Completed: {
-      // The last move is still running: return when the sequence ends, so "played" means the
-      // robot is in its final pose (and the next command sees it there).
-      const io::TimePoint end = report.started + std::chrono::milliseconds(program.duration_ms());
-      while (clock.now() < end) {
-        if (ctx.interrupted != nullptr && ctx.interrupted->load()) {
-          ctx.err << "seqc: interrupted during the last move: every step was sent\n";
-          return ExitCode::Interrupted;
-        }
-        clock.sleep_until(std::min(end, clock.now() + kPollInterval));
-      }
+  switch (r.status) {
+    case boards::LiveStatus::BadProgram:
+      ctx.err << "seqc: error: internal: " << r.error << "\n";
+      return ExitCode::Internal;
+    case boards::LiveStatus::FrameTooBig:
+      ctx.err << "seqc: error: move " << *r.too_big + 1 << " is a "
+              << r.frames[*r.too_big].bytes.size() << "-byte frame, and " << t.describe()
+              << " carries at most " << t.max_frame_bytes() << " bytes in one report; nothing "
+              << "was sent\n";
+      return ExitCode::InvalidInput;
+    case boards::LiveStatus::LateSchedule:
+      ctx.err << "seqc: error: " << t.describe()
+              << " cannot keep this schedule: " << late_text(compiled, r, t) << "\n"
+              << "  hint: " << fix << "\n"
+              << "  hint: or play it late anyway with --allow-late\n";
+      return ExitCode::InvalidInput;
+    case boards::LiveStatus::NoBoard:
+      return report_outcome(ctx, r.probe, line, t.describe(), board);
+    case boards::LiveStatus::Played: {
       if (ctx.verbosity < 0) return ExitCode::Ok;
-      const player::LatenessSummary late = player::summarize(report.left_lateness);
+      const player::LatenessSummary late = player::summarize(r.play.left_lateness);
       ctx.err << "seqc: played " << sent << " moves, "
-              << compiler::format_seconds(program.duration_ms())
-              << "; moves left the port late by p50 " << ms_text(late.p50) << ", p99 "
-              << ms_text(late.p99) << ", max " << ms_text(late.max)
+              << compiler::format_seconds(duration_ms(compiled))
+              << "; moves left the port late by p50 " << io::ms_text(late.p50, 1) << ", p99 "
+              << io::ms_text(late.p99, 1) << ", max " << io::ms_text(late.max, 1)
               << " (measured once each had left)\n";
       return ExitCode::Ok;
     }
-    case player::PlayEnd::Interrupted:
+    case boards::LiveStatus::InterruptedAtEnd:
+      ctx.err << "seqc: interrupted during the last move: every step was sent\n";
+      return ExitCode::Interrupted;
+    case boards::LiveStatus::Interrupted:
       ctx.err << "seqc: interrupted: stopped sending " << last_step()
               << "; the servos finish the move they were given\n";
       return ExitCode::Interrupted;
-    case player::PlayEnd::WriteFailed:
-      ctx.err << "seqc: error: sending to " << transport.describe() << " failed " << last_step()
-              << ": " << report.error << "\n";
+    case boards::LiveStatus::WriteFailed:
+      ctx.err << "seqc: error: sending to " << t.describe() << " failed " << last_step() << ": "
+              << r.play.error << "\n";
       return ExitCode::DeviceFailure;
   }
   return ExitCode::Internal;
 }
 
-}  // namespace
-
-ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
-                              ControllerSession& s, const LivePlayOptions& o) {
-  const compiler::ServoProgram* program = compiled.servo_program();
-  if (program == nullptr) {
-    ctx.err << "seqc: error: internal: play_on_servo_controller without a servo program\n";
-    return ExitCode::Internal;
+// A car's report: frames, their lateness, and the stop after an early end.
+ExitCode word_stream(Context& ctx, const compiler::CompileOutput& compiled,
+                     const boards::LiveReport& r) {
+  const player::PlayReport& p = r.play;
+  const std::string stop_text =
+      p.stop_sent ? "sent the stop (all speeds 0)"
+                  : "could not send the stop: " + p.stop_error + "; the car may still be moving";
+  switch (r.status) {
+    case boards::LiveStatus::Played:
+    case boards::LiveStatus::InterruptedAtEnd: {
+      if (ctx.verbosity < 0) return ExitCode::Ok;
+      const player::LatenessSummary late = player::summarize(p.lateness);
+      ctx.err << "seqc: played " << p.sent << " frames in "
+              << compiler::format_seconds(duration_ms(compiled)) << "; lateness p50 "
+              << io::ms_text(late.p50, 2) << ", p99 " << io::ms_text(late.p99, 2) << ", max "
+              << io::ms_text(late.max, 2) << "\n";
+      return ExitCode::Ok;
+    }
+    case boards::LiveStatus::Interrupted:
+      ctx.err << "seqc: interrupted after " << p.sent << " of " << r.frames.size() << " frames; "
+              << stop_text << "\n";
+      return ExitCode::Interrupted;
+    case boards::LiveStatus::WriteFailed:
+      ctx.err << "seqc: error: " << p.error << " (after " << p.sent << " of " << r.frames.size()
+              << " frames); " << stop_text << "\n";
+      return ExitCode::DeviceFailure;
+    default:
+      ctx.err << "seqc: error: " << r.error << "\n";
+      return ExitCode::Internal;
   }
-  auto frames = live_frames(*program);
-  if (!frames) {
-    ctx.err << "seqc: error: internal: " << frames.error().message << "\n";
-    return ExitCode::Internal;
-  }
-  if (!schedule_fits(ctx, compiled, *frames, s.link().transport(), o)) {
-    return ExitCode::InvalidInput;
-  }
-  if (!s.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage")) {
-    return ExitCode::DeviceFailure;
-  }
-  return stream(ctx, compiled, *frames, s.link().transport(), s.link().clock());
 }
 
-ExitCode play_on_servo_controller(Context& ctx, const compiler::CompileOutput& compiled,
-                                  const DeviceOptions& device, const LivePlayOptions& o) {
-  const compiler::ServoProgram* program = compiled.servo_program();
-  if (program == nullptr || !backend::uses_lsc6_dialect(*program)) {
-    return run_on_controller(ctx, device, [&](ControllerSession& s) {
-      return stream_servo_program(ctx, compiled, s, o);
-    });
-  }
-  // The LSC-6: no command answers, so nothing can show the board is there before playing.
-  auto frames = live_frames(*program);
-  if (!frames) {
-    ctx.err << "seqc: error: " << frames.error().message << "\n";
-    return ExitCode::InvalidInput;
-  }
-  PortOpenResult opened = open_controller_port(device.port, ctx);
+// Plays and words it; the lines that belong before the first frame are said from the hooks.
+ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
+                       const boards::Board& board, const boards::Line& line, const PlayArgs& args) {
+  const io::Transport& t = line.transport;
+  const bool moves = board.style == boards::LiveStyle::Moves;
+  std::optional<PlayProgress> progress;
+  boards::LiveHooks hooks;
+  hooks.checked = [&](const boards::LiveReport& r) {
+    if (!r.check.first_late) return;
+    ctx.err << "seqc: warning: " << t.describe()
+            << " cannot keep this schedule: " << late_text(compiled, r, t)
+            << "; playing it late (--allow-late)\n  hint: store it on the controller and run it "
+               "there: seqc upload "
+            << (args.file.empty() ? std::string("FILE") : args.file) << " --run\n";
+  };
+  hooks.starting = [&](const boards::LiveReport& r) {
+    if (ctx.verbosity >= 0 && !board.unprobed_note.empty()) {
+      ctx.err << "seqc: note: " << board.unprobed_note << "\n";
+    }
+    const std::string length = compiler::format_seconds(duration_ms(compiled));
+    if (ctx.verbosity >= 0 && moves) {
+      ctx.err << "seqc: playing " << r.frames.size() << " moves (" << length << ") live on "
+              << t.describe() << "; Ctrl-C stops\n";
+    } else if (ctx.verbosity >= 0) {
+      ctx.err << "seqc: playing " << args.file << " on " << t.describe() << ": " << r.frames.size()
+              << " frames over " << length << "; Ctrl-C stops the car\n";
+    }
+    ctx.err.flush();
+    progress.emplace(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0, ctx.terminal_columns,
+                     std::chrono::milliseconds(duration_ms(compiled)), r.frames.size());
+  };
+  hooks.sent = [&](std::size_t i, io::Duration at) { progress->on_sent(i, at); };
+  const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);
+  if (progress) progress->finish();
+  return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, compiled, r);
+}
+
+}  // namespace
+
+ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
+                       const PlayArgs& args) {
+  const boards::Board& board = boards::board_for(compiled);
+  const boards::PortRequest request{args.port, &board};
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
   if (!opened.port) {
-    ctx.err << "seqc: error: " << opened.failure.message << "\n";
-    return opened.failure.code;
+    const BoardError e = port_failure(opened.failure, request, args.file);
+    ctx.err << "seqc: error: " << e.message << "\n";
+    return e.code;
   }
-  io::Transport& transport = *opened.port->transport;
-  if (!schedule_fits(ctx, compiled, *frames, transport, o)) return ExitCode::InvalidInput;
-  if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: note: the LSC-6 answers no move, so nothing shows that the board hears "
-               "them\n";
+  boards::OpenedPort& port = *opened.port;
+  const boards::Line line{*port.transport, *port.clock, ctx.interrupted};
+  const ExitCode code = play_and_word(ctx, compiled, board, line, args);
+  if (port.raspblock && ctx.verbosity >= 0) {
+    ctx.err << "seqc: " << port.transport->describe() << " received "
+            << port.raspblock->packets().size() << " packets, "
+            << port.raspblock->rejections().size() << " rejected\n";
   }
-  return stream(ctx, compiled, *frames, transport, *opened.port->clock);
+  return code;
+}
+
+ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
+                              ControllerSession& session, const PlayArgs& args) {
+  const boards::Line line{session.link().transport(), session.link().clock(), ctx.interrupted,
+                          session.timeout()};
+  return play_and_word(ctx, compiled, boards::board_for(compiled), line, args);
 }
 
 }  // namespace seqc::cli

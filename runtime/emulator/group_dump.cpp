@@ -35,7 +35,7 @@ std::string dump_groups(const Lsc6Emulator& emu) {
       const lsc6::PlannedAction& a = (*actions)[i];
       out += std::to_string(g) + " " + std::to_string(i) + " " + std::to_string(a.time_ms);
       for (const lsc6::Target& s : a.servos) {
-        out += " " + std::to_string(s.channel) + "=" + std::to_string(s.pulse_us);
+        out += " " + std::to_string(s.id) + "=" + std::to_string(s.position);
       }
       out += "\n";
     }

@@ -245,7 +245,7 @@ void Lsc6Emulator::full_act_run(std::uint8_t group, std::uint16_t times, io::Tim
   }
   if (playing_) return;
   last_group_ = group;
-  playing_ = Playback{group, times, 0, count, 0, at, false};
+  playing_ = Playback{group, times, 0, count, 0, at};
   playing_->action_end = at + play_action(at);
 }
 

@@ -114,12 +114,10 @@ class Lsc6Emulator final : public ControllerDevice {
     std::uint8_t count = 0;  // the firmware's FrameIndexSum (a later Run may change it)
     std::uint8_t index = 0;
     io::TimePoint action_end{0};
-    bool started_action = false;
   };
 
   void feed_byte(std::uint8_t b, io::TimePoint at);
   void complete_frame(io::TimePoint at);
-  void run_main_loop(io::TimePoint upto);
   io::Duration process(io::TimePoint at);
   void answer(lsc6::Command cmd, io::TimePoint ready);
   void set_servo(std::uint8_t channel, std::uint16_t pulse, std::uint16_t time_ms,

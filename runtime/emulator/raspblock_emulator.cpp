@@ -5,6 +5,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "runtime/io/time_text.hpp"
+
 namespace seqc::emu {
 namespace {
 
@@ -18,14 +20,6 @@ constexpr std::array<std::string_view, kRaspblockFieldCount> kFieldNames = {
 // produces, so it is counted apart.
 bool is_checksum_rejection(const std::string& reason) {
   return reason.find("checksum") != std::string::npos;
-}
-
-std::string seconds(io::TimePoint at) {
-  char buf[32];
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
-  std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(us / 1000000),
-                static_cast<long long>(us % 1000000));
-  return buf;
 }
 
 }  // namespace
@@ -104,24 +98,25 @@ void RaspblockEmulator::apply(const raspblock::Packet& packet, io::TimePoint at)
 }
 
 std::string describe_change(const RaspblockChange& c) {
-  std::string line = seconds(c.at);
+  std::string line = io::stamp_text(c.at);
   if (line.size() < 12) line.insert(0, 12 - line.size(), ' ');
   line += " s  ";
   line += field_name(c.field);
   if (c.previous) {
-    line += " " + std::to_string(*c.previous) + " -> " + std::to_string(c.value);
+    line.append(" ").append(std::to_string(*c.previous)).append(" -> ");
   } else {
-    line += " = " + std::to_string(c.value);
+    line.append(" = ");
   }
+  line += std::to_string(c.value);
   return line;
 }
 
 std::string timeline_csv(const std::vector<RaspblockChange>& timeline) {
   std::string out = "time_s,field,previous,value\n";
   for (const auto& c : timeline) {
-    out += seconds(c.at) + "," + std::string(field_name(c.field)) + ",";
+    out += io::stamp_text(c.at) + "," + std::string(field_name(c.field)) + ",";
     if (c.previous) out += std::to_string(*c.previous);
-    out += "," + std::to_string(c.value) + "\n";
+    out.append(",").append(std::to_string(c.value)).append("\n");
   }
   return out;
 }

@@ -2,17 +2,12 @@
 
 #include <chrono>
 
+#include "runtime/io/time_text.hpp"
 #include "runtime/protocol/lsc6_messages.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
 
 namespace seqc::emu {
 namespace {
-
-std::string seconds(io::TimePoint at) {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
-  std::string frac = std::to_string(us % 1000000);
-  return std::to_string(us / 1000000) + "." + std::string(6 - frac.size(), '0') + frac;
-}
 
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -31,7 +26,7 @@ std::string status_of(DropReason dropped, bool framed) {
 
 std::string line(io::TimePoint at, const std::string& status, const Bytes& raw,
                  const std::string& message) {
-  return seconds(at) + "," + status + "," + to_hex(raw) + "," + csv_field(message) + "\n";
+  return io::stamp_text(at) + "," + status + "," + to_hex(raw) + "," + csv_field(message) + "\n";
 }
 
 constexpr const char* kHeader = "time_s,status,bytes,message\n";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace seqc::player {
 namespace {
@@ -18,12 +19,23 @@ bool wait_until(io::Clock& clock, io::TimePoint deadline, const PlayOptions& opt
   }
 }
 
-void send_safe_stop(io::Transport& transport, const PlayOptions& options, PlayReport& report) {
-  if (!options.safe_stop) return;
-  if (auto ok = transport.write(*options.safe_stop); ok) {
-    report.stop_sent = true;
-  } else {
-    report.stop_error = ok.error().message;
+// Writes every track's safe stop, in track order; the report's own stop fields are those of
+// the first track that has one.
+void send_safe_stops(const std::vector<Track>& tracks, PlayReport& report) {
+  bool first = true;
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    if (!tracks[t].safe_stop || tracks[t].transport == nullptr) continue;
+    TrackReport& r = report.tracks[t];
+    if (auto ok = tracks[t].transport->write(*tracks[t].safe_stop); ok) {
+      r.stop_sent = true;
+    } else {
+      r.stop_error = ok.error().message;
+    }
+    if (first) {
+      report.stop_sent = r.stop_sent;
+      report.stop_error = r.stop_error;
+      first = false;
+    }
   }
 }
 
@@ -60,46 +72,76 @@ ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double s
   return c;
 }
 
-PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
-                io::Clock& clock, const PlayOptions& options) {
+PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOptions& options) {
   PlayReport report;
-  report.started = clock.now();
-  report.lateness.reserve(frames.size());
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const io::TimePoint deadline = report.started + frames[i].at;
+  report.started = clock.now() + options.lead;
+  report.tracks.resize(tracks.size());
+  std::size_t total = 0;
+  for (const Track& t : tracks) total += t.frames.size();
+  report.lateness.reserve(total);
+  std::vector<std::size_t> next(tracks.size(), 0);
+  for (;;) {
+    // The earliest frame due; ties go to the lower track.
+    std::optional<std::size_t> pick;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if (next[t] >= tracks[t].frames.size()) continue;
+      if (!pick || tracks[t].frames[next[t]].at < tracks[*pick].frames[next[*pick]].at) pick = t;
+    }
+    if (!pick) break;
+    const std::size_t t = *pick;
+    const std::size_t i = next[t]++;
+    const Track& track = tracks[t];
+    TrackReport& mine = report.tracks[t];
+    const ScheduledFrame& frame = track.frames[i];
+    const io::TimePoint deadline = report.started + frame.at;
     if (!wait_until(clock, deadline, options)) {
       report.end = PlayEnd::Interrupted;
-      send_safe_stop(transport, options, report);
+      send_safe_stops(tracks, report);
       return report;
     }
     const io::TimePoint begin = clock.now();
-    auto written = transport.write(frames[i].bytes);
-    const io::TimePoint end = clock.now();
+    auto written = track.transport->write(frame.bytes);
     if (!written) {
       report.end = PlayEnd::WriteFailed;
       report.error = written.error().message;
-      send_safe_stop(transport, options, report);
+      report.failed_track = t;
+      send_safe_stops(tracks, report);
       return report;
     }
-    FrameTiming timing{deadline, begin - deadline, end - begin, io::Duration{0}};
-    if (options.drain) {
-      if (auto drained = transport.drain(); !drained) {
+    if (!mine.first) mine.first = begin - report.started;
+    FrameTiming timing{deadline, begin - deadline, io::Duration{0}, t};
+    if (track.drain) {
+      if (auto drained = track.transport->drain(); !drained) {
         report.end = PlayEnd::WriteFailed;
         report.error = drained.error().message;
-        send_safe_stop(transport, options, report);
+        report.failed_track = t;
+        send_safe_stops(tracks, report);
         return report;
       }
       // Computed wire times are rounded; a frame cannot leave before its bytes could.
-      const io::Duration late =
-          clock.now() - (deadline + wire_time(frames[i], options.seconds_per_byte));
+      const io::Duration late = clock.now() - (deadline + wire_time(frame, track.seconds_per_byte));
       timing.left_lateness = late < kRounding ? io::Duration{0} : late;
+      mine.left_lateness.push_back(timing.left_lateness);
       report.left_lateness.push_back(timing.left_lateness);
     }
+    ++mine.sent;
     ++report.sent;
+    mine.lateness.push_back(begin - deadline);
     report.lateness.push_back(begin - deadline);
     if (options.on_sent) options.on_sent(i, timing);
   }
   return report;
+}
+
+PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
+                io::Clock& clock, const PlayOptions& options) {
+  std::vector<Track> tracks(1);
+  tracks[0].transport = &transport;
+  tracks[0].frames = frames;
+  tracks[0].safe_stop = options.safe_stop;
+  tracks[0].drain = options.drain;
+  tracks[0].seconds_per_byte = options.seconds_per_byte;
+  return play(tracks, clock, options);
 }
 
 LatenessSummary summarize(std::vector<io::Duration> lateness) {

@@ -1,14 +1,18 @@
-// The deadline scheduler behind `seqc play`: sends timed frames to a device that keeps no
-// program of its own (the Raspblock board; live play on the servo controller later).
+// The deadline scheduler behind `seqc play` and `seqc show`: sends timed frames to devices that
+// play them as they arrive (the Raspblock car's stream, live moves on a servo controller), to one
+// transport or to several at once (one Track each), all on one clock.
 //
 // Frame i is written when the injected clock reaches start + at_i, where start is the clock's
-// time when play() begins. Deadlines are absolute, so a late wake-up or a slow write delays
-// only the frames already due, never the ones after them: lateness does not accumulate.
+// time when play() begins plus options.lead. Deadlines are absolute, so a late wake-up or a slow
+// write delays only the frames already due, never the ones after them: lateness does not
+// accumulate. With several tracks the frames are merged by deadline; frames due at the same time
+// go in track order, then frame order, so a show's performers start in the order they are listed.
 // The player never reads the wall clock or sleeps by itself (io::Clock does both), so tests
 // run it on io::ManualClock without waiting.
 //
 // Safety: when a play ends early (the interrupted flag is set, or a write fails), the player
-// sends options.safe_stop, if given, before returning.
+// writes every track's safe_stop, if given, in track order, before returning: a failed write on
+// one transport stops the others too.
 #pragma once
 
 #include <atomic>
@@ -35,21 +39,43 @@ struct ScheduledFrame {
 struct FrameTiming {
   io::TimePoint deadline{0};
   io::Duration lateness{0};
-  io::Duration write_time{0};  // how long write() took
   io::Duration left_lateness{0};
+  std::size_t track = 0;  // whose frame (always 0 for the single-transport play())
 };
 
 struct PlayOptions {
   const std::atomic<bool>* interrupted = nullptr;  // polled before each frame and while waiting
-  std::optional<Bytes> safe_stop;                  // sent after an early end
+  std::optional<Bytes> safe_stop;  // single-transport play(): sent after an early end
   // Longest single sleep, so an interrupt is noticed within about this long.
   io::Duration poll_interval = std::chrono::milliseconds(20);
-  // Called after each frame is written (progress display, measurements).
+  // The common start is this long after play() begins: time to be asleep before the first
+  // deadline, so the first frames are not late by the setup.
+  io::Duration lead{0};
+  // Called after each frame is written (progress display, measurements); `index` is the frame's
+  // position within its own track.
   std::function<void(std::size_t index, const FrameTiming& timing)> on_sent;
-  // Wait for each frame to leave (Transport::drain) and measure left_lateness; the frame's own
-  // wire time is its size times `seconds_per_byte`.
+  // Single-transport play(): wait for each frame to leave (Transport::drain) and measure
+  // left_lateness; the frame's own wire time is its size times `seconds_per_byte`.
   bool drain = false;
   double seconds_per_byte = 0;
+};
+
+// One transport's share of a play.
+struct Track {
+  io::Transport* transport = nullptr;
+  std::vector<ScheduledFrame> frames;  // `at` from the common start, never decreasing
+  std::optional<Bytes> safe_stop;      // written to this transport after an early end
+  bool drain = false;                  // as PlayOptions::drain, for this transport
+  double seconds_per_byte = 0;
+};
+
+struct TrackReport {
+  std::size_t sent = 0;                     // frames written in full
+  std::vector<io::Duration> lateness;       // one per frame written, in order
+  std::vector<io::Duration> left_lateness;  // with drain: one per frame written
+  std::optional<io::Duration> first;        // when its first write began, after the start
+  bool stop_sent = false;                   // its safe_stop was written after an early end
+  std::string stop_error;                   // why it could not be, if it was tried and failed
 };
 
 enum class PlayEnd { Completed, Interrupted, WriteFailed };
@@ -63,8 +89,16 @@ struct PlayReport {
   std::string error;                        // WriteFailed: why
   bool stop_sent = false;                   // safe_stop was written after an early end
   std::string stop_error;                   // why it could not be, if it was tried and failed
+  // The fields above are track 0's for the single-transport play(); for several tracks, sent
+  // counts every track's frames, lateness and left_lateness are in writing order, and the
+  // stop fields are the first track's that tried one.
+  std::vector<TrackReport> tracks;          // one per track, in track order
+  std::optional<std::size_t> failed_track;  // WriteFailed: whose write failed
 };
 
+// Every track's frames on one clock (see the top of this file).
+PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOptions& options);
+// One track, built from options (safe_stop, drain, seconds_per_byte).
 PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
                 io::Clock& clock, const PlayOptions& options = {});
 

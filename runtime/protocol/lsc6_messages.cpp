@@ -26,13 +26,13 @@ Status check_time(std::uint16_t t, const std::string& what) {
 
 Status check_targets(const std::vector<Target>& servos, const std::string& what) {
   for (const Target& t : servos) {
-    if (t.channel < kFirstChannel || t.channel > kLastChannel) {
-      return make_error(what + ": channel " + std::to_string(t.channel) +
+    if (t.id < kFirstChannel || t.id > kLastChannel) {
+      return make_error(what + ": channel " + std::to_string(t.id) +
                         " is not one of the board's outputs 1..6");
     }
-    if (t.pulse_us < kMinPulse || t.pulse_us > kMaxPulse) {
-      return make_error(what + ": pulse " + std::to_string(t.pulse_us) + " us for channel " +
-                        std::to_string(t.channel) + " is outside 500..2500 (the board ignores it)");
+    if (t.position < kMinPulse || t.position > kMaxPulse) {
+      return make_error(what + ": pulse " + std::to_string(t.position) + " us for channel " +
+                        std::to_string(t.id) + " is outside 500..2500 (the board ignores it)");
     }
   }
   return Ok{};
@@ -40,7 +40,7 @@ Status check_targets(const std::vector<Target>& servos, const std::string& what)
 
 void write_action(FieldWriter& w, std::uint16_t time_ms, const std::vector<Target>& servos) {
   w.u8(static_cast<std::uint8_t>(servos.size())).u16(time_ms);
-  for (const Target& t : servos) w.u8(t.channel).u16(t.pulse_us);
+  for (const Target& t : servos) w.u8(t.id).u16(t.position);
 }
 
 Result<Frame> finish(FieldWriter& w, const std::string& what) {
@@ -98,8 +98,8 @@ Result<std::vector<Target>> read_action(FieldReader& r, std::uint16_t& time_ms,
   std::vector<Target> servos;
   for (unsigned i = 0; i < n; ++i) {
     Target t;
-    t.channel = r.u8();
-    t.pulse_us = r.u16();
+    t.id = r.u8();
+    t.position = r.u16();
     servos.push_back(t);
   }
   return servos;
@@ -116,8 +116,8 @@ std::string targets_text(const std::vector<Target>& servos) {
   std::string out = "servos=[";
   for (std::size_t i = 0; i < servos.size(); ++i) {
     if (i != 0) out += ' ';
-    out += "{ch=" + std::to_string(servos[i].channel) +
-           " pulse=" + std::to_string(servos[i].pulse_us) + "}";
+    out += "{ch=" + std::to_string(servos[i].id) + " pulse=" + std::to_string(servos[i].position) +
+           "}";
   }
   return out + "]";
 }

@@ -18,6 +18,7 @@
 
 #include "runtime/protocol/lsc_frame.hpp"
 #include "runtime/protocol/result.hpp"
+#include "runtime/protocol/servo_target.hpp"
 
 namespace seqc::lsc6 {
 
@@ -44,11 +45,8 @@ inline constexpr std::uint16_t kMaxTime = 30000;
 // One stored action is a 64-byte flash slot holding N tLo tHi {id pLo pHi}xN.
 inline constexpr std::size_t kSlotBytes = 64;
 
-struct Target {
-  std::uint8_t channel = 0;
-  std::uint16_t pulse_us = 0;
-  friend bool operator==(const Target&, const Target&) = default;
-};
+// id: the PWM channel (kFirstChannel..kLastChannel); position: the pulse in µs.
+using Target = lsc::ServoTarget;
 
 // ---- Requests (host -> board) -----------------------------------------------------------
 

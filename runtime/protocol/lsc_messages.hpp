@@ -15,6 +15,7 @@
 
 #include "runtime/protocol/lsc_frame.hpp"
 #include "runtime/protocol/result.hpp"
+#include "runtime/protocol/servo_target.hpp"
 
 namespace seqc::lsc {
 
@@ -40,12 +41,6 @@ enum class Command : std::uint8_t {
 inline constexpr std::uint16_t kNoMove = 0xff00;
 // GroupErase's "all groups".
 inline constexpr std::uint8_t kAllGroups = 0xff;
-
-struct ServoTarget {
-  std::uint8_t id = 0;
-  std::uint16_t position = 0;
-  friend bool operator==(const ServoTarget&, const ServoTarget&) = default;
-};
 
 // ---- Requests (host -> controller) -------------------------------------------------------
 

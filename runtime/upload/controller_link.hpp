@@ -81,9 +81,6 @@ class ControllerLink {
                  const std::atomic<bool>* interrupted = nullptr);
 
   void set_observer(LinkObserver* observer) { observer_ = observer; }
-  // Longest single read; also how often the interrupt flag is polled.
-  void set_slice(io::Duration slice) { slice_ = slice; }
-
   // Encodes and writes one request. Error if it cannot be encoded or written.
   Status send(const lsc::Request& request);
   // Writes one already-encoded frame (serial form).

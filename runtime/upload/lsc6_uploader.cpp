@@ -3,27 +3,37 @@
 #include "runtime/upload/lsc6_uploader.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
+
+#include "runtime/io/time_text.hpp"
 
 namespace seqc::upload {
 namespace {
 
 constexpr std::size_t kAnswerBytes = 4;
 
-std::string seconds(io::Duration d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f s", std::chrono::duration<double>(d).count());
-  return buf;
+// The DownloadAction a frame carries; nullptr for any other frame.
+const lsc6::DownloadAction* action_of(const PlannedFrame& frame) {
+  return std::visit(
+      [](const auto& request) -> const lsc6::DownloadAction* {
+        if constexpr (std::is_same_v<std::decay_t<decltype(request)>, lsc6::Request>) {
+          return std::get_if<lsc6::DownloadAction>(&request);
+        } else {
+          return nullptr;
+        }
+      },
+      frame.request);
 }
 
 bool is_stored(const lsc6::Reply& r) { return std::holds_alternative<lsc6::ActionStored>(r); }
 
 class Lsc6Run {
  public:
-  Lsc6Run(Lsc6Link& link, const std::vector<lsc6::DownloadAction>& plan,
-          const UploadOptions& options, UploadObserver* observer)
+  Lsc6Run(Lsc6Link& link, const std::vector<PlannedFrame>& plan, const UploadOptions& options,
+          UploadObserver* observer)
       : link_(link), plan_(plan), opt_(options), observer_(observer) {}
 
   UploadResult go();
@@ -47,15 +57,12 @@ class Lsc6Run {
   void progress();
   void start_group();
   GroupState state() const;
-  std::string what(std::size_t i) const {
-    return "action " + std::to_string(i + 1) + " of " + std::to_string(plan_.size());
-  }
+  const std::string& what(std::size_t i) const { return plan_[i].what; }
 
   Lsc6Link& link_;
-  const std::vector<lsc6::DownloadAction>& plan_;
+  const std::vector<PlannedFrame>& plan_;  // encoded and labelled by plan_frames()
   UploadOptions opt_;
   UploadObserver* observer_;
-  std::vector<Bytes> frames_;
   UploadResult result_;
   io::TimePoint start_{0};
   std::size_t done_ = 0;
@@ -69,24 +76,23 @@ class Lsc6Run {
 
 std::string Lsc6Run::prepare() {
   if (plan_.empty()) return "the download plan is empty";
-  for (const lsc6::DownloadAction& a : plan_) {
-    if (a.group != opt_.group) {
-      return "the download plan is for group " + std::to_string(a.group) + ", not group " +
+  for (const PlannedFrame& f : plan_) {
+    const lsc6::DownloadAction* a = action_of(f);
+    if (a == nullptr) return "the download plan holds a frame that is not a DownloadAction";
+    if (a->group != opt_.group) {
+      return "the download plan is for group " + std::to_string(a->group) + ", not group " +
              std::to_string(opt_.group);
     }
-    auto bytes = lsc6::encode_serial(lsc6::Request{a});
-    if (!bytes) return "cannot encode the download plan: " + bytes.error().message;
-    frames_.push_back(std::move(bytes).value());
   }
   return "";
 }
 
 io::Duration Lsc6Run::timeout(std::size_t i) const {
   const double wire =
-      static_cast<double>(frames_[i].size() + kAnswerBytes) * link_.seconds_per_byte();
+      static_cast<double>(plan_[i].bytes.size() + kAnswerBytes) * link_.seconds_per_byte();
   io::Duration d = io::Duration(static_cast<long long>(std::ceil(wire * 1e9))) + opt_.reply_margin;
   if (i == 0) d += kLsc6EraseMargin;
-  if (i + 1 == frames_.size()) d += kLsc6CommitMargin;
+  if (i + 1 == plan_.size()) d += kLsc6CommitMargin;
   return d;
 }
 
@@ -136,27 +142,27 @@ Lsc6Run::Flow Lsc6Run::exchange(std::size_t i) {
   for (;;) {
     if (link_.interrupted()) return fatal(UploadStatus::Interrupted, "interrupted");
     const io::TimePoint sent_at = link_.clock().now();
-    if (auto ok = link_.send_bytes(frames_[i]); !ok) {
+    if (auto ok = link_.send_bytes(plan_[i].bytes); !ok) {
       return fatal(UploadStatus::LinkError, "writing to " + link_.transport().describe() +
                                                 " failed while sending " + what(i) + ": " +
                                                 ok.error().message);
     }
     ++sends;
     if (i == 0) first_sent_ = true;
-    if (i + 1 == frames_.size()) last_sent_ = true;
+    if (i + 1 == plan_.size()) last_sent_ = true;
     const Lsc6Wait w = link_.wait_for(is_stored, sent_at + limit);
     if (w.ok()) break;
     if (w.status != WaitStatus::Timeout) return wait_failure(w, "waiting for " + what(i));
     if (sends > opt_.retries) {
       restart_reason_ = "the board did not answer " + what(i) + " (" + std::to_string(sends) +
-                        " attempts, " + seconds(limit) + " each)";
+                        " attempts, " + io::seconds_text(limit) + " each)";
       restart_status_ = UploadStatus::NoAck;
       return Flow::Restart;
     }
     ++result_.retries;
     if (observer_ != nullptr) {
-      observer_->on_retry(
-          RetryEvent{what(i), sends + 1, opt_.retries + 1, "no answer within " + seconds(limit)});
+      observer_->on_retry(RetryEvent{what(i), sends + 1, opt_.retries + 1,
+                                     "no answer within " + io::seconds_text(limit)});
     }
   }
   // Each sending earns at most one answer: wait for those still owed before the next frame.
@@ -174,7 +180,7 @@ Lsc6Run::Flow Lsc6Run::exchange(std::size_t i) {
 Lsc6Run::Flow Lsc6Run::attempt() {
   done_ = 0;
   progress();
-  for (std::size_t i = 0; i < frames_.size(); ++i) {
+  for (std::size_t i = 0; i < plan_.size(); ++i) {
     const Flow f = exchange(i);
     if (f != Flow::Ok) return f;
     ++done_;
@@ -265,9 +271,21 @@ UploadResult Lsc6Run::go() {
 
 }  // namespace
 
-UploadResult upload_lsc6(Lsc6Link& link, const std::vector<lsc6::DownloadAction>& plan,
+UploadResult upload_lsc6(Lsc6Link& link, const std::vector<PlannedFrame>& plan,
                          const UploadOptions& options, UploadObserver* observer) {
   return Lsc6Run(link, plan, options, observer).go();
+}
+
+UploadResult upload_lsc6(Lsc6Link& link, const std::vector<lsc6::DownloadAction>& plan,
+                         const UploadOptions& options, UploadObserver* observer) {
+  auto frames = plan_frames(plan);
+  if (!frames) {
+    UploadResult result;
+    result.status = UploadStatus::BadPlan;
+    result.message = "cannot encode the download plan: " + frames.error().message;
+    return result;
+  }
+  return upload_lsc6(link, *frames, options, observer);
 }
 
 }  // namespace seqc::upload

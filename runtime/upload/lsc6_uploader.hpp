@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "runtime/protocol/lsc6_messages.hpp"
+#include "runtime/protocol/planned_frame.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/uploader.hpp"
 
@@ -45,6 +46,10 @@ namespace seqc::upload {
 inline constexpr io::Duration kLsc6EraseMargin = std::chrono::milliseconds(2000);
 inline constexpr io::Duration kLsc6CommitMargin = std::chrono::milliseconds(1000);
 
+// `plan` holds DownloadActions as plan_frames() encodes them.
+UploadResult upload_lsc6(Lsc6Link& link, const std::vector<PlannedFrame>& plan,
+                         const UploadOptions& options, UploadObserver* observer = nullptr);
+// The same for lsc6::plan_download's actions (encoded with plan_frames()).
 UploadResult upload_lsc6(Lsc6Link& link, const std::vector<lsc6::DownloadAction>& plan,
                          const UploadOptions& options, UploadObserver* observer = nullptr);
 

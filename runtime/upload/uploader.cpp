@@ -135,60 +135,25 @@ auto Uploader::Run::fatal(UploadStatus status, std::string message) -> Flow {
   return Flow::Fatal;
 }
 
-// Checks the plan and encodes every frame; returns an error message or "".
+// Checks the plan (plan_frames() encoded and labelled it); returns an error message or "".
 std::string Uploader::Run::prepare() {
-  if (plan_.empty()) return "the download plan is empty";
+  if (frames_.empty()) return "the download plan is empty";
   int last_step = 0;
-  for (const auto& r : plan_) {
-    const int step = lsc::group_download_step(r);
+  for (const PlannedFrame& f : frames_) {
+    const auto* r = std::get_if<lsc::Request>(&f.request);
+    const int step = r != nullptr ? lsc::group_download_step(*r) : 0;
     if (step == 0) return "the download plan holds a request that is not a GroupDownload step";
-    if (group_of(r) != opt().group) {
-      return "the download plan is for group " + std::to_string(group_of(r)) + ", not group " +
+    if (group_of(*r) != opt().group) {
+      return "the download plan is for group " + std::to_string(group_of(*r)) + ", not group " +
              std::to_string(opt().group);
     }
     if (step < last_step) return "the download plan's steps are out of order";
     last_step = step;
-    auto bytes = lsc::encode_serial(r);
-    if (!bytes) return "cannot encode the download plan: " + bytes.error().message;
-    PlannedFrame f;
-    f.index = frames_.size();
-    f.step = step;
-    f.bytes = std::move(bytes).value();
-    f.is_action = step == 4;
     if (f.is_action) ++result_.actions_total;
-    frames_.push_back(std::move(f));
   }
   double_refusals_.assign(frames_.size(), 0);
   if (frames_.front().step != 1 || frames_.back().step != 5) {
     return "the download plan must start with step 1 and end with step 5";
-  }
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < frames_.size(); ++i) {
-    PlannedFrame& f = frames_[i];
-    const lsc::Request& r = plan_[i];
-    switch (f.step) {
-      case 1:
-        f.what = "step 1 (open group " + std::to_string(opt().group) + ")";
-        break;
-      case 2:
-        f.what = "step 2 (size of block " +
-                 std::to_string(std::get<lsc::GroupDownloadSize>(r).block) + ")";
-        break;
-      case 3:
-        f.what = "step 3 (block list)";
-        break;
-      case 4: {
-        const auto& a = std::get<lsc::GroupDownloadAction>(r);
-        ++n;
-        f.what = "step 4 (action " + std::to_string(n) + " of " +
-                 std::to_string(result_.actions_total) + ": block " + std::to_string(a.block) +
-                 ", index " + std::to_string(a.index) + ")";
-        break;
-      }
-      default:
-        f.what = "step 5 (close)";
-        break;
-    }
   }
   return "";
 }
@@ -320,9 +285,20 @@ void Uploader::Run::finish(Flow flow) {
   }
 }
 
-UploadResult Uploader::upload(const std::vector<lsc::Request>& plan) {
+UploadResult Uploader::upload(const std::vector<PlannedFrame>& plan) {
   Run run(*this, plan);
   return run.go();
+}
+
+UploadResult Uploader::upload(const std::vector<lsc::Request>& plan) {
+  auto frames = plan_frames(plan);
+  if (!frames) {
+    UploadResult result;
+    result.status = UploadStatus::BadPlan;
+    result.message = "cannot encode the download plan: " + frames.error().message;
+    return result;
+  }
+  return upload(*frames);
 }
 
 }  // namespace seqc::upload

@@ -100,6 +100,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/protocol/planned_frame.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::upload {
@@ -167,8 +168,10 @@ struct RestartEvent {
 };
 
 struct RetryEvent {
-  std::string what;  // "step 4 (block 0, action 17)", "barrier", "probe"
-  int attempt = 2;   // the attempt about to be made (2 = first re-send)
+  // "step 4 (action 17 of 1020: block 0, index 16)", "probe (battery voltage)",
+  // "barrier (battery voltage)"
+  std::string what;
+  int attempt = 2;  // the attempt about to be made (2 = first re-send)
   int max_attempts = 0;
   std::string reason;  // "no acknowledgement within 0.536 s"
 };
@@ -211,7 +214,9 @@ class Uploader {
  public:
   Uploader(ControllerLink& link, UploadOptions options, UploadObserver* observer = nullptr);
 
-  // Runs the whole sequence for `plan` (steps 1..5 as plan_group_download returns them).
+  // Runs the whole sequence for `plan` (steps 1..5 as plan_frames() encodes them).
+  UploadResult upload(const std::vector<PlannedFrame>& plan);
+  // The same for steps 1..5 as plan_group_download returns them (encoded with plan_frames()).
   UploadResult upload(const std::vector<lsc::Request>& plan);
 
   // Reply deadline for a frame of `frame_bytes` whose reply is `reply_bytes` long.

@@ -14,7 +14,9 @@
 #include <variant>
 #include <vector>
 
+#include "runtime/io/time_text.hpp"
 #include "runtime/protocol/group_download.hpp"
+#include "runtime/protocol/planned_frame.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::upload {
@@ -27,25 +29,13 @@ inline constexpr std::size_t kProbeReplyBytes = 6;
 // GroupErase's reply: 55 55 02 08.
 inline constexpr std::size_t kEraseReplyBytes = 4;
 
-inline std::string seconds_text(io::Duration d) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f s", std::chrono::duration<double>(d).count());
-  return buf;
-}
+using io::seconds_text;
 
 inline std::string hex2(unsigned v) {
   char buf[8];
   std::snprintf(buf, sizeof buf, "%02x", v & 0xffu);
   return buf;
 }
-
-struct PlannedFrame {
-  std::size_t index = 0;  // in the plan
-  int step = 0;
-  Bytes bytes;
-  std::string what;
-  bool is_action = false;
-};
 
 inline std::uint8_t group_of(const lsc::Request& r) {
   return std::visit(
@@ -61,7 +51,7 @@ inline std::uint8_t group_of(const lsc::Request& r) {
 
 class Uploader::Run final : public LinkObserver {
  public:
-  Run(Uploader& up, const std::vector<lsc::Request>& plan) : up_(up), plan_(plan) {}
+  Run(Uploader& up, const std::vector<PlannedFrame>& plan) : up_(up), frames_(plan) {}
 
   UploadResult go();
 
@@ -91,7 +81,7 @@ class Uploader::Run final : public LinkObserver {
   Flow wait_failure(const WaitResult& w, const std::string& doing);
   Flow send(ByteView bytes, const std::string& doing);
 
-  // Checks the plan and encodes every frame; returns an error message or "".
+  // Checks the plan (steps in order, one group); returns an error message or "".
   std::string prepare();
 
   // Probe, stop, download (with restarts and reconnects), run. Sets fail_ on failure.
@@ -201,8 +191,7 @@ class Uploader::Run final : public LinkObserver {
   void finish(Flow flow);
 
   Uploader& up_;
-  const std::vector<lsc::Request>& plan_;
-  std::vector<PlannedFrame> frames_;
+  const std::vector<PlannedFrame>& frames_;  // encoded and labelled by plan_frames()
   UploadResult result_;
   io::TimePoint start_{0};
   std::optional<Fail> fail_;

@@ -1,0 +1,159 @@
+// One row per board (board_table.cpp): everything seqc does differently for one board is
+// reached from here. The CLI asks the table, calls a row's functions and words the results; it
+// never compares profile strings, emulator names or frame types. A row's functions return data
+// and status values, never text for people, never exit codes. Facts about the board that
+// messages need (its name, what it lacks) are row data. Adding a board: a profile row naming
+// Board::key (compiler/lang/profiles.cpp), a runtime/boards/<board>.cpp defining the row, one
+// line in board_table.cpp (docs/architecture.md, "Adding a board").
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "runtime/emulator/emulator_serve.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/io/transport.hpp"
+#include "runtime/player/player.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/protocol/planned_frame.hpp"
+#include "runtime/transport/port_spec.hpp"
+#include "runtime/upload/uploader.hpp"
+
+namespace seqc::boards {
+
+struct Hooks;       // ports.hpp
+struct OpenedPort;  // ports.hpp
+
+// A board's link for one command.
+struct Line {
+  io::Transport& transport;
+  io::Clock& clock;
+  const std::atomic<bool>* interrupted = nullptr;
+  io::Duration timeout = std::chrono::seconds(1);  // per awaited reply (--timeout)
+};
+
+// How an exchange ended. The CLI turns it into a sentence and an exit code.
+enum class Failure { None, SendFailed, NoReply, Unconfirmed, HangUp, ReadFailed, Interrupted };
+struct Outcome {
+  Failure failure = Failure::None;
+  std::string request;   // what was sent, described ("GroupStop", "EraseAll")
+  std::string awaiting;  // what was awaited ("the battery voltage", "the erase confirmation")
+  std::string detail;    // the link's or transport's own words
+  int attempts = 0;      // Unconfirmed: confirmations sent
+  bool ok() const { return failure == Failure::None; }
+};
+enum class Confirmation { Reported, NotReported, NeverAnswered };
+struct RunOutcome : Outcome {
+  Confirmation started = Confirmation::NotReported;
+};
+struct StopOutcome : Outcome {
+  Confirmation stopped = Confirmation::NeverAnswered;
+  std::optional<std::uint8_t> group;  // the group the board said it stopped
+};
+
+struct Plan {
+  std::uint8_t group = 0;
+  std::size_t actions = 0;
+  std::vector<PlannedFrame> frames;  // each encoded once (runtime/protocol/planned_frame.hpp)
+};
+enum class Emit { Hex, Listing, Json };
+// Which report the CLI words: moves on a servo board, frames on a car.
+enum class LiveStyle { Moves, Stream };
+enum EmulatorOption : unsigned {
+  kBaud = 1u << 0,
+  kFaults = 1u << 1,
+  kSeed = 1u << 2,
+  kPositions = 1u << 3,
+  kDumpGroups = 1u << 4,
+};
+
+struct Board {
+  // identity
+  std::string_view key;     // what RobotProfile::board names: "xarm", "lsc6", "raspblock"
+  std::string_view name;    // "xArm / LSC-16 / LSC-32", "LSC-6", "Raspblock"
+  std::string_view called;  // "the controller", "the board"
+  // "servo controller", "Raspblock board": boards that share ports and commands.
+  std::string_view family;
+
+  // ports
+  std::uint32_t baud = 0;     // a serial port's default rate
+  bool over_hid = false;      // `--port hid` reaches it
+  bool discoverable = false;  // found without --port
+
+  // seqc compile --emit
+  Result<std::string> (*render)(const compiler::CompileOutput&, Emit, std::uint8_t group) = nullptr;
+
+  // storage (all null: the board keeps nothing)
+  Result<Plan> (*plan)(const compiler::CompileOutput&, std::uint8_t group) = nullptr;
+  upload::UploadResult (*upload)(const Line&, const Plan&, const upload::UploadOptions&,
+                                 upload::UploadObserver*) = nullptr;
+  Bytes (*acknowledge)(ByteView request) = nullptr;  // the dry run's device
+  // The dry run's comment on frame `index` of an upload: "probe: GetBatteryVoltage".
+  std::string (*comment)(std::size_t index, ByteView frame) = nullptr;
+  std::string_view unconfirmed_run;  // "it did not report starting it"
+
+  // live play
+  Result<std::vector<player::ScheduledFrame>> (*live_frames)(const compiler::CompileOutput&) =
+      nullptr;
+  Outcome (*probe)(const Line&) = nullptr;  // is a board there? null: nothing answers
+  Bytes (*safe_stop)() = nullptr;           // after an early end; null: none
+  bool measure_departure = false;           // drain each frame, report when it left
+  bool check_schedule = false;              // refuse a schedule the link cannot keep
+  bool wait_for_end = false;                // return when the last move ends
+  LiveStyle style = LiveStyle::Moves;
+  // Without a probe: "the LSC-6 answers no move, so nothing shows that the board hears them".
+  std::string_view unprobed_note;
+
+  // session commands (seqc group, servo move, a show's start)
+  std::string_view run_name;  // "GroupRun", "Run"
+  Bytes (*run_frame)(std::uint8_t group, std::uint16_t times) = nullptr;
+  // After run_frame was written: did the board start the group?
+  RunOutcome (*confirm_run)(const Line&, std::uint8_t group, std::uint16_t times) = nullptr;
+  std::string_view run_note;  // LSC-6: "the LSC-6 accepts a run before looking at the group: …"
+  Bytes (*stop_frame)() = nullptr;
+  StopOutcome (*stop)(const Line&) = nullptr;
+  // nullopt: every group.
+  Outcome (*erase)(const Line&, std::optional<std::uint8_t> group) = nullptr;
+  bool erases_one_group = true;  // false: its erase wipes every group (LSC-6)
+  Outcome (*move)(const Line&, std::span<const lsc::ServoTarget>, std::uint16_t time_ms) = nullptr;
+  bool confirms_moves = true;
+  // Battery, servo read/off/mode, offsets, bus-info, group speed (XarmSession).
+  bool queries = false;
+  // "its firmware knows only moves, group run/stop, erasing every group and storing actions"
+  std::string_view lacks;
+
+  // emulator
+  // emu:NAME reaching it; [0] is what `seqc emulate` serves.
+  std::span<const std::string_view> emulators;
+  bool (*open_emulator)(const transport::PortSpec&, io::Clock& host, const Hooks&, OpenedPort& out,
+                        std::string& error) = nullptr;
+  emu::ServeResult (*serve)(const emu::ServeOptions&, io::Clock&, const std::atomic<bool>& stop,
+                            emu::ServeEvents&) = nullptr;
+  unsigned emulator_options = 0;      // EmulatorOption bits `seqc emulate` accepts
+  std::string_view no_faults_reason;  // "the Raspblock board never replies"
+  std::string_view no_groups_reason;  // "the Raspblock board stores no groups"
+};
+
+std::span<const Board* const> all_boards();
+const Board* find_board(std::string_view key);
+const Board& board_for(const compiler::CompileOutput& output);  // by output.board
+const Board* board_for_emulator(std::string_view emulator);     // emu:NAME -> its board
+// emu:NAME's board, else the --robot profile's board, else the first discoverable board.
+const Board& board_for_device(std::string_view profile, std::string_view port);
+bool same_family(const Board& a, const Board& b);
+
+Result<Plan> plan_for(const Board& board, const compiler::CompileOutput& output,
+                      std::uint8_t group);
+std::optional<std::size_t> first_too_big(const Plan& plan, const io::Transport& transport);
+upload::UploadResult upload(const Board& board, const Line& line, const Plan& plan,
+                            const upload::UploadOptions& options, upload::UploadObserver* observer);
+RunOutcome run_group(const Board& board, const Line& line, std::uint8_t group, std::uint16_t times);
+
+}  // namespace seqc::boards

@@ -1,0 +1,51 @@
+// Live play: a compiled program's frames sent on their deadlines to one board as they happen,
+// nothing stored. The order is fixed for every board (frames, size check, schedule check,
+// probe, play, wait for the last move to end); the Board row says which of those steps apply.
+// It returns a status and the data to report; the CLI words it (board.style) and picks the exit
+// code. The hooks let the CLI print its lines at the moments they belong to.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/player/player.hpp"
+
+namespace seqc::boards {
+
+enum class LiveStatus {
+  Played,
+  Interrupted,
+  InterruptedAtEnd,
+  WriteFailed,
+  FrameTooBig,
+  LateSchedule,
+  NoBoard,
+  BadProgram
+};
+
+struct LiveReport {
+  LiveStatus status = LiveStatus::Played;
+  std::vector<player::ScheduledFrame> frames;
+  std::optional<std::size_t> too_big;  // its limit: line.transport.max_frame_bytes()
+  player::ScheduleCheck check;         // boards with check_schedule
+  Outcome probe;                       // NoBoard: why
+  player::PlayReport play;
+  std::string error;  // BadProgram
+};
+
+struct LiveHooks {
+  std::function<void(const LiveReport&)> checked;   // after the schedule check, before the probe
+  std::function<void(const LiveReport&)> starting;  // after the probe, before the first frame
+  std::function<void(std::size_t index, io::Duration at)> sent;
+};
+
+LiveReport play_live(const Board& board, const compiler::CompileOutput& output, const Line& line,
+                     bool allow_late, const LiveHooks& hooks = {});
+
+}  // namespace seqc::boards

@@ -1,0 +1,78 @@
+// Opening any port a command names: a serial device, `hid`, discovery when no --port is given,
+// or an in-process emulator (emu:NAME). What differs per board (default baud, whether HID or
+// discovery reach it, how its emulator is built) comes from the Board row; this file holds the
+// order of the checks. It returns a status and the words of the layer that failed, never a
+// sentence for people: the CLI words PortProblem and picks the exit code. OpenedPort owns every
+// object the transport uses (the emulated clock, the emulator, the HID backend), so a port
+// stays valid for as long as the caller keeps it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "runtime/boards/board.hpp"
+#include "runtime/emulator/controller_device.hpp"
+#include "runtime/emulator/lsc6_emulator.hpp"
+#include "runtime/emulator/raspblock_emulator.hpp"
+#include "runtime/emulator/xarm_emulator.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/io/transport.hpp"
+#include "runtime/transport/hid_backend.hpp"
+#include "runtime/transport/port_discovery.hpp"
+
+namespace seqc::boards {
+
+// What tests inject (the CLI copies Context::xarm_emulator/lsc6_emulator/xarm_clock here).
+struct Hooks {
+  emu::XArmEmulator* xarm = nullptr;  // emu:xarm reaches this one (its config holds its faults)
+  emu::Lsc6Emulator* lsc6 = nullptr;  // emu:lsc6 reaches this one
+  // The time of both; the emulator hooks apply only when this is set.
+  io::ManualClock* emulated_clock = nullptr;
+  const transport::DeviceLister* lister = nullptr;  // what discovery sees; null: the system's
+};
+
+struct PortRequest {
+  std::string text;  // --port as given; "" = discovery
+  // What the command talks to: default baud, HID and discovery policy, which emulators fit
+  // (same family); null = any servo controller.
+  const Board* board = nullptr;
+};
+
+enum class PortProblem {
+  Malformed,        // detail = transport::parse_port's words                 -> Usage
+  EmulatorOptions,  // detail = the emulator's option parser's words           -> Usage
+  WrongEmulator,    // emu:NAME reaches another family (failure.reached)       -> Usage
+  WrongKind,        // `hid` for a board without over_hid                     -> Usage
+  NeedsPort,        // no --port, and the board cannot be discovered           -> Usage
+  NotFound,         // discovery found none or several; detail = its words     -> PortUnavailable
+  CannotOpen,       // detail = transport::open_port's words                   -> PortUnavailable
+};
+
+struct PortFailure {
+  PortProblem problem = PortProblem::CannotOpen;
+  std::string detail;
+  const Board* reached = nullptr;
+};
+
+struct OpenedPort {
+  // Emulator state first: members are destroyed in reverse order, so the transport goes first.
+  std::unique_ptr<io::ManualClock> emulated_clock;
+  std::unique_ptr<emu::ControllerDevice> controller;   // emu:xarm[-hid], emu:lsc6 made here
+  std::unique_ptr<emu::RaspblockEmulator> raspblock;   // emu:raspblock
+  std::shared_ptr<transport::HidBackend> hid_backend;  // emu:xarm-hid: must outlive the transport
+  std::unique_ptr<io::Transport> transport;
+  io::Clock* clock = nullptr;  // the clock to use with `transport` (the emulated one for emu:*)
+  // The board at the far end when the port says so (emu:NAME), else request.board.
+  const Board* board = nullptr;
+  bool emulated = false;
+};
+
+struct OpenResult {
+  std::optional<OpenedPort> port;
+  PortFailure failure;
+};
+
+OpenResult open_port(const PortRequest& request, io::Clock& clock, const Hooks& hooks = {});
+
+}  // namespace seqc::boards

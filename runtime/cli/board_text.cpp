@@ -1,0 +1,135 @@
+#include "runtime/cli/board_text.hpp"
+
+#include <ostream>
+
+#include "runtime/io/time_text.hpp"
+#include "runtime/transport/port_spec.hpp"
+
+namespace seqc::cli {
+namespace {
+
+// "emu:lsc6?seed=3" -> "emu:lsc6".
+std::string without_options(const std::string& port) { return port.substr(0, port.find('?')); }
+
+// "emu:xarm or emu:lsc6": the emulator each board of `board`'s family is served by.
+std::string family_emulators(const boards::Board& board) {
+  std::vector<std::string> names;
+  for (const boards::Board* b : boards::all_boards()) {
+    if (boards::same_family(*b, board) && !b->emulators.empty()) {
+      names.push_back("emu:" + std::string(b->emulators.front()));
+    }
+  }
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+boards::Hooks hooks_of(const Context& ctx) {
+  return boards::Hooks{ctx.xarm_emulator, ctx.lsc6_emulator, ctx.xarm_clock};
+}
+
+BoardError port_failure(const boards::PortFailure& f, const boards::PortRequest& request,
+                        const std::string& subject) {
+  const std::string& port = request.text;
+  switch (f.problem) {
+    case boards::PortProblem::Malformed:
+      return {ExitCode::Usage, "--port: " + f.detail};
+    case boards::PortProblem::EmulatorOptions: {
+      auto spec = transport::parse_port(port);
+      return {ExitCode::Usage,
+              "--port " + (spec ? transport::format_port(*spec) : port) + ": " + f.detail};
+    }
+    case boards::PortProblem::WrongEmulator:
+      if (request.board == nullptr || f.reached == nullptr) break;
+      if (subject.empty()) {
+        return {ExitCode::Usage, "--port " + without_options(port) +
+                                     ": this command talks to the " +
+                                     std::string(request.board->family) + "; use " +
+                                     family_emulators(*request.board)};
+      }
+      return {ExitCode::Usage, "--port " + port + " is the " + std::string(f.reached->family) +
+                                   "'s emulator; " + subject + " is for the " +
+                                   std::string(request.board->key) + " (use --port " +
+                                   family_emulators(*request.board) + ")"};
+    case boards::PortProblem::WrongKind:
+      if (request.board == nullptr) break;
+      return {ExitCode::Usage, "--port " + port + " is a USB HID device (the xArm's link); the " +
+                                   std::string(request.board->name) +
+                                   " board is reached over a serial port at " +
+                                   std::to_string(request.board->baud) + " baud"};
+    case boards::PortProblem::NeedsPort:
+      if (request.board == nullptr) break;
+      return {ExitCode::Usage,
+              "name the board's serial port with --port, e.g. --port /dev/ttyAMA0 or --port "
+              "ttyUSB0 (the board does not announce itself)\n  hint: --port " +
+                  family_emulators(*request.board) + " plays to the built-in board emulator"};
+    case boards::PortProblem::NotFound:
+    case boards::PortProblem::CannotOpen:
+      return {ExitCode::PortUnavailable, f.detail};
+  }
+  return {ExitCode::Usage, "--port " + port + ": " + f.detail};
+}
+
+BoardError outcome_text(const boards::Outcome& o, const std::string& port, io::Duration timeout,
+                        std::string_view called_view) {
+  const std::string called(called_view);
+  const std::string hint = "check that " + called + " is powered and connected, and --port";
+  switch (o.failure) {
+    case boards::Failure::None:
+      break;
+    case boards::Failure::SendFailed:
+      return {ExitCode::DeviceFailure,
+              "cannot send " + o.request + " to " + port + ": " + o.detail};
+    case boards::Failure::NoReply:
+      return {ExitCode::DeviceFailure, "no reply from " + called + " on " + port + " within " +
+                                           io::duration_text(timeout) + " (waiting for " +
+                                           o.awaiting + "); " + hint};
+    case boards::Failure::Unconfirmed:
+      return {ExitCode::DeviceFailure,
+              "no reply from " + called + " on " + port + ": " + o.request +
+                  " has no answer of its own, and the battery check sent after it went "
+                  "unanswered (sent " +
+                  std::to_string(o.attempts) + " times, " + io::duration_text(timeout) +
+                  " each), so it may not have arrived; " + hint};
+    case boards::Failure::HangUp:
+      return {ExitCode::DeviceFailure, called + " on " + port + " went away (" + o.detail + ")"};
+    case boards::Failure::ReadFailed:
+      return {ExitCode::DeviceFailure, "reading from " + port + " failed: " + o.detail};
+    case boards::Failure::Interrupted:
+      // Before anything was sent, or while a reply was awaited.
+      return {ExitCode::Interrupted, o.awaiting.empty()
+                                         ? "interrupted"
+                                         : "interrupted while waiting for " + called + "'s reply"};
+  }
+  return {ExitCode::Internal, "internal: no failure to report"};
+}
+
+ExitCode refuse_command(Context& ctx, const boards::Board& board, const std::string& command) {
+  ctx.err << "seqc: error: the " << board.name << " board has no " << command << " command"
+          << (board.lacks.empty() ? "" : ": ") << board.lacks << "; nothing was sent\n";
+  return ExitCode::Usage;
+}
+
+std::string times_text(std::uint16_t times) {
+  if (times == 0) return "looping until `seqc group stop`";
+  return std::to_string(times) + (times == 1 ? " time" : " times");
+}
+
+ExitCode exit_code_for(upload::UploadStatus s) {
+  switch (s) {
+    case upload::UploadStatus::Completed:
+      return ExitCode::Ok;
+    case upload::UploadStatus::Interrupted:
+      return ExitCode::Interrupted;
+    case upload::UploadStatus::BadPlan:
+      return ExitCode::Internal;
+    default:
+      return ExitCode::DeviceFailure;
+  }
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,50 @@
+// The words for what runtime/boards returns: a port that could not be opened, an exchange that
+// failed, an upload's status, each turned into the sentence after "seqc: error: " and the exit
+// status docs/cli.md gives it. The boards library returns status values and facts about a board
+// (its name, what it lacks); the sentences are composed here from those facts, so no command
+// branches on which board it has.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/ports.hpp"
+#include "runtime/cli/context.hpp"
+#include "runtime/cli/exit_codes.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/upload/uploader.hpp"
+
+namespace seqc::cli {
+
+// A sentence for "seqc: error: " and the exit status that goes with it.
+struct BoardError {
+  ExitCode code = ExitCode::DeviceFailure;
+  std::string message;
+};
+
+// The emulators a test put in `ctx` (Context::xarm_emulator, lsc6_emulator, xarm_clock).
+boards::Hooks hooks_of(const Context& ctx);
+
+// Why --port did not open. `subject` names the file the command was given ("walk.yaml"), for the
+// sentence that says which board it is for; "" when the command has no file.
+BoardError port_failure(const boards::PortFailure& failure, const boards::PortRequest& request,
+                        const std::string& subject);
+
+// Why an exchange on `port` (the transport's description) failed. `called` is how the sentence
+// names the far end ("the controller", "the board"); `timeout` is the per-reply wait it quotes.
+BoardError outcome_text(const boards::Outcome& outcome, const std::string& port,
+                        io::Duration timeout, std::string_view called);
+
+// "seqc: error: the LSC-6 board has no battery command: ...; nothing was sent" on ctx.err, for a
+// command `board` has no way to answer; returns ExitCode::Usage.
+ExitCode refuse_command(Context& ctx, const boards::Board& board, const std::string& command);
+
+// "1 time", "3 times", or "looping until `seqc group stop`" for 0.
+std::string times_text(std::uint16_t times);
+
+// An upload that did not complete: Interrupted, Internal (a bad plan) or DeviceFailure.
+ExitCode exit_code_for(upload::UploadStatus status);
+
+}  // namespace seqc::cli
