@@ -2,31 +2,17 @@
 // player, against request bytes written by hand (docs/protocol/lsc-6.md).
 #include <gtest/gtest.h>
 
-#include "runtime/emulator/lsc6_emulator.hpp"
-#include "tests/emulator/emu_test_util.hpp"
+#include "tests/emulator/lsc6_test_util.hpp"
 
 namespace seqc::emu::test {
 namespace {
 
-Lsc6Config unpaced() {
-  Lsc6Config c;
-  c.baud = 0;
-  return c;
-}
-
-// 55 55 LEN 19 G TOTAL IDX 01 tLo tHi ch pLo pHi: one servo per action.
-Bytes action(unsigned group, unsigned total, unsigned index, unsigned time_ms, unsigned ch,
-             unsigned pulse) {
-  return frame(0x19, {lo(group), lo(total), lo(index), 0x01, lo(time_ms), hi(time_ms), lo(ch),
-                      lo(pulse), hi(pulse)});
-}
-
 TEST(Lsc6Emulator, StoresEachActionAndAnswersEveryFrame) {
   Lsc6Emulator emu(unpaced());
   io::TimePoint t = at_ms(0);
-  EXPECT_EQ(hex_of(exchange(emu, action(2, 2, 0, 500, 1, 1500), t)), "55 55 02 19");
+  EXPECT_EQ(hex_of(exchange(emu, download_action(2, 2, 0, 500, 1, 1500), t)), "55 55 02 19");
   EXPECT_EQ(emu.stored_count(2), 0) << "the count is written only with the last index";
-  EXPECT_EQ(hex_of(exchange(emu, action(2, 2, 1, 700, 6, 2500), t)), "55 55 02 19");
+  EXPECT_EQ(hex_of(exchange(emu, download_action(2, 2, 1, 700, 6, 2500), t)), "55 55 02 19");
   EXPECT_EQ(emu.stored_count(2), 2);
   const auto stored = emu.stored_group(2);
   ASSERT_TRUE(stored.has_value());
@@ -38,19 +24,19 @@ TEST(Lsc6Emulator, StoresEachActionAndAnswersEveryFrame) {
 
 TEST(Lsc6Emulator, TheFirstIndexErasesTheGroupBeforeAnswering) {
   Lsc6Emulator emu(unpaced());  // 45 ms per sector erase, 0.7 ms per slot, 1.4 ms per table
-  emu.receive(action(0, 2, 0, 100, 1, 1500), at_ms(0));
+  emu.receive(download_action(0, 2, 0, 100, 1, 1500), at_ms(0));
   EXPECT_EQ(emu.next_output_at(), at_ms(180) + 700us) << "four sector erases, one slot";
   (void)emu.take_output(at_ms(1000));
-  emu.receive(action(0, 2, 1, 100, 1, 1600), at_ms(1000));
+  emu.receive(download_action(0, 2, 1, 100, 1, 1600), at_ms(1000));
   EXPECT_EQ(emu.next_output_at(), at_ms(1000) + 700us + 45ms + 1400us)
       << "a slot, then the count table's sector erase and write";
 }
 
 TEST(Lsc6Emulator, HoldsOneFrameWhileBusyAndDropsTheNext) {
   Lsc6Emulator emu(unpaced());
-  Bytes three = action(0, 3, 0, 100, 1, 1500);
-  const Bytes b = action(0, 3, 1, 100, 1, 1600);
-  const Bytes c = action(0, 3, 2, 100, 1, 1700);
+  Bytes three = download_action(0, 3, 0, 100, 1, 1500);
+  const Bytes b = download_action(0, 3, 1, 100, 1, 1600);
+  const Bytes c = download_action(0, 3, 2, 100, 1, 1700);
   three.insert(three.end(), b.begin(), b.end());
   three.insert(three.end(), c.begin(), c.end());
   io::TimePoint t = at_ms(0);
@@ -65,10 +51,11 @@ TEST(Lsc6Emulator, HoldsOneFrameWhileBusyAndDropsTheNext) {
 TEST(Lsc6Emulator, AnInterruptedDownloadLeavesTheOldCountOverErasedActions) {
   Lsc6Emulator emu(unpaced());
   io::TimePoint t = at_ms(0);
-  for (unsigned i = 0; i < 3; ++i) (void)exchange(emu, action(1, 3, i, 100, 2, 1000 + i), t);
+  for (unsigned i = 0; i < 3; ++i)
+    (void)exchange(emu, download_action(1, 3, i, 100, 2, 1000 + i), t);
   ASSERT_EQ(emu.stored_count(1), 3);
-  (void)exchange(emu, action(1, 3, 0, 100, 2, 2000), t);
-  (void)exchange(emu, action(1, 3, 1, 100, 2, 2100), t);
+  (void)exchange(emu, download_action(1, 3, 0, 100, 2, 2000), t);
+  (void)exchange(emu, download_action(1, 3, 1, 100, 2, 2100), t);
   EXPECT_EQ(emu.stored_count(1), 3) << "the old count stays";
   // Playing it runs the two new actions, then reads an erased slot (N = 0xff) and stops.
   t += 1s;
@@ -81,8 +68,8 @@ TEST(Lsc6Emulator, AnInterruptedDownloadLeavesTheOldCountOverErasedActions) {
 TEST(Lsc6Emulator, RunAnswersFirstAndAnnouncesTheEnd) {
   Lsc6Emulator emu(unpaced());
   io::TimePoint t = at_ms(0);
-  (void)exchange(emu, action(0, 2, 0, 400, 3, 900), t);
-  (void)exchange(emu, action(0, 2, 1, 600, 3, 2100), t);
+  (void)exchange(emu, download_action(0, 2, 0, 400, 3, 900), t);
+  (void)exchange(emu, download_action(0, 2, 1, 600, 3, 2100), t);
   const io::TimePoint start = t;
   emu.receive(hex("55 55 05 06 00 02 00"), start);  // group 0, twice
   EXPECT_EQ(hex_of(emu.take_output(start)), "55 55 02 06");
@@ -97,7 +84,7 @@ TEST(Lsc6Emulator, CopiesThatNeverAnswerRunOrAnnounceTheEnd) {
   ASSERT_TRUE(apply_lsc6_options("no-run-reply,no-finish", config).ok());
   Lsc6Emulator emu(config);
   io::TimePoint t = at_ms(0);
-  (void)exchange(emu, action(0, 1, 0, 100, 1, 900), t);
+  (void)exchange(emu, download_action(0, 1, 0, 100, 1, 900), t);
   EXPECT_EQ(hex_of(exchange(emu, hex("55 55 05 06 00 01 00"), t, 5s)), "");
   EXPECT_EQ(emu.pulse(1, t + 5s), 900) << "it played all the same";
 }
@@ -105,8 +92,8 @@ TEST(Lsc6Emulator, CopiesThatNeverAnswerRunOrAnnounceTheEnd) {
 TEST(Lsc6Emulator, EraseWipesEveryGroup) {
   Lsc6Emulator emu(unpaced());
   io::TimePoint t = at_ms(0);
-  (void)exchange(emu, action(0, 1, 0, 100, 1, 900), t);
-  (void)exchange(emu, action(7, 1, 0, 100, 1, 900), t);
+  (void)exchange(emu, download_action(0, 1, 0, 100, 1, 900), t);
+  (void)exchange(emu, download_action(7, 1, 0, 100, 1, 900), t);
   EXPECT_EQ(hex_of(exchange(emu, hex("55 55 03 08 07"), t)), "55 55 02 08")
       << "the parameter names group 7, but every group goes";
   EXPECT_EQ(emu.stored_count(0), 0);
@@ -173,9 +160,9 @@ TEST(Lsc6Emulator, WaitsForTheRestOfAFrameHoweverLong) {
 TEST(Lsc6Emulator, AnotherGroupCannotInterruptButGroupZeroCan) {
   Lsc6Emulator emu(unpaced());
   io::TimePoint t = at_ms(0);
-  (void)exchange(emu, action(0, 1, 0, 1000, 1, 900), t);
-  (void)exchange(emu, action(1, 1, 0, 1000, 1, 2000), t);
-  (void)exchange(emu, action(2, 1, 0, 1000, 1, 1200), t);
+  (void)exchange(emu, download_action(0, 1, 0, 1000, 1, 900), t);
+  (void)exchange(emu, download_action(1, 1, 0, 1000, 1, 2000), t);
+  (void)exchange(emu, download_action(2, 1, 0, 1000, 1, 1200), t);
   emu.receive(hex("55 55 05 06 01 00 00"), t);  // group 1 forever
   emu.receive(hex("55 55 05 06 02 01 00"), t + 100ms);
   emu.advance_to(t + 200ms);

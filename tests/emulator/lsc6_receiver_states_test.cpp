@@ -5,24 +5,10 @@
 // fail once that buffer has something in it to replay. Request bytes are written by hand.
 #include <gtest/gtest.h>
 
-#include "runtime/emulator/lsc6_emulator.hpp"
-#include "tests/emulator/emu_test_util.hpp"
+#include "tests/emulator/lsc6_test_util.hpp"
 
 namespace seqc::emu::test {
 namespace {
-
-Lsc6Config unpaced() {
-  Lsc6Config c;
-  c.baud = 0;
-  return c;
-}
-
-// 55 55 0b 19 G TOTAL IDX 01 tLo tHi ch pLo pHi: one channel per action (LEN = 8 + 3).
-Bytes download_action(unsigned group, unsigned total, unsigned index, unsigned time_ms, unsigned ch,
-                      unsigned pulse) {
-  return Bytes{0x55, 0x55,        0x0b,        0x19,   lo(group), lo(total), lo(index),
-               0x01, lo(time_ms), hi(time_ms), lo(ch), lo(pulse), hi(pulse)};
-}
 
 TEST(Lsc6ReceiverStates, ALenOfOneAfterAMoveIsAbandonedNotReplayed) {
   Lsc6Emulator emu(unpaced());
