@@ -1,15 +1,32 @@
 // Fitting: the whole timeline into controller actions. An action lasts min_action_ms to
-// max_action_ms (whole milliseconds); each servo it names moves in a straight line from where
-// it is to its target over the action's time, and servos it omits hold.
+// max_action_ms (whole milliseconds); each servo it names moves from where it is to its target
+// over the action's time, and servos it omits hold. How it moves is the controller model
+// (ControllerModel): a straight line between whole-unit targets, or that line rounded or
+// truncated to whole units at every instant. Every tolerance promised below is checked against
+// that model, at every millisecond.
 //
 // Boundaries are whole milliseconds on the absolute timeline, so rounding never accumulates:
 // every segment boundary of every servo becomes one (a knot), merged when two fall closer than
-// the shortest action. Between knots where every moving servo follows a straight line, one
-// action (or equal parts of at most max_action_ms) is exact. Where a curve runs, boundaries are
-// chosen greedily, each action as long as every servo's straight line stays within its
-// segment's tolerance of the intended curve at every millisecond, targets rounded to whole
-// device units included. Where even the shortest action cannot meet a tolerance, the result
-// says where and by how much (a shortfall), and the fit goes on with shortest actions.
+// the shortest action. A knot is an action boundary for every servo; the servos whose own
+// segments meet there have their targets pinned to the intended position rounded to a whole
+// unit. Between knots where every moving servo follows a straight line, one action (or equal
+// parts of at most max_action_ms) is exact. Where curves run, a stretch (over the knots where
+// the same servos stay curved and one of them is mid-curve) is fitted with all its curved
+// servos sharing the actions' boundaries, and the fewest actions are searched for twice: once
+// with every target on the rounded curve (the on-curve fit), once with each target not pinned
+// free to be any whole unit within the tolerance of the curve there and within the servo's
+// limits (the free fit: a dynamic program over boundaries that carries, per boundary, the set
+// of end values each servo can reach; exact for one servo, a small beam of labels for several,
+// on a coarser grid of boundaries where the search would cost more than about the on-curve
+// fit's time). The one with fewer actions is kept, the on-curve one on a tie; where a search
+// stops at a shortfall, the whole stretch is fitted on the curve too and the fewer actions
+// kept, so the free fit never costs an action. No stretch begins with an action that moves no
+// servo unless every fit with the fewest actions needs one. A stretch too long to search in one
+// piece is cut where its servos move least (or at a knot), the cut pinned like a knot, and each
+// part searched alone.
+//
+// Where even the shortest action cannot meet a tolerance, the result says where and by how
+// much (a shortfall), and the fit goes on with shortest actions.
 //
 // An action names every servo that has a segment during it (a move or a `wait` hold); an
 // action during which none has is a hold naming every servo whose position is known.
@@ -24,9 +41,30 @@
 
 namespace seqc::compiler {
 
+// How the controller moves a servo during an action, from its previous target to the new one.
+enum class ControllerModel : std::uint8_t {
+  StraightLine,  // the exact straight line between the two whole-unit targets
+  Rounds,        // that line rounded to the nearest whole unit at every instant
+  Truncates,     // that line truncated to a whole unit (towards zero) at every instant
+};
+
+// The position the controller puts out when the straight line is at `line`.
+double controller_output(ControllerModel model, double line);
+
+struct ServoLimits {
+  int min = -1'000'000;
+  int max = 1'000'000;
+};
+
 struct FitOptions {
   std::uint32_t min_action_ms = 20;
   std::uint32_t max_action_ms = 30000;
+  ControllerModel model = ControllerModel::StraightLine;
+  // Whether targets between knots may lie anywhere within the tolerance (the free fit); false
+  // keeps only the on-curve fit.
+  bool free_end_points = true;
+  // Per servo (output index): no target leaves these. Servos past the end are unlimited.
+  std::vector<ServoLimits> limits;
 };
 
 struct FittedTarget {
@@ -52,8 +90,8 @@ struct FitShortfall {
 
 struct FitResult {
   std::vector<FittedAction> actions;
-  // The largest distance between the controller's motion and the intended curve, at whole
-  // milliseconds, over every named servo (straight moves: rounding only).
+  // The largest distance between the controller's motion (under the model) and the intended
+  // curve, at whole milliseconds, over every named servo (straight moves: rounding only).
   double max_error = 0;
   std::uint32_t max_error_at_ms = 0;
   std::size_t max_error_servo = 0;

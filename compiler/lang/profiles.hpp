@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
+#include "compiler/fitting/fitter.hpp"
 #include "runtime/protocol/group_download.hpp"
 
 namespace seqc::compiler {
@@ -40,6 +41,9 @@ struct RobotProfile {
   double rated_speed = 0;
   // Actions one stored group holds on this controller.
   std::size_t max_actions = lsc::kMaxActions;
+  // How the controller moves a servo during an action (compiler/fitting/fitter.hpp); fitting
+  // keeps every tolerance under this model. docs/language.md says why each profile has its own.
+  ControllerModel controller = ControllerModel::StraightLine;
 };
 
 const RobotProfile* find_profile(std::string_view name);

@@ -61,7 +61,10 @@ void ServoLowering::finish(ServoProgram& program) {
                                           group_capacity_text(robot_.profile));
     return;
   }
-  FitResult fit = fit_timeline(timeline_);
+  FitOptions fit_options;
+  if (robot_.profile != nullptr) fit_options.model = robot_.profile->controller;
+  for (const ServoInfo& s : robot_.info.servos) fit_options.limits.push_back({s.min, s.max});
+  FitResult fit = fit_timeline(timeline_, fit_options);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
   if (needed > capacity()) {
     const Location at = fit.actions.size() > capacity() ? fit.actions[capacity()].source

@@ -62,8 +62,8 @@ TEST(BoardsDryRun, XarmFramesAreWhatTheControllerReceives) {
   for (const bool run : {false, true}) {
     const DryRun dry = dry_run(walk.board, walk.plan, options(run));
     ASSERT_TRUE(dry.result.ok()) << dry.result.message;
-    // Probe, GroupStop, barrier, 33 download steps, barrier; with a run GroupRun and a barrier.
-    EXPECT_EQ(dry.frames.size(), run ? 39u : 37u);
+    // Probe, GroupStop, barrier, 31 download steps, barrier; with a run GroupRun and a barrier.
+    EXPECT_EQ(dry.frames.size(), run ? 37u : 35u);
 
     io::ManualClock clock;
     emu::XArmEmulator controller{emu::XArmConfig{}};
@@ -79,13 +79,13 @@ TEST(BoardsDryRun, XarmTextCommentsEveryFrame) {
   const Case walk("walk.yaml");
   const DryRun dry = dry_run(walk.board, walk.plan, options(true));
   const std::vector<std::string> text = lines(dry.text);
-  ASSERT_EQ(text.size(), 39u);
+  ASSERT_EQ(text.size(), 37u);
   EXPECT_EQ(text[0], "55 55 02 0f                               # probe: GetBatteryVoltage");
   EXPECT_EQ(text[1], "55 55 02 07                               # GroupStop");
   EXPECT_EQ(text[2], "55 55 02 0f                               # barrier: GetBatteryVoltage");
+  EXPECT_EQ(text[34], "55 55 02 0f                               # barrier: GetBatteryVoltage");
+  EXPECT_EQ(text[35], "55 55 05 06 00 01 00                      # GroupRun group=0 times=1");
   EXPECT_EQ(text[36], "55 55 02 0f                               # barrier: GetBatteryVoltage");
-  EXPECT_EQ(text[37], "55 55 05 06 00 01 00                      # GroupRun group=0 times=1");
-  EXPECT_EQ(text[38], "55 55 02 0f                               # barrier: GetBatteryVoltage");
 }
 
 TEST(BoardsDryRun, Lsc6FramesAreWhatTheBoardReceives) {
@@ -94,8 +94,8 @@ TEST(BoardsDryRun, Lsc6FramesAreWhatTheBoardReceives) {
   for (const bool run : {false, true}) {
     const DryRun dry = dry_run(learm.board, learm.plan, options(run));
     ASSERT_TRUE(dry.result.ok()) << dry.result.message;
-    // Stop, 42 DownloadActions; with a run Run.
-    EXPECT_EQ(dry.frames.size(), run ? 44u : 43u);
+    // Stop, 36 DownloadActions; with a run Run.
+    EXPECT_EQ(dry.frames.size(), run ? 38u : 37u);
 
     io::ManualClock clock;
     emu::Lsc6Emulator board{emu::Lsc6Config{}};
@@ -111,12 +111,12 @@ TEST(BoardsDryRun, Lsc6TextCommentsEveryFrame) {
   const Case learm("learm.yaml");
   const DryRun dry = dry_run(learm.board, learm.plan, options(true));
   const std::vector<std::string> text = lines(dry.text);
-  ASSERT_EQ(text.size(), 44u);
+  ASSERT_EQ(text.size(), 38u);
   EXPECT_EQ(text[0], "55 55 02 07                               # Stop");
   EXPECT_EQ(text[1].substr(0, 6), "55 55 ");
-  EXPECT_NE(text[1].find("# DownloadAction group=0 total=42 index=0 "), std::string::npos)
+  EXPECT_NE(text[1].find("# DownloadAction group=0 total=36 index=0 "), std::string::npos)
       << text[1];
-  EXPECT_EQ(text[43], "55 55 05 06 00 01 00                      # Run group=0 times=1");
+  EXPECT_EQ(text[37], "55 55 05 06 00 01 00                      # Run group=0 times=1");
 }
 
 TEST(BoardsDryRun, ABoardWithoutStorageHasNone) {

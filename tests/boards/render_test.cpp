@@ -24,14 +24,14 @@ TEST(BoardRender, XarmListingCountsBlocks) {
   auto listing = board_for(walk).render(walk, Emit::Listing, 0);
   ASSERT_TRUE(listing.ok()) << listing.error().message;
   EXPECT_EQ(first_line(*listing).substr(0, 54),
-            "# robot xarm, group 0: 29 actions in 1 block, 33 frame");
+            "# robot xarm, group 0: 27 actions in 1 block, 31 frame");
 }
 
 TEST(BoardRender, XarmHexIsOneFramePerLine) {
   const compiler::CompileOutput walk = compile_example("walk.yaml");
   auto hex = board_for(walk).render(walk, Emit::Hex, 0);
   ASSERT_TRUE(hex.ok());
-  EXPECT_EQ(std::count(hex->begin(), hex->end(), '\n'), 33);
+  EXPECT_EQ(std::count(hex->begin(), hex->end(), '\n'), 31);
   EXPECT_EQ(hex->substr(0, 6), "55 55 ");
 }
 
@@ -40,7 +40,7 @@ TEST(BoardRender, Lsc6ListingNamesItsDialect) {
   auto listing = board_for(learm).render(learm, Emit::Listing, 0);
   ASSERT_TRUE(listing.ok()) << listing.error().message;
   EXPECT_EQ(first_line(*listing).substr(0, 60),
-            "# robot lsc-6, group 0: 42 actions (LSC-6 dialect), 42 frame");
+            "# robot lsc-6, group 0: 36 actions (LSC-6 dialect), 36 frame");
 }
 
 TEST(BoardRender, TheCarHasAStreamNotAGroup) {

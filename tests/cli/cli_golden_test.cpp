@@ -180,7 +180,7 @@ TEST(Decode, FlagsInconsistentFrames) {
 TEST(Simulate, CsvAndDuration) {
   SeqcRun r = seqc(kSource, "simulate --step 100 examples/wave.yaml");
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "seqc: examples/wave.yaml: 40 actions, 7.2 s\n");
+  EXPECT_EQ(r.err, "seqc: examples/wave.yaml: 38 actions, 7.2 s\n");
   expect_golden(kCliGolden / "simulate-wave.csv", r.out);
 }
 

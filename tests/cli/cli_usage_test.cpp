@@ -75,7 +75,7 @@ TEST(Usage, VersionComesFromTheProjectVersion) {
 TEST(Usage, QuietLeavesOnlyDataAndVerboseAddsDetail) {
   const SeqcRun normal = seqc(kSource, "upload examples/walk.yaml --port emu:xarm");
   ASSERT_EQ(normal.status, 0) << normal.err;
-  EXPECT_NE(normal.err.find("seqc: the controller acknowledged 29 actions"), std::string::npos);
+  EXPECT_NE(normal.err.find("seqc: the controller acknowledged 27 actions"), std::string::npos);
   EXPECT_EQ(normal.err.find("upload: 29 actions into group 0"), std::string::npos);
 
   const SeqcRun quiet = seqc(kSource, "-q upload examples/walk.yaml --port emu:xarm");
@@ -85,7 +85,7 @@ TEST(Usage, QuietLeavesOnlyDataAndVerboseAddsDetail) {
   EXPECT_EQ(seqc(kSource, "upload examples/walk.yaml --port emu:xarm --quiet").err, "");
 
   const SeqcRun verbose = seqc(kSource, "upload examples/walk.yaml --port emu:xarm -v");
-  EXPECT_NE(verbose.err.find("upload: 29 actions into group 0 on emu:xarm"), std::string::npos)
+  EXPECT_NE(verbose.err.find("upload: 27 actions into group 0 on emu:xarm"), std::string::npos)
       << verbose.err;
   // Errors are never quiet.
   const SeqcRun bad = seqc(kSource, "-q check tests/golden/bad-unknown-pose.yaml");
@@ -117,7 +117,7 @@ TEST(Usage, ColorOnlyWhenAskedOrOnATerminal) {
 TEST(Usage, DashIsStdinForFilesAndStdoutForOutput) {
   const SeqcRun in = seqc(kSource, "check -", (kSource / "examples/walk.yaml").string());
   EXPECT_EQ(in.status, 0) << in.err;
-  EXPECT_EQ(in.out.rfind("<stdin>: 29/1020 actions", 0), 0u) << in.out;
+  EXPECT_EQ(in.out.rfind("<stdin>: 27/1020 actions", 0), 0u) << in.out;
   const SeqcRun bad =
       seqc(kSource, "check -", (kSource / "tests/golden/bad-unknown-pose.yaml").string());
   EXPECT_EQ(bad.status, 1);
@@ -145,7 +145,7 @@ TEST(Usage, DryRunFramesDecodeBack) {
   while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
   EXPECT_EQ(WEXITSTATUS(pclose(p)), 0);
   EXPECT_NE(out.find("GroupStop"), std::string::npos) << out;
-  EXPECT_NE(out.find("# 37 frame(s), 29 action(s), 8 s total, 0 issue(s)"), std::string::npos)
+  EXPECT_NE(out.find("# 35 frame(s), 27 action(s), 8 s total, 0 issue(s)"), std::string::npos)
       << out;
 }
 

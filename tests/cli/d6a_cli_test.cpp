@@ -93,7 +93,7 @@ TEST_F(D6aCli, AnExampleExportsTheActionsItsLanguageSays) {
       seqc(kSource, "export examples/walk.yaml -o '" + (dir_ / "walk.d6a").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const Rows rows = read_table(dir_ / "walk.d6a");
-  ASSERT_EQ(rows.size(), 29u);
+  ASSERT_EQ(rows.size(), 27u);
   EXPECT_EQ(rows[0], (std::vector<int>{1000, 500, 500, 500, 500, 500, 500}));
   EXPECT_EQ(rows[1], (std::vector<int>{800, 300, 500, 300, 650, 400, 500}));
 }

@@ -95,8 +95,8 @@ TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
-  // Probe, GroupStop, barrier, the 33 GroupDownload frames of walk's 29 actions, barrier.
-  EXPECT_EQ(frames.size(), 37u);
+  // Probe, GroupStop, barrier, the 31 GroupDownload frames of walk's 27 actions, barrier.
+  EXPECT_EQ(frames.size(), 35u);
   EXPECT_TRUE(dry.xarm.received_bytes().empty());  // the dry run opened no port
 
   Bench live;
@@ -113,9 +113,9 @@ TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
   // As without --run, then GroupRun and a barrier.
-  ASSERT_EQ(frames.size(), 39u);
+  ASSERT_EQ(frames.size(), 37u);
   // GroupRun group 3, once: 55 55 05 06 03 01 00 (docs/protocol/servo-controller.md).
-  EXPECT_EQ(to_hex(frames[37]), "55 55 05 06 03 01 00");
+  EXPECT_EQ(to_hex(frames[35]), "55 55 05 06 03 01 00");
 
   Bench live;
   const Ran sent =
@@ -131,8 +131,8 @@ TEST(DryRunMatchesUpload, Lsc6CompileDryRunIsWhatUploadSends) {
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
-  // Stop, then one DownloadAction per action of learm's 42.
-  EXPECT_EQ(frames.size(), 43u);
+  // Stop, then one DownloadAction per action of learm's 36.
+  EXPECT_EQ(frames.size(), 37u);
   EXPECT_TRUE(dry.lsc6.received_bytes().empty());
 
   Bench live;
@@ -148,7 +148,7 @@ TEST(DryRunMatchesUpload, Lsc6UploadDryRunWithRunIsWhatUploadWithRunSends) {
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
-  ASSERT_EQ(frames.size(), 44u);
+  ASSERT_EQ(frames.size(), 38u);
   // The LSC-6's Run: group 0, twice (docs/protocol/lsc-6.md).
   EXPECT_EQ(to_hex(frames.back()), "55 55 05 06 00 02 00");
 

@@ -163,7 +163,7 @@ INSTANTIATE_TEST_SUITE_P(
         StatusCase{"play_ok", "play " + valid + " --port emu:xarm --allow-late", 0},
         StatusCase{"play_invalid", "play " + invalid + " --port emu:xarm", 1},
         // A schedule the 9600-baud link cannot keep is refused (docs/commands.md, Live play).
-        StatusCase{"play_too_late", "play " + valid + " --port emu:xarm", 1},
+        StatusCase{"play_too_late", "play tests/cli/data/too-fast.yaml --port emu:xarm", 1},
         StatusCase{"play_unreadable", "play " + missing + " --port emu:xarm", 5},
         StatusCase{"play_no_port", "play " + valid + " --port " + no_port, 3},
         StatusCase{"play_no_answer", "play " + valid + " --port " + silent + " --allow-late", 4},

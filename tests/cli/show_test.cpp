@@ -46,10 +46,10 @@ TEST(Show, InProcessOnBothEmulatorsUploadsThenStartsTogether) {
   ASSERT_EQ(r.code, 0) << r.err;
   // The arm's group was stored before anything started, then run.
   ASSERT_TRUE(h.emu.stored_group(2).has_value());
-  EXPECT_EQ(h.emu.stored_group(2)->size(), 29u);
+  EXPECT_EQ(h.emu.stored_group(2)->size(), 27u);
   EXPECT_EQ(h.emu.playing_group(), std::optional<std::uint8_t>(2));
   const std::string& err = r.err;
-  const auto uploaded = err.find("seqc: arm: the controller acknowledged 29 actions");
+  const auto uploaded = err.find("seqc: arm: the controller acknowledged 27 actions");
   const auto started = err.find("seqc: show duet: starting 2 performers at one instant");
   ASSERT_NE(uploaded, std::string::npos) << err;
   ASSERT_NE(started, std::string::npos) << err;
@@ -130,14 +130,14 @@ TEST(Show, AcrossProcessesOnPseudoTerminals) {
   const std::string report = slurp_file(tmp / "show.stderr");
   ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << report;
   EXPECT_NE(report.find("seqc: start skew between performers: "), std::string::npos) << report;
-  // The arm's controller stored group 0 (walk.yaml: 29 actions); the car board got packets.
+  // The arm's controller stored group 0 (walk.yaml: 27 actions); the car board got packets.
   const std::string groups = slurp_file(tmp / "groups.txt");
   std::vector<std::string> actions;
   std::istringstream lines(groups);
   for (std::string line; std::getline(lines, line);) {
     if (!line.empty() && line[0] != '#') actions.push_back(line);
   }
-  ASSERT_EQ(actions.size(), 29u) << groups;
+  ASSERT_EQ(actions.size(), 27u) << groups;
   EXPECT_EQ(actions[0].rfind("0 0 1000 ", 0), 0u) << groups;  // move: home, time: 1s
   EXPECT_NE(slurp_file(tmp / "car.csv").find("gimbal"), std::string::npos);
   std::printf("[ measured ] %s", report.substr(report.find("seqc: arm: GroupRun")).c_str());

@@ -71,7 +71,7 @@ TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   ASSERT_EQ(run({kSeqc, "upload", kWalk, "--port", link_, "--run"}, &out, &err), 0) << err;
   // The summary is on stderr; stdout carries data only (nothing, for an upload).
   EXPECT_EQ(out, "");
-  EXPECT_NE(err.find("seqc: the controller acknowledged 29 actions into group 0"),
+  EXPECT_NE(err.find("seqc: the controller acknowledged 27 actions into group 0"),
             std::string::npos)
       << err;
   EXPECT_NE(err.find("seqc: group 0 started"), std::string::npos) << err;
@@ -85,7 +85,7 @@ TEST_F(UploadE2E, RecordedFramesEqualTheCompiledHex) {
   // What the controller stored, as the separate emulator process wrote it on exit.
   const std::vector<std::string> stored = stored_actions(slurp(groups_));
   const std::vector<std::string> compiled = compiled_actions(json, 0);
-  ASSERT_EQ(compiled.size(), 29u) << json;
+  ASSERT_EQ(compiled.size(), 27u) << json;
   EXPECT_EQ(stored, compiled);
 
   // CSV: time_s,status,bytes,message. Keep the GroupDownload frames (CMD 05).
@@ -202,7 +202,7 @@ TEST(UploadCli, EmulatorInProcessWithFaultsCompletes) {
   std::string out;
   while (fgets(buf, sizeof buf, p) != nullptr) out += buf;
   EXPECT_EQ(WEXITSTATUS(pclose(p)), 0);
-  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
+  EXPECT_NE(out.find("the controller acknowledged 27 actions into group 0"), std::string::npos)
       << out;
 }
 
@@ -234,8 +234,8 @@ std::string upload_in_process(const std::string& port, int& status) {
 }
 
 TEST(UploadCli, TheInProcessEmulatorIsPacedLikeTheLine) {
-  // walk.yaml's download is 33 frames of 544 bytes and 33 six-byte acknowledgements: 742 bytes,
-  // which take 0.773 s at 9600 baud (960 bytes/s); a paced upload cannot report less.
+  // walk.yaml's download is 31 frames of 516 bytes and 31 six-byte acknowledgements: 702 bytes,
+  // which take 0.731 s at 9600 baud (960 bytes/s); a paced upload cannot report less.
   int status = -1;
   const std::string paced = upload_in_process("emu:xarm", status);
   EXPECT_EQ(status, 0) << paced;
@@ -243,7 +243,7 @@ TEST(UploadCli, TheInProcessEmulatorIsPacedLikeTheLine) {
     const auto at = text.find("emulated time, ");
     return at == std::string::npos ? -1.0 : std::stod(text.substr(at + 15));
   };
-  EXPECT_GT(seconds_of(paced), 0.77) << paced;
+  EXPECT_GT(seconds_of(paced), 0.73) << paced;
   const std::string unpaced = upload_in_process("emu:xarm?baud=0", status);
   EXPECT_EQ(status, 0) << unpaced;
   EXPECT_LT(seconds_of(unpaced), 0.5) << unpaced;
@@ -253,7 +253,7 @@ TEST(UploadCli, RepliesSplitAcrossReadsStillPairUp) {
   int status = -1;
   const std::string out = upload_in_process("emu:xarm?split=0.5,seed=4", status);
   EXPECT_EQ(status, 0) << out;
-  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0"), std::string::npos)
+  EXPECT_NE(out.find("the controller acknowledged 27 actions into group 0"), std::string::npos)
       << out;
 }
 
@@ -262,7 +262,7 @@ TEST(UploadCli, ThroughTheHidFace) {
   int status = -1;
   const std::string out = upload_in_process("emu:xarm-hid", status);
   EXPECT_EQ(status, 0) << out;
-  EXPECT_NE(out.find("the controller acknowledged 29 actions into group 0 (hid:emu:xarm-hid "
+  EXPECT_NE(out.find("the controller acknowledged 27 actions into group 0 (hid:emu:xarm-hid "
                      "(0483:5750 LOBOT), emulated time"),
             std::string::npos)
       << out;

@@ -8,8 +8,9 @@
 //
 // Where the fitter reports a shortfall, its action is exempt from the tolerance, and the
 // shortfall itself is proven here: a search over every motion the controller could make
-// around that instant (breakpoints on the millisecond grid, at least 20 ms apart, at the
-// intended positions rounded to whole units) finds none within tolerance.
+// around that instant (breakpoints on the millisecond grid, at least 20 ms apart, each at any
+// whole unit within the tolerance of the intended position there, knots at the intended
+// position rounded) finds none within tolerance.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <random>
 
 #include "compiler/fitting/fitter.hpp"
+#include "compiler/lang/profiles.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "tests/compiler/easing_reference.hpp"
 #include "tests/compiler/lang_test_util.hpp"
@@ -123,14 +125,15 @@ bool one_line_fits(const std::vector<double>& want, const std::vector<double>& t
 
 // Whether some motion the controller could make stays within tolerance of the intended curve
 // at every millisecond of [l, r]: straight lines between breakpoints on the millisecond grid,
-// at least kMinActionMs apart, each breakpoint at the intended position there rounded to a
-// whole unit, with a breakpoint at every knot (the start, and each end of the curve: segment
-// boundaries stay action boundaries). The line entering the window and the one leaving it are
-// allowed any slope and length (their other ends lie outside), so `false` proves that no
-// motion does.
+// at least kMinActionMs apart, each breakpoint at any whole unit within tolerance of the
+// intended position there, and at a knot (the start, and each end of the curve: segment
+// boundaries stay action boundaries) at the intended position rounded. The line entering the
+// window and the one leaving it are allowed any slope and length (their other ends lie
+// outside), so `false` proves that no motion does.
 bool followable(const Intended& c, std::int64_t l, std::int64_t r) {
   const std::size_t n = static_cast<std::size_t>(r - l + 1);
-  std::vector<double> want(n), tol(n), pos(n);
+  std::vector<double> want(n), tol(n);
+  std::vector<int> lowest(n), highest(n);  // the whole units a breakpoint may be at
   std::vector<char> knot(n);
   std::size_t first_knot = n;
   for (std::size_t i = 0; i < n; ++i) {
@@ -138,39 +141,55 @@ bool followable(const Intended& c, std::int64_t l, std::int64_t r) {
     const double td = static_cast<double>(t);
     want[i] = c.at(td);
     tol[i] = c.tolerance_at(t) + 1e-7;  // generous: a proof must not hang on rounding noise
-    pos[i] = std::round(want[i]);
     knot[i] = t == 0 || td == c.t0 || td == c.t1;
+    if (knot[i]) {
+      lowest[i] = highest[i] = static_cast<int>(std::lround(want[i]));
+    } else {
+      lowest[i] = static_cast<int>(std::ceil(want[i] - tol[i]));
+      highest[i] = static_cast<int>(std::floor(want[i] + tol[i]));
+    }
     if (knot[i] && first_knot == n) first_knot = i;
   }
   if (first_knot == n && one_line_fits(want, tol)) return true;  // no breakpoint inside
-  // reach[q]: a breakpoint at q ends a motion within tolerance from l to q.
-  std::vector<char> reach(n, 0);
+  // reach[q][j]: a breakpoint at q, at lowest[q] + j, ends a motion within tolerance from l.
+  std::vector<std::vector<char>> reach(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    reach[q].assign(static_cast<std::size_t>(std::max(0, highest[q] - lowest[q] + 1)), 0);
+  }
   // The first breakpoint inside, entered at any slope from outside (not across a knot).
   for (std::size_t q = 0; q < n && q <= first_knot; ++q) {
-    double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t t = q; t-- > 0 && lo <= hi;) {
-      const double span = static_cast<double>(q - t);
-      lo = std::max(lo, (pos[q] - want[t] - tol[t]) / span);
-      hi = std::min(hi, (pos[q] - want[t] + tol[t]) / span);
+    for (int v = lowest[q]; v <= highest[q]; ++v) {
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      for (std::size_t t = q; t-- > 0 && lo <= hi;) {
+        const double span = static_cast<double>(q - t);
+        lo = std::max(lo, (v - want[t] - tol[t]) / span);
+        hi = std::min(hi, (v - want[t] + tol[t]) / span);
+      }
+      reach[q][static_cast<std::size_t>(v - lowest[q])] =
+          lo <= hi && std::abs(v - want[q]) <= tol[q];
     }
-    reach[q] = lo <= hi && std::abs(pos[q] - want[q]) <= tol[q];
   }
   for (std::size_t p = 0; p < n; ++p) {
-    if (!reach[p]) continue;
-    if (p == n - 1) return true;
-    // Lines from p: the slopes that keep every instant so far within tolerance.
-    double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t q = p + 1; q < n; ++q) {
-      const double span = static_cast<double>(q - p);
-      const double slope = (pos[q] - pos[p]) / span;
-      if (q - p >= static_cast<std::size_t>(kMinActionMs) && slope >= lo && slope <= hi &&
-          std::abs(pos[q] - want[q]) <= tol[q]) {
-        reach[q] = 1;
+    for (int u = lowest[p]; u <= highest[p]; ++u) {
+      if (!reach[p][static_cast<std::size_t>(u - lowest[p])]) continue;
+      if (p == n - 1) return true;
+      // Lines from (p, u): the slopes that keep every instant so far within tolerance.
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      for (std::size_t q = p + 1; q < n; ++q) {
+        const double span = static_cast<double>(q - p);
+        if (q - p >= static_cast<std::size_t>(kMinActionMs)) {
+          for (int v = lowest[q]; v <= highest[q]; ++v) {
+            const double slope = (v - u) / span;
+            if (slope >= lo && slope <= hi && std::abs(v - want[q]) <= tol[q]) {
+              reach[q][static_cast<std::size_t>(v - lowest[q])] = 1;
+            }
+          }
+        }
+        lo = std::max(lo, (want[q] - tol[q] - u) / span);
+        hi = std::min(hi, (want[q] + tol[q] - u) / span);
+        if (lo > hi || knot[q]) break;
+        if (q == n - 1) return true;  // the line leaving the window from (p, u)
       }
-      lo = std::max(lo, (want[q] - tol[q] - pos[p]) / span);
-      hi = std::min(hi, (want[q] + tol[q] - pos[p]) / span);
-      if (lo > hi || knot[q]) break;
-      if (q == n - 1) return true;  // the line leaving the window from p
     }
   }
   return false;
@@ -341,6 +360,220 @@ TEST(Fitting, AnImpossibleToleranceIsAWarningWithWhereAndHowMuch) {
   EXPECT_NE(d.find("5:5: warning: even 20ms actions cannot keep 'base' within 0.2 of this curve"),
             std::string::npos)
       << d;
+}
+
+// c(t) = t^2 / 200 (quad-in from 0 to 18 over 60 ms), tolerance 1: free end points fit it in two
+// actions, targets on the rounded curve need three.
+//
+// Free: 0 -> 4 over [0, 30] ms, then 4 -> 18 over [30, 60] ms. c(30) = 4.5, so 4 is within 1.
+//   Line 1, y = 4t/30: y - c = 4t/30 - t^2/200 is 0 at t = 0, -0.5 at t = 30, and largest where
+//   4/30 = t/100, t = 13.3: 0.889 - 0.889 / 2 = 0.444. Within 1.
+//   Line 2, y = 4 + 14(t - 30)/30: y - c is -0.5 at t = 30, 0 at t = 60, largest where
+//   14/30 = t/100, t = 46.7: 11.78 - 10.89 = 0.889. Within 1.
+// On the curve: two actions need one boundary e in 20..40 (each at least 20 ms), target
+// p = round(e^2/200). For e in 20..31 the second line at t = 45 (c = 10.125) is above 11.125:
+// the least is e = 29, p = 4: 4 + 14 x 16/31 = 11.23. For e in 32..40 the first line at
+// t = 15 (c = 1.125) is above 2.125: the least is e = 33, p = 5: 5 x 15/33 = 2.27. So two
+// never do; three do (boundaries at 20 and 40: targets 2 and 8, each chord within 0.5 + 0.5).
+TEST(Fitting, FreeEndPointsSaveAnActionOnAHandWorkedCurve) {
+  Segment seg;
+  seg.start = ExactMs(0);
+  seg.end = ExactMs(60);
+  seg.from = 0;
+  seg.to = 18;
+  seg.kind = CurveKind::Eased;
+  seg.easing = *parse_easing("quad-in").easing;
+  seg.tolerance = 1;
+  Timeline tl;
+  tl.resize(1);
+  tl.add(0, seg);
+  tl.end = ExactMs(60);
+  const FitResult free = fit_timeline(tl);
+  ASSERT_EQ(free.actions.size(), 2u);
+  EXPECT_TRUE(free.shortfalls.empty());
+  // Whatever the two targets are, the motion stays within 1 of t^2 / 200 at every millisecond.
+  const Motion motion(free.actions, 0);
+  for (int t = 0; t <= 60; ++t) {
+    EXPECT_LE(std::abs(motion.at(t) - t * t / 200.0), 1 + 1e-9) << t;
+  }
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  EXPECT_EQ(fit_timeline(tl, on_curve).actions.size(), 3u);
+}
+
+// Random single curves and servos moving together: the fit never has more actions than the
+// on-curve fit alone (it keeps the better of the two).
+TEST(Fitting, NeverMoreActionsThanTheOnCurveFit) {
+  std::mt19937 rng(20261125);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<std::string> names = {"sine-in-out", "cubic-in",    "quad-out",
+                                          "back-in-out", "expo-in-out", "circ-in",
+                                          "bounce-out",  "elastic-out", "quart-in-out"};
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  int fewer = 0;
+  for (int round = 0; round < 60; ++round) {
+    const std::size_t servos = 1 + static_cast<std::size_t>(round % 8);
+    Timeline tl;
+    tl.resize(servos);
+    double end = 0;
+    for (std::size_t s = 0; s < servos; ++s) {
+      double t = 0, pos = 300 + std::floor(unit(rng) * 400);
+      while (t < 1500) {
+        const double len = std::floor(150 + unit(rng) * 650);
+        Segment seg;
+        seg.start = ExactMs(static_cast<std::int64_t>(t));
+        seg.end = ExactMs(static_cast<std::int64_t>(t + len));
+        seg.from = pos;
+        seg.to = pos + std::floor((unit(rng) - 0.5) * 600);
+        seg.kind = CurveKind::Eased;
+        seg.easing = *parse_easing(names[static_cast<std::size_t>(unit(rng) * 9) % 9]).easing;
+        seg.tolerance = round % 2 == 0 ? 1 : 2;
+        tl.add(s, seg);
+        pos = seg.to;
+        t += len;
+      }
+      end = std::max(end, t);
+    }
+    tl.end = ExactMs(static_cast<std::int64_t>(end));
+    const std::size_t fitted = fit_timeline(tl).actions.size();
+    const std::size_t before = fit_timeline(tl, on_curve).actions.size();
+    EXPECT_LE(fitted, before) << "round " << round << ", " << servos << " servos";
+    fewer += fitted < before ? 1 : 0;
+  }
+  EXPECT_GT(fewer, 30);  // and the free end points do save actions
+}
+
+// A free end point never leaves the servo's limits. Curves that dip to just above the bottom of
+// the servo's range (0 here) and come back: Hermite pieces from 40 to 40 whose inner control
+// points sit at p1 = p2 = (m - 10) / 0.75, so that the middle, 40/8 + 3/4 p1 + 40/8, is m (0.2
+// or 0.5). Lines across a dip fit best with their ends below the curve, where the band of whole
+// units within tolerance reaches below 0; the fit keeps at 0 or above.
+TEST(Fitting, FreeEndPointsStayWithinTheServosLimits) {
+  FitOptions limited;
+  limited.limits = {{0, 1000}};
+  int below_without_limits = 0;
+  for (int ms : {300, 600, 900, 1200, 1500}) {
+    for (double m : {0.2, 0.5}) {
+      const double p1 = (m - 10) / 0.75, h = ms;
+      Segment seg;
+      seg.start = ExactMs(0);
+      seg.end = ExactMs(ms);
+      seg.from = seg.to = 40;
+      seg.kind = CurveKind::Hermite;
+      seg.slope_from = static_cast<float>(-(40 - p1) * 3 / h);
+      seg.slope_to = -seg.slope_from;
+      seg.tolerance = 2;
+      Timeline tl;
+      tl.resize(1);
+      tl.add(0, seg);
+      tl.end = ExactMs(ms);
+      for (const FittedAction& a : fit_timeline(tl).actions) {
+        below_without_limits += a.targets[0].position < 0 ? 1 : 0;
+      }
+      const FitResult fit = fit_timeline(tl, limited);
+      for (const FittedAction& a : fit.actions) {
+        EXPECT_GE(a.targets[0].position, 0) << ms << " ms, " << m << ", at " << a.start_ms;
+      }
+      // Still within tolerance at every millisecond.
+      EXPECT_TRUE(fit.shortfalls.empty());
+      const Motion motion(fit.actions, 40);
+      Intended want;
+      want.t1 = h;
+      want.from = want.to = 40;
+      want.hermite = true;
+      want.slope_from = seg.slope_from;
+      want.slope_to = seg.slope_to;
+      want.tolerance = 2;
+      for (int t = 0; t <= ms; ++t) {
+        EXPECT_LE(std::abs(motion.at(t) - want.at(t)), 2 + 1e-6) << ms << " ms, " << m << ", " << t;
+      }
+    }
+  }
+  // Without limits the fit does use the units below 0, so the limits above were in play.
+  EXPECT_GT(below_without_limits, 0);
+}
+
+// An eased move whose curve barely leaves its start does not begin with an action that moves
+// nothing: cubic-in from 500 to 600 over 1 s stays within 1 of 500 for its first 215 ms
+// (100 x 0.215^3 = 0.99), so a first action holding 500 fits, but one that moves does too.
+TEST(Fitting, AnEasedMoveDoesNotBeginWithAnActionThatMovesNothing) {
+  for (const char* ease : {"cubic-in", "expo-in", "quint-in"}) {
+    auto out = testing::compile_text(
+        std::string("robot: xarm\nsequence:\n") + "  - move: {base: 500}\n    time: 1s\n" +
+        "  - move: {base: 600}\n    time: 1s\n    ease: " + ease + "\n");
+    const ServoProgram& p = testing::program_of(out);
+    ASSERT_GE(p.keyframes.size(), 3u) << ease;
+    EXPECT_EQ(p.keyframes[0].targets, (std::vector<lsc::ServoTarget>{{6, 500}})) << ease;
+    ASSERT_EQ(p.keyframes[1].targets.size(), 1u) << ease;
+    EXPECT_NE(p.keyframes[1].targets[0].position, 500) << ease;
+  }
+}
+
+// The controller model: a fit for a controller that rounds (or truncates) its output to whole
+// units keeps that output within tolerance at every millisecond; the same curves fitted for
+// the straight line do not, put out that way, so the setting is what keeps the promise.
+TEST(Fitting, TheControllerModelIsWhatTheToleranceHoldsFor) {
+  EXPECT_EQ(controller_output(ControllerModel::StraightLine, 2.5), 2.5);
+  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.5), 3);
+  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.49), 2);
+  EXPECT_EQ(controller_output(ControllerModel::Truncates, 2.99), 2);
+  auto output = [](ControllerModel model, double line) {
+    return model == ControllerModel::Rounds ? std::floor(line + 0.5) : std::trunc(line);
+  };
+  for (ControllerModel model : {ControllerModel::Rounds, ControllerModel::Truncates}) {
+    int straight_misses = 0;
+    for (const char* name : {"sine-in-out", "quad-in-out", "cubic-out", "back-in-out"}) {
+      Segment seg;
+      seg.start = ExactMs(0);
+      seg.end = ExactMs(1500);
+      seg.from = 300;
+      seg.to = 420;
+      seg.kind = CurveKind::Eased;
+      seg.easing = *parse_easing(name).easing;
+      seg.tolerance = 1;
+      Timeline tl;
+      tl.resize(1);
+      tl.add(0, seg);
+      tl.end = ExactMs(1500);
+      Intended want;
+      want.t1 = 1500;
+      want.from = 300;
+      want.to = 420;
+      want.tolerance = 1;
+      want.easing = seg.easing;
+      FitOptions options;
+      options.model = model;
+      const FitResult fit = fit_timeline(tl, options);
+      EXPECT_TRUE(fit.shortfalls.empty()) << name;
+      const Motion motion(fit.actions, 300);
+      double worst = 0;
+      for (int t = 0; t <= 1500; ++t) {
+        const double err = std::abs(output(model, motion.at(t)) - want.at(t));
+        EXPECT_LE(err, 1 + 1e-9) << name << " at " << t;
+        worst = std::max(worst, err);
+      }
+      EXPECT_NEAR(fit.max_error, worst, 1e-6) << name;
+      const Motion straight(fit_timeline(tl).actions, 300);
+      for (int t = 0; t <= 1500; ++t) {
+        if (std::abs(output(model, straight.at(t)) - want.at(t)) > 1 + 1e-9) {
+          ++straight_misses;
+          break;
+        }
+      }
+    }
+    EXPECT_GT(straight_misses, 0);
+  }
+}
+
+// Every built-in profile fits for the straight line between whole-unit targets: what the
+// protocol document describes; docs/language.md says why.
+TEST(Fitting, BuiltInProfilesFitForTheStraightLine) {
+  for (const char* name : {"xarm", "bus", "lsc-16", "lsc-32", "lsc-6"}) {
+    const RobotProfile* p = find_profile(name);
+    ASSERT_NE(p, nullptr) << name;
+    EXPECT_EQ(p->controller, ControllerModel::StraightLine) << name;
+  }
 }
 
 }  // namespace
