@@ -28,7 +28,8 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
   check_capacity();
   RaspblockProgram program;
   program.packets = std::move(packets_);
-  program.duration_ms = static_cast<std::uint32_t>(std::min(now_ms_, kRaspblockMaxStreamMs));
+  program.duration_ms = static_cast<std::uint32_t>(std::min<std::uint64_t>(
+      static_cast<std::uint64_t>(std::max<std::int64_t>(now_.round(), 0)), kRaspblockMaxStreamMs));
   timeline_.end = ExactMs(static_cast<std::int64_t>(program.duration_ms));
   program.timeline = std::move(timeline_);
   return program;
@@ -72,7 +73,8 @@ FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
   if (const YamlNode* p = root.find("poses")) parse_poses(*p, scope);
   if (const YamlNode* r = root.find("resolution")) {
     scopes_.push(scope);  // so beats use this file's tempo
-    auto ms = time_ms(*r, "'resolution'");
+    auto ms = scopes_.time_ms(*r, "'resolution'", kRaspblockMaxStreamMs,
+                              "is longer than a stream may last (24 hours)", reporter_);
     scopes_.pop();
     if (ms && *ms == 0) {
       reporter_.error(r->location, "'resolution' must be at least 1ms");
@@ -136,10 +138,15 @@ bool RaspblockLowering::check_limits(const PositionEntry& t, double units, std::
                                reporter_);
 }
 
-std::optional<std::uint32_t> RaspblockLowering::time_ms(const YamlNode& node,
-                                                        std::string_view what) {
-  return scopes_.time_ms(node, what, kRaspblockMaxStreamMs,
-                         "is longer than a stream may last (24 hours)", reporter_);
+std::optional<ExactMs> RaspblockLowering::exact_time(const YamlNode& node, std::string_view what) {
+  auto exact = scopes_.exact_ms(node, what, std::nullopt, reporter_);
+  if (!exact) return std::nullopt;
+  if (exact->value() > static_cast<double>(kRaspblockMaxStreamMs)) {
+    reporter_.error(node.location,
+                    "'" + node.scalar + "' is longer than a stream may last (24 hours)");
+    return std::nullopt;
+  }
+  return exact;
 }
 
 // A drive lasts for its step: unless this step drives too (its speeds replace the old ones
@@ -149,15 +156,15 @@ void RaspblockLowering::begin_step(bool drives) {
   stop_due_ = false;
 }
 
-void RaspblockLowering::advance(std::uint32_t t, Location at) {
-  now_ms_ += t;
-  if (now_ms_ > kRaspblockMaxStreamMs && !full_) {
+void RaspblockLowering::advance(ExactMs t, Location at) {
+  now_ += t;
+  if (now_.value() > static_cast<double>(kRaspblockMaxStreamMs) && !full_) {
     reporter_.error(at, "the stream would last longer than 24 hours after this step");
     full_ = true;
   }
 }
 
-void RaspblockLowering::emit_at(std::uint64_t at_ms, raspblock::Packet packet, Location at) {
+void RaspblockLowering::emit_at(ExactMs at_time, raspblock::Packet packet, Location at) {
   if (full_) return;
   if (packets_.size() >= kRaspblockMaxPackets) {
     reporter_.error(at, "the stream would need more than " + grouped(kRaspblockMaxPackets) +
@@ -168,6 +175,8 @@ void RaspblockLowering::emit_at(std::uint64_t at_ms, raspblock::Packet packet, L
   }
   if (std::holds_alternative<raspblock::Rocker>(packet)) last_drive_at_ = at;
   include_sites_.try_emplace(key_of(at), reporter_.include_sites());
+  const std::int64_t at_ms = std::clamp<std::int64_t>(
+      at_time.round(), 0, static_cast<std::int64_t>(kRaspblockMaxStreamMs));
   packets_.push_back(TimedPacket{static_cast<std::uint32_t>(at_ms), std::move(packet), at});
 }
 

@@ -80,7 +80,8 @@ class RaspblockLowering {
   static double absolute_units(const PositionEntry& t);
   bool check_limits(const PositionEntry& t, double units, std::string how,
                     std::optional<Reporter::Note> note = {});
-  std::optional<std::uint32_t> time_ms(const YamlNode& node, std::string_view what);
+  // A written time, exact (beats at any tempo stay fractions); nullopt after reporting.
+  std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
 
   // ---- steps ---------------------------------------------------------------------------------
 
@@ -95,7 +96,9 @@ class RaspblockLowering {
   // the way and is sent at (k-1)/n of the time, so the servo reaches the target as the step
   // ends. An output without a known start goes straight to its target in the first packet.
   // A packet that would repeat the previous value of its output is left out.
-  void interpolate(Location at, std::uint64_t start, std::uint32_t t, std::uint64_t n, Easing ease,
+  // Times are exact: each packet's send time is rounded once, on the absolute timeline, so
+  // steps of fractional milliseconds (beats at 128 bpm are 468.75 ms) never drift.
+  void interpolate(Location at, ExactMs start, ExactMs t, std::uint64_t n, Easing ease,
                    const std::map<std::size_t, int>& targets);
   void wait_step(const YamlNode& step, const YamlNode& value);
   void repeat_step(const YamlNode& step, const YamlNode& value);
@@ -106,16 +109,17 @@ class RaspblockLowering {
   // A drive lasts for its step: unless this step drives too (its speeds replace the old ones
   // at the same instant), the car is stopped before the step starts.
   void begin_step(bool drives);
-  void advance(std::uint32_t t, Location at);
-  void emit(raspblock::Packet packet, Location at) { emit_at(now_ms_, std::move(packet), at); }
-  void emit_at(std::uint64_t at_ms, raspblock::Packet packet, Location at);
+  void advance(ExactMs t, Location at);
+  void emit(raspblock::Packet packet, Location at) { emit_at(now_, std::move(packet), at); }
+  // Sends at `at_time` rounded to the nearest millisecond of the stream's clock.
+  void emit_at(ExactMs at_time, raspblock::Packet packet, Location at);
   void check_capacity();
   const Robot& robot_;
   FileLoader& loader_;
   Reporter& reporter_;
   ScopeChain scopes_;
   std::array<std::optional<int>, kChannels.size()> pos_;
-  std::uint64_t now_ms_ = 0;
+  ExactMs now_;  // the end of the last step, exact
   bool stop_due_ = false;
   bool full_ = false;
   Location last_drive_at_;

@@ -123,20 +123,23 @@ void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_
   }
   // The time after the targets, so mistakes come out in the order they are written.
   const YamlNode* time_node = step.find("time");
-  std::optional<std::uint32_t> total;
+  std::optional<ExactMs> total;
   if (time_node == nullptr) {
     reporter_.error(step.location, std::string("this ") + (move_node ? "move" : "drive") +
                                        " needs a 'time', e.g. 'time: 500ms'");
   } else {
-    total = time_ms(*time_node, "'time'");
-    if (total && *total == 0) {
+    total = exact_time(*time_node, "'time'");
+    // Under half a millisecond the stream's clock cannot tell the step from nothing.
+    if (total && total->round() <= 0) {
       reporter_.error(time_node->location, "'time' must be at least 1ms");
       total.reset();
     }
   }
   if (!ok || !total) return;
 
-  const std::uint32_t t = total.value_or(0);
+  const ExactMs exact_t = *total;
+  // Packet counts come from the step's length on the stream's 1 ms clock.
+  const auto t = static_cast<std::uint32_t>(exact_t.round());
   std::uint64_t n = 1;
   if (steps) {
     n = static_cast<std::uint64_t>(*steps);
@@ -154,13 +157,13 @@ void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_
   }
 
   begin_step(drive.has_value());
-  const std::uint64_t start = now_ms_;
+  const ExactMs start = now_;
   if (drive) {
     emit(*drive, step.location);
     stop_due_ = true;
   }
-  if (move_node != nullptr) interpolate(step.location, start, t, n, ease, targets);
-  advance(t, step.location);
+  if (move_node != nullptr) interpolate(step.location, start, exact_t, n, ease, targets);
+  advance(exact_t, step.location);
 }
 
 // Resolves a move's targets into device units; false after reporting a mistake.
@@ -223,9 +226,8 @@ bool RaspblockLowering::resolve_move(const YamlNode& target, std::map<std::size_
 // the way and is sent at (k-1)/n of the time, so the servo reaches the target as the step
 // ends. An output without a known start goes straight to its target in the first packet.
 // A packet that would repeat the previous value of its output is left out.
-void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint32_t t,
-                                    std::uint64_t n, Easing ease,
-                                    const std::map<std::size_t, int>& targets) {
+void RaspblockLowering::interpolate(Location at, ExactMs start, ExactMs t, std::uint64_t n,
+                                    Easing ease, const std::map<std::size_t, int>& targets) {
   // The move on the timeline first (an output without a known start jumps: a flat segment at
   // its target); the packets then sample each output's segment.
   std::map<std::size_t, Segment> curve;
@@ -233,8 +235,8 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
     Segment seg;
     seg.kind = ease.is_linear() ? CurveKind::Linear : CurveKind::Eased;
     seg.easing = ease;
-    seg.start = ExactMs(static_cast<std::int64_t>(start));
-    seg.end = ExactMs(static_cast<std::int64_t>(start + t));
+    seg.start = start;
+    seg.end = start + t;
     seg.from = pos_[c] ? *pos_[c] : end;
     seg.to = end;
     seg.at = at;
@@ -242,10 +244,11 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
     timeline_.add(c, seg);
   }
   for (std::uint64_t k = 1; k <= n && !full_; ++k) {
-    const std::uint64_t send = start + (std::uint64_t{t} * (k - 1) + n / 2) / n;
+    const auto parts = static_cast<std::int64_t>(n);
+    const auto done = static_cast<std::int64_t>(k);
+    const ExactMs send = start + t * ExactMs::ratio(done - 1, parts);
     // The position k/n of the way through the move, sent at (k-1)/n of its time.
-    const double when = static_cast<double>(start) +
-                        static_cast<double>(t) * static_cast<double>(k) / static_cast<double>(n);
+    const double when = (start + t * ExactMs::ratio(done, parts)).value();
     std::array<std::optional<int>, kChannels.size()> next;
     for (const auto& [c, seg] : curve) {
       next[c] = k < n ? static_cast<int>(std::llround(seg.value(when))) : targets.at(c);
@@ -272,7 +275,7 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
 }
 
 void RaspblockLowering::wait_step(const YamlNode& step, const YamlNode& value) {
-  auto total = time_ms(value, "'wait'");
+  auto total = exact_time(value, "'wait'");
   if (!total) return;
   begin_step(false);
   advance(*total, step.location);
@@ -283,7 +286,7 @@ void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value)
   if (!repeat) return;
   for (long long i = 0; i < repeat->times && !full_; ++i) {
     const std::size_t errors_before = reporter_.errors_reported();
-    const std::uint64_t t0 = now_ms_;
+    const ExactMs t0 = now_;
     const std::size_t p0 = packets_.size();
     run_steps(*repeat->body, "'do'");
     // Further passes would only repeat the same mistakes (and nested repeats never end).
@@ -292,9 +295,10 @@ void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value)
     // After one pass the whole repeat's length is known: one that cannot fit fails here,
     // unexpanded (repeat 65535 nested six deep would otherwise run for hours).
     const auto rest = static_cast<std::uint64_t>(repeat->times - 1);
-    const std::uint64_t dt = now_ms_ - t0;
+    const double dt = (now_ - t0).value();
     const std::uint64_t dp = packets_.size() - p0;
-    if (dt > 0 && rest > (kRaspblockMaxStreamMs - std::min(now_ms_, kRaspblockMaxStreamMs)) / dt) {
+    const double left = static_cast<double>(kRaspblockMaxStreamMs) - now_.value();
+    if (dt > 0 && static_cast<double>(rest) * dt > left) {
       reporter_.error(step.location, "this repeat would make the stream last longer than 24 hours");
       full_ = true;
     } else if (dp > 0 && rest > (kRaspblockMaxPackets - packets_.size()) / dp) {

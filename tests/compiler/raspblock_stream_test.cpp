@@ -111,6 +111,78 @@ TEST(RaspblockStream, RepeatWithBeatsAndAWait) {
                                 "2000: " + spin, "2500: " + kStop, "3500: " + kStop}));
 }
 
+// A beat at 128 bpm is 60000/128 = 468.75 ms. Each send time is the exact beat rounded once
+// (halves away from zero), never a sum of rounded steps: 468.75 -> 469, 937.5 -> 938,
+// 1406.25 -> 1406 (not 469 + 938 = 1407), 1875, 2343.75 -> 2344, and the stop at 6 beats,
+// 2812.5 -> 2813.
+TEST(RaspblockStream, BeatsAtAnyTempoAreRoundedOnlyOnTheAbsoluteTimeline) {
+  const std::string right = "ff fe 03 08 01 00 19 00 00 00 00 01 26";  // x=25
+  const std::string left = "ff fe 03 08 01 00 19 00 00 00 00 05 2a";   // x=-25
+  EXPECT_EQ(
+      frames_of("robot: raspblock\n"
+                "tempo: 128\n"
+                "sequence:\n"
+                "  - repeat: 3\n"
+                "    do:\n"
+                "      - drive: {x: 25}\n"
+                "        time: 1b\n"
+                "      - drive: {x: -25}\n"
+                "        time: 1b\n"),
+      (std::vector<std::string>{"0: " + right, "469: " + left, "938: " + right, "1406: " + left,
+                                "1875: " + right, "2344: " + left, "2813: " + kStop}));
+}
+
+// 440 beats at 110 bpm are 440 x 60000 / 110 = 240,000 ms exactly; a beat is 6000/11 =
+// 545.45 ms, so rounding each step would end at 440 x 545 = 239,800 ms.
+TEST(RaspblockStream, AFourMinuteDanceEndsOnItsLastBeat) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "tempo: 110\n"
+      "sequence:\n"
+      "  - repeat: 220\n"
+      "    do:\n"
+      "      - drive: {x: 25}\n"
+      "        time: 1b\n"
+      "      - drive: {x: -25}\n"
+      "        time: 1b\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  EXPECT_EQ(p->duration_ms, 240000u);
+  ASSERT_EQ(p->packets.size(), 441u);         // a drive per beat, then the stop
+  EXPECT_EQ(p->packets[1].at_ms, 545u);       // 545.45
+  EXPECT_EQ(p->packets[6].at_ms, 3273u);      // 6 x 6000/11 = 3272.73
+  EXPECT_EQ(p->packets[11].at_ms, 6000u);     // 11 beats = 6 s exactly
+  EXPECT_EQ(p->packets[439].at_ms, 239455u);  // 439 x 6000/11 = 239454.55
+  EXPECT_EQ(p->packets[440].at_ms, 240000u);  // the stop
+}
+
+// A move over a beat at 128 bpm split into 4 packets: they leave at k/4 of 468.75 ms after
+// the start at 468.75 ms, each rounded once: 468.75 -> 469, 585.94 -> 586, 703.13 -> 703,
+// 820.31 -> 820; servo1 1000 -> 1400 linear puts 1100, 1200, 1300, 1400 in them.
+TEST(RaspblockStream, MovePacketsAtFractionalTimesRoundOnce) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "tempo: 128\n"
+      "sequence:\n"
+      "  - move: {servo1: 1000}\n"
+      "    time: 1b\n"
+      "  - move: {servo1: 1400}\n"
+      "    time: 1b\n"
+      "    steps: 4\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  std::vector<std::pair<std::uint32_t, int>> got;
+  for (const auto& tp : p->packets) {
+    if (const auto* s = std::get_if<raspblock::SingleServo>(&tp.packet)) {
+      got.emplace_back(tp.at_ms, static_cast<int>(s->position));
+    }
+  }
+  const std::vector<std::pair<std::uint32_t, int>> want = {
+      {0, 1000}, {469, 1100}, {586, 1200}, {703, 1300}, {820, 1400}};
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(p->duration_ms, 938u);  // 937.5 rounds away from zero
+}
+
 TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
   auto out = compile_text(
       "robot: raspblock\n"
