@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cstdlib>
 #include <functional>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -68,6 +72,8 @@ bool looks_lsc6(ByteView bytes) {
 
 bool is_trace_line(std::string_view line) { return trim(line).starts_with("t="); }
 constexpr std::string_view kRecordHeader = "time_s,status,bytes,message";
+// `seqc emulate raspblock --record`: the car board's state, one line per change.
+constexpr std::string_view kCarRecordHeader = "time_s,field,previous,value";
 
 // Describes every whole frame in `bytes` as `describe` says; frames that do not decode, and
 // bytes outside frames, are issues.
@@ -248,6 +254,73 @@ DecodeResult decode_record(std::string_view text) {
   return t.finish(fmt::format("{} record(s)", n));
 }
 
+std::optional<int> whole_number(std::string_view s) {
+  int v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+// The car record holds each change with the value it replaced, so a record that was cut,
+// merged or edited shows: a `previous` that is not the field's last value, or time running
+// backwards, is an issue.
+DecodeResult decode_car_record(std::string_view text) {
+  const std::vector<std::string> lines = split_lines(text);
+  TextTable t;
+  t.row("# Raspblock emulator record: each change of the board's state");
+  std::map<std::string, int, std::less<>> last;
+  double last_time = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    if (trim(lines[i]).empty()) continue;
+    const std::string where = fmt::format("line {}", i + 1);
+    std::vector<std::string_view> f;
+    std::string_view rest = lines[i];
+    for (std::size_t comma; (comma = rest.find(',')) != std::string_view::npos;) {
+      f.push_back(rest.substr(0, comma));
+      rest.remove_prefix(comma + 1);
+    }
+    f.push_back(rest);
+    int value = 0, previous = 0;
+    bool well_formed = f.size() == 4;
+    if (well_formed) {
+      const auto v = whole_number(f[3]);
+      const auto p = f[2].empty() ? std::optional<int>(0) : whole_number(f[2]);
+      well_formed = v.has_value() && p.has_value();
+      value = v.value_or(0);
+      previous = p.value_or(0);
+    }
+    char* end = nullptr;
+    const std::string time(f[0]);
+    const double seconds = std::strtod(time.c_str(), &end);
+    if (!well_formed || end == time.c_str() || *end != '\0') {
+      t.issue(where, "not a record line (time_s,field,previous,value)");
+      continue;
+    }
+    ++n;
+    const bool has_previous = !f[2].empty();
+    const std::string field(f[1]);
+    t.row(has_previous ? fmt::format("{} {:<18} {} -> {}", time, field, previous, value)
+                       : fmt::format("{} {:<18} = {}", time, field, value));
+    if (seconds < last_time) {
+      t.issue(where, fmt::format("time runs backwards ({} after {:.6f})", time, last_time));
+    }
+    last_time = std::max(last_time, seconds);
+    const auto known = last.find(field);
+    if (known == last.end() && has_previous) {
+      t.issue(where, fmt::format("{} had no value before, yet the record says it was {}", field,
+                                 previous));
+    } else if (known != last.end() && !has_previous) {
+      t.issue(where, fmt::format("{} was {}, yet the record gives no previous value", field,
+                                 known->second));
+    } else if (known != last.end() && previous != known->second) {
+      t.issue(where, fmt::format("{} was {}, not {}", field, known->second, previous));
+    }
+    last[field] = value;
+  }
+  return t.finish(fmt::format("{} change(s)", n));
+}
+
 DecodeResult decode_raspblock(std::string_view text) {
   TextTable t;
   t.row(fmt::format("{:<7} {:>8}  {}", "packet", "time_ms", "message"));
@@ -311,7 +384,7 @@ const char* to_string(DecodeFormat format) {
 DecodeFormat detect_format(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
   for (const std::string& l : lines) {
-    if (l == kRecordHeader) return DecodeFormat::Record;
+    if (l == kRecordHeader || l == kCarRecordHeader) return DecodeFormat::Record;
     if (is_trace_line(l)) return DecodeFormat::Trace;
   }
   std::vector<std::string> errors;
@@ -326,6 +399,10 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format) {
     case DecodeFormat::Trace:
       return decode_trace(text);
     case DecodeFormat::Record:
+      for (const std::string& l : split_lines(text)) {
+        if (trim(l).empty()) continue;
+        return l == kCarRecordHeader ? decode_car_record(text) : decode_record(text);
+      }
       return decode_record(text);
     case DecodeFormat::Raspblock:
       return decode_raspblock(text);
