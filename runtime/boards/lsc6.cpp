@@ -248,6 +248,7 @@ const Board kLsc6Board = {
     .move = move,
     .confirms_moves = false,
     .queries = false,
+    .pose_profile = "lsc-6",
     .lacks =
         "its firmware knows only moves, group run/stop, erasing every group and storing "
         "actions",

@@ -288,6 +288,7 @@ const Board kXarmBoard = {
     .move = move,
     .confirms_moves = true,
     .queries = true,
+    .pose_profile = "xarm",
     .lacks = "",
     .emulators = kEmulators,
     .open_emulator = open_emulator,

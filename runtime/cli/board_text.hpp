@@ -24,9 +24,6 @@ struct BoardError {
   std::string message;
 };
 
-// The emulators a test put in `ctx` (Context::xarm_emulator, lsc6_emulator, xarm_clock).
-boards::Hooks hooks_of(const Context& ctx);
-
 // Why --port did not open. `subject` names the file the command was given ("walk.yaml"), for the
 // sentence that says which board it is for; "" when the command has no file.
 BoardError port_failure(const boards::PortFailure& failure, const boards::PortRequest& request,

@@ -41,7 +41,7 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage) {
   }
   stage.board = &boards::board_for(p.output);
   const boards::PortRequest request{p.port, stage.board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, p.file);
     ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";

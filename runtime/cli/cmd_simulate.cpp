@@ -3,9 +3,8 @@
 // largest difference between the compiled motion and that curve.
 #include <string>
 
-#include "compiler/backend/raspblock_simulate.hpp"
-#include "compiler/backend/simulate.hpp"
 #include "compiler/source/units.hpp"
+#include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/disk.hpp"
@@ -37,38 +36,22 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
     if (!c.output.program) return;
-    std::string csv;
-    std::uint64_t duration_ms = 0;
-    std::string what;
-    if (const compiler::ServoProgram* program = c.output.servo_program()) {
-      const backend::Simulation sim =
-          backend::simulate(*program, static_cast<std::uint32_t>(opts->step_ms), opts->compare);
-      if (opts->compare) {
-        for (const backend::Difference& d : backend::compare_with_intent(*program)) {
-          ctx.err << "seqc: " << d.servo << ": largest difference "
-                  << compiler::format_units(d.largest) << " units at "
-                  << compiler::format_seconds(d.at_ms) << "\n";
-        }
-      }
-      csv = backend::to_csv(sim);
-      duration_ms = sim.duration_ms;
-      what = std::to_string(program->keyframes.size()) + " actions";
-    } else if (const compiler::RaspblockProgram* car = c.output.raspblock_program()) {
-      const backend::CarSimulation sim =
-          backend::simulate_car(*car, static_cast<std::uint32_t>(opts->step_ms));
-      csv = backend::to_csv(sim);
-      duration_ms = sim.duration_ms;
-      what = std::to_string(car->packets.size()) + " packets";
-    } else {
+    const boards::Simulated sim =
+        boards::simulate(c.output, static_cast<std::uint32_t>(opts->step_ms), opts->compare);
+    if (!sim.ok) {
       ctx.err << "seqc: error: " << opts->file << ": this robot kind cannot be simulated\n";
       result.code = ExitCode::InvalidInput;
       return;
     }
-    ctx.err << "seqc: " << opts->file << ": " << what << ", "
-            << compiler::format_seconds(duration_ms) << "\n";
+    for (const backend::Difference& d : sim.differences) {
+      ctx.err << "seqc: " << d.servo << ": largest difference " << compiler::format_units(d.largest)
+              << " units at " << compiler::format_seconds(d.at_ms) << "\n";
+    }
+    ctx.err << "seqc: " << opts->file << ": " << sim.steps << " " << sim.steps_are << ", "
+            << compiler::format_seconds(sim.duration_ms) << "\n";
     if (opts->output.empty() || opts->output == "-") {
-      ctx.out << csv;
-    } else if (auto written = io::write_file_atomically(opts->output, csv); !written) {
+      ctx.out << sim.csv;
+    } else if (auto written = io::write_file_atomically(opts->output, sim.csv); !written) {
       ctx.err << "seqc: error: " << written.error().message << "\n";
       result.code = ExitCode::FileError;
     }

@@ -96,7 +96,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   }
 
   const boards::PortRequest request{a.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, a.file);
     ctx.err << "seqc: error: " << e.message << "\n";

@@ -13,7 +13,6 @@
 #include "compiler/compile.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/cli/context.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/exit_codes.hpp"
 
 namespace seqc::cli {
@@ -31,9 +30,8 @@ struct PlayArgs {
 // went.
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled, const PlayArgs& args);
 
-// The same over a servo controller session that is already open (tests drive it over their own
-// transport). `compiled` must hold a ServoProgram.
-ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
-                              ControllerSession& session, const PlayArgs& args = {});
+// The same over a line that is already open (tests drive it over their own transport).
+ExitCode play_on_line(Context& ctx, const compiler::CompileOutput& compiled,
+                      const boards::Line& line, const PlayArgs& args = {});
 
 }  // namespace seqc::cli

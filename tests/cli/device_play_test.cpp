@@ -114,14 +114,13 @@ TEST(DevicePlay, CtrlCStopsSendingAndSaysWhere) {
 
   emu::EmulatorTransport emulated(h.emu, h.clock);
   InterruptAfter port(emulated, h.interrupted, 3);  // the check, move 1, move 2
-  upload::ControllerLink link(port, h.clock, &h.interrupted);
-  ControllerSession session(link, std::chrono::seconds(1), "emu:xarm");
+  const boards::Line line{port, h.clock, &h.interrupted, std::chrono::seconds(1)};
   std::ostringstream out;
   std::ostringstream err;
   Context ctx{out, err, h.clock, h.files};
   ctx.interrupted = &h.interrupted;
 
-  EXPECT_EQ(stream_servo_program(ctx, compiled, session), ExitCode::Interrupted);
+  EXPECT_EQ(play_on_line(ctx, compiled, line), ExitCode::Interrupted);
   EXPECT_EQ(h.received(), hex(std::string("55 55 02 0f ") + kMoves[0] + " " + kMoves[1]));
   EXPECT_EQ(out.str(), "");
   EXPECT_EQ(err.str(),
