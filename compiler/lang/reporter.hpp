@@ -1,6 +1,7 @@
 // How the language front end reports mistakes: through Diagnostics, once per place and message
 // (a pose used in a loop is wrong once, not once per iteration), with an "included from here"
-// note for every include that led to the file the mistake is in.
+// note for every include that led to the file the mistake is in, and for a warning inside a
+// section a note at the `- section:` step that performed it.
 #pragma once
 
 #include <initializer_list>
@@ -9,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "compiler/source/diagnostics.hpp"
@@ -37,6 +39,13 @@ class Reporter {
   void pop_include() { includes_.pop_back(); }
   const std::vector<Location>& include_sites() const { return includes_; }
   void set_include_sites(std::vector<Location> sites) { includes_ = std::move(sites); }
+  // The `- section:` steps performing the steps being lowered (outermost first): a warning
+  // raised inside a section names its performance with a note, since the section's own lines
+  // are the same each time it is performed.
+  void push_performance(Location site, std::string name) {
+    performances_.push_back({site, std::move(name)});
+  }
+  void pop_performance() { performances_.pop_back(); }
   std::size_t errors_reported() const { return errors_; }
   std::size_t include_depth() const { return includes_.size(); }
 
@@ -47,15 +56,18 @@ class Reporter {
   // `name` and `description` are free text: a list or map there is an error.
   void check_free_text(const YamlNode& root);
 
-  // "unknown X 'word'; did you mean 'y'?" (the suggestion only when one is close).
+  // "unknown X 'word'; did you mean 'y'?" (the suggestion only when one is close). `known`, if
+  // given, lists the valid names after it: "(robots: xarm, lsc-16, ...)".
   void unknown(Location at, std::string_view what, std::string_view word,
-               const std::vector<std::string>& candidates, std::string_view where = {});
+               const std::vector<std::string>& candidates, std::string_view where = {},
+               std::string_view known = {});
 
  private:
   void report(Severity severity, Location at, std::string message, std::optional<Note> note);
 
   Diagnostics& diags_;
   std::vector<Location> includes_;
+  std::vector<std::pair<Location, std::string>> performances_;  // site, section name
   std::size_t errors_ = 0;
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };

@@ -24,7 +24,10 @@ const RobotProfile* profile_named(const YamlNode& value, Reporter& reporter) {
     return nullptr;
   }
   const RobotProfile* profile = find_profile(value.scalar);
-  if (profile == nullptr) reporter.unknown(value.location, "robot", value.scalar, profile_names());
+  if (profile == nullptr) {
+    reporter.unknown(value.location, "robot", value.scalar, profile_names(), {},
+                     "robots: " + profile_list());
+  }
   return profile;
 }
 
@@ -282,13 +285,25 @@ std::optional<RobotInfo> robot_of_text(const std::string& path, const std::strin
   Reporter reporter(diags);
   const YamlNode* robot = root->is_map() ? root->find("robot") : nullptr;
   if (robot == nullptr) {
-    reporter.error(root->location,
-                   "missing 'robot': name the robot this file is for (" + profile_list() + ")");
+    report_missing_robot(*root, path, reporter);
     return std::nullopt;
   }
   std::optional<Robot> parsed = parse_robot(*robot, reporter);
   if (!parsed || diags.has_errors()) return std::nullopt;
   return parsed->info;
+}
+
+void report_missing_robot(const YamlNode& root, const std::string& path, Reporter& reporter) {
+  for (const YamlEntry& entry : root.entries) {
+    if (entry.first.scalar != "performers") continue;
+    reporter.error(
+        entry.first.location,
+        "this is a show file (it has 'performers'), not one robot's choreography",
+        Reporter::Note{entry.first.location, "a show runs with 'seqc show " + path + "'"});
+    return;
+  }
+  reporter.error(root.location,
+                 "missing 'robot': name the robot this file is for (" + profile_list() + ")");
 }
 
 std::optional<std::string> included_robot_name(const YamlNode& value, Reporter& reporter) {

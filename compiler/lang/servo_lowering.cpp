@@ -73,16 +73,43 @@ void ServoLowering::finish(ServoProgram& program) {
   } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
     reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
   }
-  for (const FitShortfall& s : fit.shortfalls) {
-    const ServoInfo& info = robot_.info.servos[s.servo];
+  // One warning per curve: its worst miss, naming every servo that misses it (each 20ms
+  // action that falls short is a shortfall of its own, the same fact many times over).
+  std::vector<bool> told(fit.shortfalls.size(), false);
+  for (std::size_t i = 0; i < fit.shortfalls.size(); ++i) {
+    if (told[i]) continue;
+    const FitShortfall& first = fit.shortfalls[i];
+    FitShortfall worst = first;
+    std::vector<std::size_t> servos;
+    for (std::size_t j = i; j < fit.shortfalls.size(); ++j) {
+      const FitShortfall& s = fit.shortfalls[j];
+      if (told[j] || s.where != first.where || s.tolerance != first.tolerance) continue;
+      told[j] = true;
+      if (std::find(servos.begin(), servos.end(), s.servo) == servos.end()) {
+        servos.push_back(s.servo);
+      }
+      if (s.error > worst.error) worst = s;
+    }
     // A curve always has a segment; should one not, the warning still points into the file.
     const Location where =
-        s.where.file != kNoFile ? s.where : sequence_at_.value_or(Location{0, 1, 1});
-    const std::string message = "even 20ms actions cannot keep '" + info.name + "' within " +
-                                format_units(s.tolerance) + " of this curve: it is " +
-                                format_units(s.error) + " off at " + format_seconds(s.at_ms);
+        first.where.file != kNoFile ? first.where : sequence_at_.value_or(Location{0, 1, 1});
+    std::string who;
+    for (std::size_t servo : servos) {
+      who += (who.empty() ? "'" : ", '") + robot_.info.servos[servo].name + "'";
+    }
+    const std::string message =
+        servos.size() == 1
+            ? "even 20ms actions cannot keep " + who + " within " + format_units(worst.tolerance) +
+                  " of this curve: it is " + format_units(worst.error) + " off at " +
+                  format_seconds(worst.at_ms)
+            : "even 20ms actions cannot keep servos " + who + " within " +
+                  format_units(worst.tolerance) + " of this curve: up to " +
+                  format_units(worst.error) + " off ('" + robot_.info.servos[worst.servo].name +
+                  "' at " + format_seconds(worst.at_ms) + ")";
     reporter_.warning(where, message);
-    timeline_.warnings.push_back({static_cast<double>(s.at_ms), s.servo, message});
+    for (std::size_t servo : servos) {
+      timeline_.warnings.push_back({static_cast<double>(worst.at_ms), servo, message});
+    }
   }
   for (const FittedAction& a : fit.actions) {
     Keyframe k;
@@ -345,7 +372,9 @@ void ServoLowering::section_step(const YamlNode& value) {
   }
   timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
   sections_running_.push_back(list);
+  reporter_.push_performance(value.location, value.scalar);
   run_steps(*list, "section '" + value.scalar + "'");
+  reporter_.pop_performance();
   sections_running_.pop_back();
 }
 

@@ -73,10 +73,26 @@ class ServoLowering {
                        const std::optional<Reporter::Note>& note,
                        std::vector<std::optional<int>>& targets, std::vector<double>& degrees);
   void add_segment(std::size_t servo, Segment segment);
-  // Speed and acceleration along a curve from `from` to `to` over `ms`; warnings as written.
-  // `degrees`: the distance as written in degrees (NaN: written in device units).
+  // One servo breaking its max_speed or max_accel on one segment, kept until the step ends so
+  // the servos that break it alike get one warning.
+  struct KinematicFinding {
+    std::size_t servo = 0;
+    bool speed = true;  // else acceleration
+    bool curved = false;
+    Location at;
+    double start_ms = 0;
+    std::optional<Reporter::Note> note;
+    std::string moved, value, shape, limit;  // "100 in 2000ms", "400/s", " on this ...", "300/s"
+  };
+  // Speed and acceleration along a segment, from its exact derivative; what breaks a limit goes
+  // to `findings`. `degrees`: the distance as written in degrees (NaN: in device units).
   void check_kinematics(std::size_t servo, const Segment& segment, double degrees,
-                        const std::optional<Reporter::Note>& note);
+                        const std::optional<Reporter::Note>& note,
+                        std::vector<KinematicFinding>& findings);
+  void report_kinematics(const std::vector<KinematicFinding>& findings);
+  // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
+  // short from the far end at max_speed. `targets`: the move's positions, by servo.
+  void check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time, Location at);
   // Limits along a curve that may overshoot its ends.
   bool check_overshoot(std::size_t servo, const Segment& segment, Location at,
                        const std::optional<Reporter::Note>& note);

@@ -43,6 +43,9 @@ struct Segment {
   bool is_straight() const { return kind == CurveKind::Hold || kind == CurveKind::Linear; }
   // The intended position at absolute time t (ms), clamped to the segment.
   double value(double t_ms) const;
+  // The intended speed at absolute time t (units per ms, signed), from the curve's exact
+  // derivative, one-sided at the segment's ends; infinite where the curve is vertical.
+  double velocity(double t_ms) const;
 };
 
 // A named moment for plots and listings: a section starting, an `at:` cue, a tempo change.

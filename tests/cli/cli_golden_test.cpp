@@ -134,6 +134,27 @@ TEST(Compile, JsonGolden) {
   expect_golden(kCliGolden / "walk-group3.json", r.out);
 }
 
+TEST(Compile, AShowFileSaysItIsAShowAndHowToRunIt) {
+  // compile takes one robot's choreography; a show file gets a located error and a note.
+  SeqcRun r = seqc(kSource, "compile examples/duet.yaml");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "");
+  expect_golden(kCliGolden / "compile-show-file.stderr", r.err);
+}
+
+TEST(Check, ABinaryFileIsOneErrorAndItsBytesAreNotPrinted) {
+  // tests/golden/bad-not-a-text-file.yaml holds NUL, 0x01, an escape sequence and 0xFF on its
+  // third line: none of them may reach the terminal.
+  SeqcRun r = seqc(kSource, "check tests/golden/bad-not-a-text-file.yaml");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "tests/golden/bad-not-a-text-file.yaml:3:22: error: not a text file (byte 0x00 at "
+            "offset 43)\n");
+  for (const char c : r.out + r.err) {
+    EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7F)) << static_cast<int>(c);
+  }
+}
+
 TEST(Compile, WritesOutputOnlyOnSuccess) {
   const fs::path out = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp/compile-out.hex";
   fs::create_directories(out.parent_path());
