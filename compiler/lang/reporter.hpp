@@ -1,6 +1,7 @@
 // How the language front end reports mistakes: through Diagnostics, once per place and message
-// (a pose used in a loop is wrong once, not once per iteration), with an "included from here"
-// note for every include that led to the file the mistake is in.
+// (a pose used in a loop is wrong once, not once per iteration), with a note for every
+// performance of a section with parameters the mistake is inside (its values explain it), and
+// an "included from here" note for every include that led to the file the mistake is in.
 #pragma once
 
 #include <initializer_list>
@@ -32,6 +33,11 @@ class Reporter {
     report(Severity::Warning, at, std::move(message), std::move(note));
   }
 
+  // While a section with parameters is performed: every diagnostic gets `note` (innermost
+  // performance first).
+  void push_context(Note note) { contexts_.push_back(std::move(note)); }
+  void pop_context() { contexts_.pop_back(); }
+
   // The include sites (outermost first) of the file being lowered.
   void push_include(Location site) { includes_.push_back(site); }
   void pop_include() { includes_.pop_back(); }
@@ -56,6 +62,7 @@ class Reporter {
 
   Diagnostics& diags_;
   std::vector<Location> includes_;
+  std::vector<Note> contexts_;
   std::size_t errors_ = 0;
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };
