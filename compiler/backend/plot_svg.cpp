@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
 #include "compiler/backend/simulate.hpp"
 #include "compiler/backend/svg_text.hpp"
@@ -22,35 +24,31 @@ struct Frame {  // time window -> x
   bool inside(double t) const { return t >= from && t <= to; }
 };
 
-// Beat and bar lines from the file's tempo (and its tempo steps), with bar numbers.
+// Beat and bar lines from the tempo map the front end built (the file's tempo and meter and
+// their changes), with bar numbers counted across meter changes.
 std::string beat_grid(const compiler::Timeline& tl, const Frame& f, double top, double bottom) {
-  if (tl.tempo <= 0) return "";
-  std::vector<std::pair<double, double>> tempos{{0.0, tl.tempo}};  // from, bpm
-  for (const compiler::TimelineMarker& m : tl.markers) {
-    if (m.label.rfind("tempo ", 0) == 0) {
-      const double bpm = std::atof(m.label.c_str() + 6);
-      if (bpm > 0) tempos.push_back({m.at.value(), bpm});
-    }
+  const compiler::TempoMap& map = tl.tempo_map;
+  if (std::none_of(map.changes().begin(), map.changes().end(),
+                   [](const compiler::TempoMap::Change& c) { return c.bpm > 0; })) {
+    return "";
   }
-  std::sort(tempos.begin(), tempos.end());
   std::string out = "<g class=\"grid\">\n";
-  double t = 0;
-  int beat = 0;
-  const int per_bar = tl.beats_per_bar;
   const double end = std::max(f.to, tl.end.value());
-  for (std::size_t k = 0; t <= end && beat < 100000; ++beat) {
-    while (k + 1 < tempos.size() && tempos[k + 1].first <= t + 1e-9) ++k;
-    const bool bar = per_bar > 0 && beat % per_bar == 0;
+  for (std::int64_t beat = 0; beat < 100000; ++beat) {
+    const std::optional<compiler::ExactMs> at = map.time_of_beat(beat);
+    if (!at || at->value() > end) break;
+    const double t = at->value();
+    const compiler::ExactMs bar = map.bar_of_beat(beat);
+    const bool bar_line = map.meter_at(*at) > 0 && bar.den() == 1;
     if (f.inside(t)) {
-      out += svg::line(
-          f.x(t), top, f.x(t), bottom,
-          bar ? "stroke=\"#b0b8c8\" stroke-width=\"1\"" : "stroke=\"#e4e8ef\" stroke-width=\"1\"");
-      if (bar) {
-        out += svg::text(f.x(t) + 2, top - 4, std::to_string(beat / per_bar + 1),
+      out += svg::line(f.x(t), top, f.x(t), bottom,
+                       bar_line ? "stroke=\"#b0b8c8\" stroke-width=\"1\""
+                                : "stroke=\"#e4e8ef\" stroke-width=\"1\"");
+      if (bar_line) {
+        out += svg::text(f.x(t) + 2, top - 4, std::to_string(bar.num() + 1),
                          "fill=\"#6b7280\" font-size=\"9\"");
       }
     }
-    t += 60000.0 / tempos[k].second;
   }
   return out + "</g>\n";
 }

@@ -22,6 +22,9 @@ void Reporter::report(Severity severity, Location at, std::string message,
     diags_.warning(at, std::move(message));
   }
   if (note) diags_.note(note->at, std::move(note->message));
+  for (auto it = contexts_.rbegin(); it != contexts_.rend(); ++it) {
+    diags_.note(it->at, it->message);
+  }
   if (severity == Severity::Warning) {
     for (auto it = performances_.rbegin(); it != performances_.rend(); ++it) {
       diags_.note(it->first, "in section '" + it->second + "', performed here");

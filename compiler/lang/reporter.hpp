@@ -1,7 +1,8 @@
 // How the language front end reports mistakes: through Diagnostics, once per place and message
-// (a pose used in a loop is wrong once, not once per iteration), with an "included from here"
-// note for every include that led to the file the mistake is in, and for a warning inside a
-// section a note at the `- section:` step that performed it.
+// (a pose used in a loop is wrong once, not once per iteration), with a note for every
+// performance of a section with parameters the mistake is inside (its values explain it), for a
+// warning inside a plain section a note at the `- section:` step that performed it, and an
+// "included from here" note for every include that led to the file the mistake is in.
 #pragma once
 
 #include <initializer_list>
@@ -33,6 +34,11 @@ class Reporter {
   void warning(Location at, std::string message, std::optional<Note> note = {}) {
     report(Severity::Warning, at, std::move(message), std::move(note));
   }
+
+  // While a section with parameters is performed: every diagnostic gets `note` (innermost
+  // performance first).
+  void push_context(Note note) { contexts_.push_back(std::move(note)); }
+  void pop_context() { contexts_.pop_back(); }
 
   // The include sites (outermost first) of the file being lowered.
   void push_include(Location site) { includes_.push_back(site); }
@@ -68,6 +74,7 @@ class Reporter {
   Diagnostics& diags_;
   std::vector<Location> includes_;
   std::vector<std::pair<Location, std::string>> performances_;  // site, section name
+  std::vector<Note> contexts_;
   std::size_t errors_ = 0;
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };

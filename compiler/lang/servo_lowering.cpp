@@ -4,8 +4,15 @@
 #include "compiler/lang/servo_lowering.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/lang/servo_lowering_state.hpp"
@@ -20,6 +27,75 @@ std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
   return a > std::numeric_limits<std::uint64_t>::max() - b
              ? std::numeric_limits<std::uint64_t>::max()
              : a + b;
+}
+
+// "17.000 s": an instant or span to the millisecond, for `at: bar N` messages.
+std::string seconds_text(ExactMs t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", t.value() / 1000.0);
+  return buf;
+}
+
+// "1 beat", "1.5 beats": how far a meter change is off its bar line.
+std::string beats_text(ExactMs beats) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", beats.value());
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s + (s == "1" ? " beat" : " beats");
+}
+
+// A section parameter's name: what may follow `$`.
+bool parameter_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+bool is_parameter_name(std::string_view name) {
+  return !name.empty() && std::isdigit(static_cast<unsigned char>(name[0])) == 0 &&
+         std::all_of(name.begin(), name.end(), parameter_char);
+}
+
+bool mentions_parameter(const YamlNode& node) {
+  if (node.scalar.find('$') != std::string::npos) return true;
+  for (const YamlNode& item : node.items) {
+    if (mentions_parameter(item)) return true;
+  }
+  for (const YamlEntry& e : node.entries) {
+    if (mentions_parameter(e.first) || mentions_parameter(e.second)) return true;
+  }
+  return false;
+}
+
+// Every `$name` and `${name}` in `node`'s keys and values replaced by the parameter's text; the
+// names not in `values` go to `unknown` with where they are written.
+void put_in_parameters(YamlNode& node,
+                       const std::map<std::string, std::string, std::less<>>& values,
+                       std::vector<std::pair<Location, std::string>>& unknown) {
+  if (node.scalar.find('$') != std::string::npos) {
+    std::string out;
+    const std::string& in = node.scalar;
+    for (std::size_t i = 0; i < in.size();) {
+      const bool braced = in[i] == '$' && i + 1 < in.size() && in[i + 1] == '{';
+      std::size_t from = i + (braced ? 2 : 1), to = from;
+      while (in[i] == '$' && to < in.size() && parameter_char(in[to])) ++to;
+      if (in[i] != '$' || to == from || (braced && (to >= in.size() || in[to] != '}'))) {
+        out += in[i++];
+        continue;
+      }
+      const std::string name = in.substr(from, to - from);
+      auto it = values.find(name);
+      if (it == values.end()) {
+        unknown.emplace_back(node.location, name);
+      } else {
+        out += it->second;
+      }
+      i = to + (braced ? 1 : 0);
+    }
+    node.scalar = std::move(out);
+  }
+  for (YamlNode& item : node.items) put_in_parameters(item, values, unknown);
+  for (YamlEntry& e : node.entries) {
+    put_in_parameters(e.first, values, unknown);
+    put_in_parameters(e.second, values, unknown);
+  }
 }
 
 std::string format_exact_ms(ExactMs t) {
@@ -148,14 +224,29 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
   FileScope& scope = scope_for(f);
   const YamlNode* sequence = find_sequence(root, reporter_);
   if (sequence == nullptr) return;
+  TempoMap& music = timeline_.tempo_map;
   if (is_main) {
     sequence_at_ = sequence->location;
-    timeline_.tempo = scope.tempo.value_or(0);
-    timeline_.beats_per_bar = scope.beats_per_bar.value_or(0);
+    music = TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
+  }
+  // An included file's own tempo and meter hold while its steps run.
+  const double outer_bpm = music.bpm_at(now_);
+  const int outer_meter = music.meter_at(now_);
+  const bool own_tempo = !is_main && scope.tempo && *scope.tempo != outer_bpm;
+  bool own_meter = !is_main && scope.beats_per_bar && *scope.beats_per_bar != outer_meter;
+  if (own_tempo) music.set_tempo(now_, *scope.tempo);
+  if (own_meter) {
+    const YamlNode& meter = *root.find("meter");
+    own_meter = change_meter(*scope.beats_per_bar, meter.location, "'meter: " + meter.scalar + "'");
   }
   scopes_.push(scope);
   run_steps(*sequence, "'sequence'");
   scopes_.pop();
+  if (own_meter && !reporter_.include_sites().empty()) {
+    change_meter(outer_meter, reporter_.include_sites().back(),
+                 "the including file's meter, resuming after this include,");
+  }
+  if (own_tempo) music.set_tempo(now_, outer_bpm);
 }
 
 FileScope& ServoLowering::scope_for(const LoadedFile& f) {
@@ -203,15 +294,15 @@ FileScope& ServoLowering::scope_for(const LoadedFile& f) {
 // ---- step lists and structural steps ----------------------------------------------------------
 
 void ServoLowering::run_steps(const YamlNode& list, std::string_view what) {
-  lists_.push_back({now_, std::nullopt, std::nullopt});
+  lists_.push_back({now_, std::nullopt});
   for (const YamlNode& step : step_items(list, what, reporter_)) run_step(step);
   lists_.pop_back();
 }
 
 void ServoLowering::run_step(const YamlNode& step) {
-  static constexpr std::string_view kVerbs[] = {"move",    "wait",     "through", "repeat",
-                                                "include", "mirror",   "section", "together",
-                                                "tempo",   "tolerance"};
+  static constexpr std::string_view kVerbs[] = {"move",    "wait",   "through",  "repeat",
+                                                "include", "mirror", "section",  "together",
+                                                "tempo",   "meter",  "tolerance"};
   if (!step.is_map()) {
     reporter_.error(step.location, "a step must be a map such as 'move: home' or 'wait: 1s', not " +
                                        std::string(kind_name(step)));
@@ -238,11 +329,11 @@ void ServoLowering::run_step(const YamlNode& step) {
     if (reporter_.check_keys(
             step,
             {"move", "wait", "through", "repeat", "include", "mirror", "section", "together",
-             "tempo", "tolerance", "time", "ease", "steps", "do", "at"},
+             "tempo", "meter", "tolerance", "time", "ease", "steps", "do", "with", "at"},
             "in a step")) {
       reporter_.error(step.location,
                       "a step needs one of: move, wait, through, repeat, include, mirror, "
-                      "section, together, tempo, tolerance");
+                      "section, together, tempo, meter, tolerance");
     }
     return;
   }
@@ -271,8 +362,9 @@ void ServoLowering::run_step(const YamlNode& step) {
       mirror_step(step, *verb_value);
     }
   } else if (verb == "section") {
-    if (reporter_.check_keys(step, {"section", "at"}, "in a section step") && apply_at(step)) {
-      section_step(*verb_value);
+    if (reporter_.check_keys(step, {"section", "with", "at"}, "in a section step") &&
+        apply_at(step)) {
+      section_step(step, *verb_value);
     }
   } else if (verb == "together") {
     if (reporter_.check_keys(step, {"together", "at"}, "in a together step") && apply_at(step)) {
@@ -280,6 +372,8 @@ void ServoLowering::run_step(const YamlNode& step) {
     }
   } else if (verb == "tempo") {
     if (reporter_.check_keys(step, {"tempo"}, "in a tempo step")) tempo_step(*verb_value);
+  } else if (verb == "meter") {
+    if (reporter_.check_keys(step, {"meter"}, "in a meter step")) meter_step(*verb_value);
   } else {
     tolerance_step(*verb_value);
   }
@@ -288,32 +382,83 @@ void ServoLowering::run_step(const YamlNode& step) {
 bool ServoLowering::apply_at(const YamlNode& step) {
   const YamlNode* at = step.find("at");
   if (at == nullptr) return true;
-  const std::optional<double> tempo = lists_.back().tempo;
-  auto offset = scopes_.exact_ms(*at, "'at'", tempo, reporter_);
-  if (!offset) return false;
-  const ExactMs target = lists_.back().start + *offset;
-  if (target < now_) {
+  const bool position = at->is_scalar() && at->scalar.rfind("bar ", 0) == 0;
+  std::optional<ExactMs> target =
+      position ? bar_position(*at) : musical_time(*at, "'at'", lists_.back().start);
+  if (!target) return false;
+  if (*target < now_ && position) {
+    reporter_.error(at->location, at->scalar + " is at " + seconds_text(*target) +
+                                      " but this list is already at " + seconds_text(now_) + " (" +
+                                      seconds_text(now_ - *target) + " past it)");
+    return false;
+  }
+  if (*target < now_) {
     reporter_.error(
         at->location,
-        "'at: " + at->scalar + "' is " + format_exact_ms(now_ - target) +
+        "'at: " + at->scalar + "' is " + format_exact_ms(now_ - *target) +
             " in the past: the steps before it already run until " +
             format_seconds(static_cast<std::uint64_t>((now_ - lists_.back().start).round())) +
             " of this list");
     return false;
   }
-  if (target > now_) {
+  if (*target > now_) {
     const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
-    if (!known) {
+    // In a track another track may be moving meanwhile (together_step checks that one does).
+    if (!known && track_ == nullptr) {
       reporter_.error(at->location,
                       "nothing to hold until 'at': no servo has a position yet; start with a "
                       "move");
       return false;
     }
-    timeline_.markers.push_back({target, "at " + at->scalar, at->location});
-    count_actions((target - now_).value() > 30000 ? 2 : 1, at->location);
-    now_ = target;
+    timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
+    // The hold is at least one action per 30 s (a far position must not reach the fitter).
+    const auto gap = static_cast<std::uint64_t>((*target - now_).value());
+    count_actions(std::max<std::uint64_t>(1, (gap + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs),
+                  at->location);
+    now_ = *target;
   }
   return true;
+}
+
+std::optional<ExactMs> ServoLowering::bar_position(const YamlNode& at) {
+  // "bar N" or "bar N beat B", counted like a musician: bar 1 beat 1 is the start.
+  std::vector<std::string> words;
+  std::istringstream in(at.scalar);
+  for (std::string w; in >> w;) words.push_back(w);
+  double bar = 0, beat = 1;
+  const bool ok = (words.size() == 2 || (words.size() == 4 && words[2] == "beat")) &&
+                  parse_decimal(words[1], bar) && bar == std::floor(bar) && bar >= 1 &&
+                  bar <= 1e6 && (words.size() == 2 || parse_decimal(words[3], beat)) && beat >= 1 &&
+                  beat <= 1e6;
+  if (!ok) {
+    reporter_.error(at.location,
+                    "'at: " + at.scalar +
+                        "' is not a position; write 'bar N' or 'bar N beat B' (counted from 1, "
+                        "e.g. 'at: bar 9 beat 3'), or a time from the start of this list such "
+                        "as 'at: 8bar'");
+    return std::nullopt;
+  }
+  const TempoMap& map = timeline_.tempo_map;
+  const TempoMap::Change& start = map.changes().front();
+  if (start.bpm <= 0 || start.beats_per_bar <= 0) {
+    reporter_.error(at.location, "'at: " + at.scalar +
+                                     "' counts bars from the start of the sequence; set "
+                                     "'tempo' and 'meter' at the top of the file");
+    return std::nullopt;
+  }
+  const std::optional<ExactMs> first = map.beat_of_bar(ExactMs::from_double(bar - 1));
+  const std::optional<ExactMs> bar_start = first ? map.time_of_beat(*first) : std::nullopt;
+  if (!bar_start) {
+    report_no_tempo(at, reporter_);
+    return std::nullopt;
+  }
+  const int per_bar = map.meter_at(*bar_start);
+  if (beat >= per_bar + 1) {
+    reporter_.error(at.location, "bar " + words[1] + " has " + std::to_string(per_bar) +
+                                     " beats: 'beat " + words[3] + "' is past its end");
+    return std::nullopt;
+  }
+  return map.time_of_beat(*first + ExactMs::from_double(beat - 1));
 }
 
 void ServoLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
@@ -362,20 +507,132 @@ void ServoLowering::include_step(const YamlNode& value) {
   reporter_.pop_include();
 }
 
-void ServoLowering::section_step(const YamlNode& value) {
-  const YamlNode* list = scopes_.find_section(value, reporter_);
-  if (list == nullptr) return;
-  if (std::find(sections_running_.begin(), sections_running_.end(), list) !=
+void ServoLowering::section_step(const YamlNode& step, const YamlNode& value) {
+  const YamlNode* section = scopes_.find_section(value, reporter_);
+  if (section == nullptr) return;
+  if (std::find(sections_running_.begin(), sections_running_.end(), section) !=
       sections_running_.end()) {
     reporter_.error(value.location, "section '" + value.scalar + "' performs itself");
     return;
   }
+  YamlNode copy;
+  std::optional<Reporter::Note> performance;
+  const YamlNode* list = perform_section(step, value, *section, copy, performance);
+  if (list == nullptr) return;
   timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
-  sections_running_.push_back(list);
-  reporter_.push_performance(value.location, value.scalar);
+  sections_running_.push_back(section);
+  // A performance with values explains every mistake inside it; a plain one names itself
+  // under the warnings (an error inside it is the section's own).
+  if (performance) {
+    reporter_.push_context(*performance);
+  } else {
+    reporter_.push_performance(value.location, value.scalar);
+  }
   run_steps(*list, "section '" + value.scalar + "'");
-  reporter_.pop_performance();
+  if (performance) {
+    reporter_.pop_context();
+  } else {
+    reporter_.pop_performance();
+  }
   sections_running_.pop_back();
+}
+
+const YamlNode* ServoLowering::perform_section(const YamlNode& step, const YamlNode& name,
+                                               const YamlNode& section, YamlNode& copy,
+                                               std::optional<Reporter::Note>& performance) {
+  const std::string quoted = "section '" + name.scalar + "'";
+  const Reporter::Note here{name.location, quoted + " is performed here"};
+  const YamlNode* steps = &section;
+  const YamlNode* params = nullptr;
+  if (section.is_map()) {
+    reporter_.check_keys(section, {"params", "steps"}, "in a section");
+    params = section.find("params");
+    steps = section.find("steps");
+    if (steps == nullptr) {
+      reporter_.error(section.location, quoted + " needs 'steps', the list of its steps");
+      return nullptr;
+    }
+  }
+  std::map<std::string, std::string, std::less<>> values;
+  std::vector<std::string> names;  // in the order declared
+  bool ok = true;
+  if (params != nullptr && params->kind != YamlNode::Kind::Null) {
+    if (!params->is_map()) {
+      reporter_.error(params->location,
+                      "'params' must be a map of parameter names to default values, e.g. "
+                      "'params: {amount: 40}'");
+      return nullptr;
+    }
+    for (const auto& [key, v] : params->entries) {
+      if (!is_parameter_name(key.scalar)) {
+        reporter_.error(key.location, "'" + key.scalar +
+                                          "' cannot be a parameter name; use letters, digits "
+                                          "and '_', starting with a letter");
+        ok = false;
+      } else if (!v.is_scalar()) {
+        reporter_.error(v.location, "parameter '" + key.scalar +
+                                        "' needs a default that is a single value, e.g. '" +
+                                        key.scalar + ": 40'");
+        ok = false;
+      } else {
+        values[key.scalar] = v.scalar;
+        names.push_back(key.scalar);
+      }
+    }
+  }
+  if (const YamlNode* with = step.find("with")) {
+    if (!with->is_map()) {
+      reporter_.error(with->location,
+                      "'with' gives the section's parameters values, e.g. 'with: {amount: 80}'",
+                      here);
+      return nullptr;
+    }
+    for (const auto& [key, v] : with->entries) {
+      auto it = values.find(key.scalar);
+      if (it == values.end()) {
+        std::string message = quoted + " has no parameter '" + key.scalar + "'";
+        const std::string suggestion = did_you_mean(key.scalar, names);
+        if (!suggestion.empty()) {
+          message += "; did you mean '" + suggestion + "'?";
+        } else if (names.empty()) {
+          message += "; it declares none (under 'params:')";
+        }
+        reporter_.error(key.location, message, here);
+        ok = false;
+      } else if (!v.is_scalar()) {
+        reporter_.error(v.location,
+                        "'" + key.scalar +
+                            "' takes a single value, such as 80 or wrist_roll, "
+                            "not " +
+                            std::string(kind_name(v)),
+                        here);
+        ok = false;
+      } else {
+        it->second = v.scalar;
+      }
+    }
+  }
+  if (!ok) return nullptr;
+  if (!values.empty()) {
+    std::string given;
+    for (const std::string& n : names) given += (given.empty() ? "" : ", ") + n + ": " + values[n];
+    performance = Reporter::Note{name.location, quoted + " is performed here with " + given};
+  }
+  if (!mentions_parameter(*steps)) return steps;
+  copy = *steps;
+  std::vector<std::pair<Location, std::string>> unknown;
+  put_in_parameters(copy, values, unknown);
+  for (const auto& [at, word] : unknown) {
+    std::string message = "unknown parameter '$" + word + "' in " + quoted;
+    const std::string suggestion = did_you_mean(word, names);
+    if (!suggestion.empty()) {
+      message += "; did you mean '$" + suggestion + "'?";
+    } else if (names.empty()) {
+      message += ", which declares none; declare it under 'params:'";
+    }
+    reporter_.error(at, message, performance.value_or(here));
+  }
+  return unknown.empty() ? &copy : nullptr;
 }
 
 void ServoLowering::together_step(const YamlNode& step, const YamlNode& tracks) {
@@ -385,35 +642,93 @@ void ServoLowering::together_step(const YamlNode& step, const YamlNode& tracks) 
                     "'together: {arm: [...], claw: [...]}'");
     return;
   }
-  if (track_ != nullptr) {
-    reporter_.error(step.location, "'together' cannot be used inside a track of another");
-    return;
-  }
   const ExactMs start = now_;
   ExactMs longest = start;
   std::uint64_t most_actions = 0;
   const std::uint64_t before = min_actions_;
-  claimed_.clear();
+  const std::size_t errors_before = reporter_.errors_reported();
+  const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
+  Track* const outer = track_;
+  blocks_.emplace_back();
   for (const auto& [name, list] : tracks.entries) {
     Track track{name.scalar, name.location, {}};
     track_ = &track;
+    blocks_.back().track = &track;
     now_ = start;
     min_actions_ = before;
     run_steps(list, "track '" + name.scalar + "'");
     longest = std::max(longest, now_);
     most_actions = std::max(most_actions, min_actions_ - before);
   }
-  track_ = nullptr;
-  claimed_.clear();
+  blocks_.pop_back();
+  track_ = outer;
   min_actions_ = before + most_actions;
   now_ = longest;
+  // A track may wait (or start `at:` later) while another moves; but when nothing had a position
+  // before the block, one track must move at its start, or the controller has nothing to send.
+  if (known || track_ != nullptr || reporter_.errors_reported() > errors_before) return;
+  std::optional<double> first;
+  for (std::size_t s = 0; s < timeline_.servo_count(); ++s) {
+    if (timeline_.count(s) == 0) continue;
+    const double t = timeline_.start_of(s, 0).value();
+    first = first ? std::min(*first, t) : t;
+  }
+  const double until = first.value_or(longest.value());
+  if (until > start.value()) {
+    reporter_.error(step.location,
+                    "nothing to hold from the start of this 'together' until " +
+                        format_seconds(static_cast<std::uint64_t>(std::llround(until))) +
+                        ": no servo has a position yet and no track moves at the start; begin "
+                        "one track with a move");
+  }
+}
+
+bool ServoLowering::outside_tracks(const YamlNode& value, std::string_view verb) {
+  if (blocks_.empty()) return true;
+  const Track& track = *blocks_.front().track;
+  reporter_.error(value.location,
+                  "'" + std::string(verb) +
+                      "' inside a 'together' track would change the other tracks' " +
+                      (verb == "tempo" ? "beats" : "bars") +
+                      " too; "
+                      "move it out of the 'together', before or after it",
+                  Reporter::Note{track.at, "in track '" + track.name + "' of this 'together'"});
+  return false;
 }
 
 void ServoLowering::tempo_step(const YamlNode& value) {
+  if (!outside_tracks(value, "tempo")) return;
   if (auto bpm = parse_tempo(value, reporter_)) {
-    lists_.back().tempo = bpm;
+    timeline_.tempo_map.set_tempo(now_, *bpm);
     timeline_.markers.push_back({now_, "tempo " + value.scalar, value.location});
   }
+}
+
+void ServoLowering::meter_step(const YamlNode& value) {
+  if (!outside_tracks(value, "meter")) return;
+  const std::optional<int> meter = parse_meter(value, reporter_);
+  if (meter && change_meter(*meter, value.location, "'meter: " + value.scalar + "'")) {
+    timeline_.markers.push_back({now_, "meter " + value.scalar, value.location});
+  }
+}
+
+bool ServoLowering::change_meter(int beats_per_bar, Location at, std::string_view what) {
+  TempoMap& map = timeline_.tempo_map;
+  const int current = map.meter_at(now_);
+  if (current > 0 && map.bpm_at(now_) > 0 && beats_per_bar != current) {
+    const ExactMs bar = map.bar_at(now_);
+    if (bar.den() != 1) {
+      const std::int64_t whole = bar.num() / bar.den();  // bars are never negative
+      const ExactMs into = map.beat_at(now_) - map.beat_of_bar(whole).value_or(ExactMs(0));
+      reporter_.error(at, std::string(what) + " must fall on a bar line, but here it is " +
+                              beats_text(into) + " into bar " + std::to_string(whole + 1) + " (" +
+                              beats_text(ExactMs(current) - into) + " before bar " +
+                              std::to_string(whole + 2) + ")");
+      return false;
+    }
+  }
+  map.set_meter(now_, beats_per_bar);
+  return true;
 }
 
 void ServoLowering::tolerance_step(const YamlNode& value) {

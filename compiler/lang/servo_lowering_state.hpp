@@ -2,9 +2,10 @@
 // servo_lowering.cpp, which walks files, lists and the structural steps, and servo_motion.cpp,
 // which turns move, wait and through steps into timeline segments and checks them).
 //
-// Time is exact (ExactMs): each step list remembers when it started (for `at:`), its tempo and
-// tolerance overrides; a `together` block runs each track from the block's start, and a servo
-// may move in one track only.
+// Time is exact (ExactMs): each step list remembers when it started (for `at:`) and its
+// tolerance override; beats and bars go through the timeline's tempo map, which tempo and meter
+// changes extend as they happen. A `together` block runs each track from the block's start (a
+// track may hold another `together`), and a servo may move in one track of each block only.
 #pragma once
 
 #include <cstdint>
@@ -40,12 +41,26 @@ class ServoLowering {
   void repeat_step(const YamlNode& step, const YamlNode& value);
   void mirror_step(const YamlNode& step, const YamlNode& body);
   void include_step(const YamlNode& value);
-  void section_step(const YamlNode& value);
+  void section_step(const YamlNode& step, const YamlNode& value);
+  // The steps of a performance of `section` (called `name`) with its parameters' values put in
+  // for every `$name`; nullptr after reporting. `copy` holds them when anything was put in.
+  const YamlNode* perform_section(const YamlNode& step, const YamlNode& name,
+                                  const YamlNode& section, YamlNode& copy,
+                                  std::optional<Reporter::Note>& performance);
   void together_step(const YamlNode& step, const YamlNode& tracks);
   void tempo_step(const YamlNode& value);
+  void meter_step(const YamlNode& value);
+  // Reports a tempo or meter step inside a `together` track (it would change the other tracks'
+  // beats too); false if it is one.
+  bool outside_tracks(const YamlNode& value, std::string_view verb);
+  // The meter from now on, after checking that now is on a bar line (`what` names the change
+  // for the message); false after reporting.
+  bool change_meter(int beats_per_bar, Location at, std::string_view what);
   void tolerance_step(const YamlNode& value);
   // Moves the clock to the step's `at:` (holding until then); false after reporting.
   bool apply_at(const YamlNode& step);
+  // The instant of `at: bar N` / `at: bar N beat B`; nullopt after reporting.
+  std::optional<ExactMs> bar_position(const YamlNode& at);
   void finish(ServoProgram& program);
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
@@ -54,8 +69,12 @@ class ServoLowering {
   double absolute_units(const PositionEntry& e, std::size_t target, bool reflect) const;
   bool check_limits(const PositionEntry& e, std::size_t target, double units, std::string how,
                     std::optional<Reporter::Note> note = {});
-  // A time value as exact milliseconds (ms, s, b at the tempo in force, bar with a meter).
+  // A time value as exact milliseconds (ms, s, or beats and bars counted through the tempo map
+  // from now).
   std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
+  // `node` (a time) after `from`, beats and bars counted through the tempo map; nullopt after
+  // reporting.
+  std::optional<ExactMs> musical_time(const YamlNode& node, std::string_view what, ExactMs from);
   // Device units of a tolerance ("1", "0.5deg"); nullopt after reporting.
   std::optional<double> parse_tolerance(const YamlNode& node);
   double tolerance() const;
@@ -102,13 +121,17 @@ class ServoLowering {
 
   struct ListFrame {
     ExactMs start;                    // for `at:`
-    std::optional<double> tempo;      // a `tempo:` step in this list
     std::optional<double> tolerance;  // a `tolerance:` step in this list
   };
   struct Track {
     std::string name;
     Location at;
-    std::vector<std::size_t> servos;  // moved so far, in order
+    std::vector<std::size_t> servos;  // moved so far (in it or in blocks inside it), in order
+  };
+  // A running `together` block: its running track and which of its tracks moved each servo.
+  struct Block {
+    Track* track = nullptr;
+    std::map<std::size_t, std::pair<std::string, Location>> claimed;
   };
 
   // Actions one group holds on the robot's controller.
@@ -123,8 +146,8 @@ class ServoLowering {
   std::vector<std::optional<int>> pos_;
   std::vector<ListFrame> lists_;
   std::vector<const YamlNode*> sections_running_;  // for cycle detection
-  Track* track_ = nullptr;
-  std::map<std::size_t, std::pair<std::string, Location>> claimed_;  // in the running block
+  Track* track_ = nullptr;                         // the innermost running track
+  std::vector<Block> blocks_;                      // the running `together` blocks, outermost first
   bool mirrored_ = false;
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
   std::uint64_t min_actions_ = 0;

@@ -234,10 +234,18 @@ void ServoLowering::wait_step(const YamlNode& step, const YamlNode& value) {
       if (pos_[i]) held.push_back(i);
     }
   }
+  if (held.empty() && track_ != nullptr) {
+    // A track that has moved nothing yet waits: its servos simply do not move yet.
+    count_actions((static_cast<std::uint64_t>(t) + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs,
+                  step.location);
+    now_ += *total;
+    return;
+  }
   if (held.empty()) {
     reporter_.error(step.location,
                     "nothing to hold: no servo has a position yet (a controller action carries "
-                    "positions); move first, then wait");
+                    "positions); move first, then wait (to start some servos later than others, "
+                    "give their first step an 'at:' in a 'together' track)");
     return;
   }
   for (std::size_t servo : held) {
@@ -260,19 +268,24 @@ void ServoLowering::add_segment(std::size_t servo, Segment segment) {
 }
 
 bool ServoLowering::claim(std::size_t servo, Location at) {
-  if (track_ == nullptr) return true;
-  auto [it, fresh] = claimed_.try_emplace(servo, track_->name, at);
-  if (!fresh && it->second.first != track_->name) {
+  // One track of each running block: the innermost block is checked first (its tracks are
+  // the closest places to name).
+  for (auto block = blocks_.rbegin(); block != blocks_.rend(); ++block) {
+    auto it = block->claimed.find(servo);
+    if (it == block->claimed.end() || it->second.first == block->track->name) continue;
+    const std::string& name = robot_.info.servos[servo].name;
     reporter_.error(
         at,
-        "'" + robot_.info.servos[servo].name + "' moves in two tracks, '" + it->second.first +
-            "' and '" + track_->name + "'; a servo may move in one track of a 'together' only",
-        Reporter::Note{it->second.second, "'" + robot_.info.servos[servo].name +
-                                              "' moves in track '" + it->second.first + "' here"});
+        "'" + name + "' moves in two tracks, '" + it->second.first + "' and '" +
+            block->track->name + "'; a servo may move in one track of a 'together' only",
+        Reporter::Note{it->second.second,
+                       "'" + name + "' moves in track '" + it->second.first + "' here"});
     return false;
   }
-  if (std::find(track_->servos.begin(), track_->servos.end(), servo) == track_->servos.end()) {
-    track_->servos.push_back(servo);
+  for (Block& block : blocks_) {
+    block.claimed.try_emplace(servo, block.track->name, at);
+    std::vector<std::size_t>& servos = block.track->servos;
+    if (std::find(servos.begin(), servos.end(), servo) == servos.end()) servos.push_back(servo);
   }
   return true;
 }

@@ -84,8 +84,11 @@ definitions = {
     "carTime": string("Time", "`500ms`, `1.5s` or `2b` (beats at `tempo`).", f"^{NUM}(ms|s|b)$",
                       "a time with its unit: 500ms, 1.5s or 2b (a bare number is an error)"),
     "at": string("Start at", "Start this step exactly this long after the start of the list "
-                 "that holds it (`at: 4bar`); the gap before it is a hold.",
-                 f"^{NUM}(ms|s|b|bar)$", "a time with its unit: 500ms, 1.5s, 2b or 1bar"),
+                 "that holds it (`at: 4bar`), or at a bar of the sequence counted from 1 "
+                 "(`at: bar 9`, `at: bar 9 beat 2.5`); the gap before it is a hold.",
+                 rf"^(?:{NUM}(ms|s|b|bar)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
+                 "a time with its unit (500ms, 1.5s, 2b or 1bar) or a position (bar 9, "
+                 "bar 9 beat 3)"),
     "position": doc("Position", "Device units (`500`), degrees (`90deg`), relative to where the "
                     "servo is (`+50`, `-10deg`), or `home`.", type=["integer", "string"],
                     pattern=r"^(?:[+-]?[0-9]+(?:\.[0-9]+)?deg|[+-]?[0-9]+|home)$",
@@ -106,6 +109,10 @@ definitions = {
                  "written in beats.", type=["number", "string"], minimum=1, maximum=1000,
                  pattern=r"^0*(?:[1-9][0-9]{0,2}(?:\.[0-9]+)?|1000(?:\.0+)?)(bpm)?$",
                  patternErrorMessage="beats per minute between 1 and 1000: 120 or 120bpm"),
+    "meter": doc("Meter", "Beats per bar over the beat's note value (`3/4`, `6/8`): enables the "
+                 "unit `bar`; as a step it changes the meter from there (on a bar line).",
+                 type="string", pattern=r"^0*[1-9][0-9]*/(1|2|4|8|16|32|64)$",
+                 patternErrorMessage="beats per bar over a note value: 3/4, 4/4 or 6/8"),
     "ease": doc("Easing", "The shape of the move: `linear`; `in`, `out`, `in-out` (quadratic; "
                 "also `ease-in`, `ease-out`, `ease-in-out`); `quad`, `cubic`, `quart`, `quint`, "
                 "`sine`, `expo`, `circ`, `back`, `elastic` or `bounce` with `-in`, `-out` or "
@@ -180,10 +187,11 @@ SERVO_VERBS = {
     "through": ["through", "tolerance", "at"],
     "together": ["together", "at"],
     "repeat": ["repeat", "do", "at"],
-    "section": ["section", "at"],
+    "section": ["section", "with", "at"],
     "include": ["include", "at"],
     "mirror": ["mirror", "at"],
     "tempo": ["tempo"],
+    "meter": ["meter"],
     "tolerance": ["tolerance"],
 }
 STEP_KEYS = {
@@ -216,11 +224,16 @@ STEP_KEYS = {
     "do": doc("Do", "The steps to repeat.", **{"$ref": "#/definitions/servoSteps"}),
     "section": doc("Section", "Perform a section of this file (or of a file that includes it) "
                    "here.", type="string", minLength=1),
+    "with": doc("With", "Values for the section's parameters (`with: {amount: 80}`); the others "
+                "keep their defaults.", type="object", propertyNames=ref("servoName"),
+                additionalProperties=doc("Parameter value", "What `$name` stands for in the "
+                                         "section's steps.", type=["string", "number"])),
     "include": doc("Include", "Perform another file's `sequence` here (a path relative to this "
                    "file).", type="string", minLength=1),
     "mirror": doc("Mirror", "Perform these steps with left and right swapped (the robot's mirror "
                   "table).", **{"$ref": "#/definitions/servoSteps"}),
     "tempo": ref("tempo"),
+    "meter": ref("meter"),
 }
 
 
@@ -254,6 +267,29 @@ def step_schema(keys, verbs, title, extra_rules=()):
 definitions["servoStep"] = step_schema(STEP_KEYS, SERVO_VERBS, "Step")
 definitions["servoSteps"] = doc("Steps", "A list of steps, each starting with `- `.",
                                 type=["array", "null"], items=ref("servoStep"))
+# A section's steps may say `$name` wherever a value, a servo name or a pose name goes: what
+# that becomes is known only where the section is performed, so those steps are left to seqc.
+section_with_params = doc(
+    "Section with parameters", "`params` (names and default values) and the `steps`, which say "
+    "`$name` where a parameter's value goes.", type="object", required=["steps"],
+    additionalProperties=False,
+    properties={
+        "params": doc("Parameters", "Each parameter's name and default value "
+                      "(`params: {amount: 40, joint: wrist_pitch}`).", type=["object", "null"],
+                      propertyNames=ref("servoName"),
+                      additionalProperties=doc("Default", "The value `$name` stands for unless "
+                                               "the performance gives one.",
+                                               type=["string", "number"])),
+        "steps": doc("Steps", "The section's steps; `$name` (or `${name}`) stands for a "
+                     "parameter's value.", type=["array", "null"],
+                     items=doc("Step", "A step, checked by seqc where the section is performed.",
+                               type="object")),
+    })
+definitions["section"] = doc(
+    "Section", "A list of steps, or `{params, steps}` for a section with parameters.",
+    type=["array", "null", "object"],
+    allOf=[{"if": {"type": "array"}, "then": ref("servoSteps")},
+           {"if": {"type": "object"}, "then": section_with_params}])
 
 CAR_OUTPUTS = ["pan", "tilt", "servo1", "servo2", "servo3", "servo4"]
 car_positions = doc("Pose or positions", "A pose name (`home`: the gimbal to 1500/1500) or "
@@ -319,9 +355,7 @@ TOP = {
                 type=["string", "number", "boolean", "null"]),
     "description": doc("Description", "Free text.", type=["string", "number", "boolean", "null"]),
     "tempo": ref("tempo"),
-    "meter": doc("Meter", "Beats per bar over the beat's note value (`3/4`, `6/8`): enables the "
-                 "unit `bar`.", type="string", pattern=r"^0*[1-9][0-9]*/(1|2|4|8|16|32|64)$",
-                 patternErrorMessage="beats per bar over a note value: 3/4, 4/4 or 6/8"),
+    "meter": ref("meter"),
     "tolerance": ref("tolerance"),
     "resolution": doc("Resolution", "Servo controllers: the older uniform expansion (an eased "
                       "move without `steps` becomes `time / resolution` equal actions; at least "
@@ -331,8 +365,9 @@ TOP = {
                  "`home` is built in.", type=["object", "null"],
                  additionalProperties=doc("Pose", "`servo: position, ...`", type=["object", "null"],
                                           additionalProperties=ref("position"))),
-    "sections": doc("Sections", "Named step lists, performed with `- section: name`.",
-                    type="object", additionalProperties=ref("servoSteps")),
+    "sections": doc("Sections", "Named step lists, performed with `- section: name`; a section "
+                    "with parameters is `{params, steps}`.", type="object",
+                    additionalProperties=ref("section")),
     "sequence": doc("Sequence", "The steps the robot performs, in order.",
                     type=["array", "null"]),
     "pid": pid,
