@@ -401,6 +401,8 @@ bool ServoLowering::apply_at(const YamlNode& step) {
             " of this list");
     return false;
   }
+  // A cue is drawn wherever it falls, also where the steps before it already end there.
+  timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
   if (*target > now_) {
     const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
     // In a track another track may be moving meanwhile (together_step checks that one does).
@@ -410,7 +412,6 @@ bool ServoLowering::apply_at(const YamlNode& step) {
                       "move");
       return false;
     }
-    timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
     // The hold is at least one action per 30 s (a far position must not reach the fitter).
     const auto gap = static_cast<std::uint64_t>((*target - now_).value());
     count_actions(std::max<std::uint64_t>(1, (gap + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs),
