@@ -141,8 +141,60 @@ class TextTable {
   DecodeResult out_;
 };
 
+// A trace's Raspblock packets: the car answers nothing, so only what was written ("> ").
+DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines) {
+  TextTable t;
+  t.row("# trace, Raspblock packets");
+  raspblock::PacketDecoder packets;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string_view l = trim(lines[i]);
+    if (!is_trace_line(l)) continue;
+    const std::string time(l.substr(0, l.find(' ')));
+    const std::size_t dir = l.find_first_of("<>#");
+    if (dir == std::string_view::npos) continue;
+    const std::string_view rest = trim(l.substr(dir + 1));
+    if (l[dir] != '>') {
+      t.row(time + " " + l[dir] + " " + std::string(rest));
+      continue;
+    }
+    auto bytes = parse_hex(rest);
+    if (!bytes) {
+      t.issue(fmt::format("line {}", i + 1), bytes.error().message);
+      continue;
+    }
+    packets.feed(*bytes);
+    while (auto p = packets.next()) {
+      ++n;
+      if (*p) {
+        t.row(time + " > " + raspblock::describe(**p));
+      } else {
+        t.issue(fmt::format("line {}", i + 1), p->error().message);
+      }
+    }
+  }
+  if (packets.skipped_bytes() > 0) {
+    t.issue("input", fmt::format("{} byte(s) are not part of any packet", packets.skipped_bytes()));
+  }
+  return t.finish(fmt::format("{} packet(s)", n));
+}
+
+// The dialect a trace's "# dialect: NAME" line names (seqc writes the board's name there), or
+// "" for a trace without one (traces written before it, or by hand).
+std::string trace_dialect(const std::vector<std::string>& lines) {
+  constexpr std::string_view kDialect = "# dialect:";
+  for (const std::string& l : lines) {
+    const std::string_view s = trim(l);
+    if (s.starts_with(kDialect)) return std::string(trim(s.substr(kDialect.size())));
+    if (is_trace_line(s)) break;  // the header comes first
+  }
+  return "";
+}
+
 DecodeResult decode_trace(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
+  const std::string dialect = trace_dialect(lines);
+  if (dialect == "Raspblock") return decode_raspblock_trace(lines);
   Bytes all;
   for (const std::string& l : lines) {
     if (!is_trace_line(l)) continue;
@@ -152,7 +204,8 @@ DecodeResult decode_trace(std::string_view text) {
       all.insert(all.end(), b->begin(), b->end());
     }
   }
-  const bool lsc6 = looks_lsc6(all);
+  // The header's dialect when it names one; else LSC-6 when a download frame shows it.
+  const bool lsc6 = dialect.empty() ? looks_lsc6(all) : dialect == "LSC-6";
   TextTable t;
   t.row(fmt::format("# trace, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
   lsc::FrameDecoder sent, received;

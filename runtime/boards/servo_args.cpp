@@ -103,8 +103,8 @@ Result<ServoSelection> select_servos(const std::string& profile,
   return ServoSelection{std::move(*robot), std::move(*ids)};
 }
 
-Result<lsc::ServoTarget> parse_target(std::string_view text,
-                                      const std::optional<compiler::RobotInfo>& robot) {
+Result<RequestedTarget> parse_target(std::string_view text,
+                                     const std::optional<compiler::RobotInfo>& robot) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size()) {
     return make_error("move target " + quoted(text) +
@@ -115,35 +115,57 @@ Result<lsc::ServoTarget> parse_target(std::string_view text,
   const std::string field = "position of servo " + std::to_string(*id);
   auto number = parse_integer(text.substr(eq + 1), field.c_str());
   if (!number) return number.error();
-  auto position = lsc::checked_u16(*number, field.c_str());
-  if (!position) return position.error();
-  if (*position == lsc::kNoMove) {
-    return make_error(field + ": 65280 (0xff00) is the protocol's \"do not move\" value");
-  }
-  if (robot) {
-    const compiler::ServoInfo* s = robot->find_id(*id);
-    if (*number < s->min || *number > s->max) {
-      return make_error(field + " must be " + std::to_string(s->min) + ".." +
-                        std::to_string(s->max) + " on " + robot->profile + ", got " +
-                        std::to_string(*number));
-    }
-  }
-  return lsc::ServoTarget{*id, *position};
+  return RequestedTarget{*id, *number};
 }
 
-Result<std::vector<lsc::ServoTarget>> parse_targets(
+Result<std::vector<RequestedTarget>> parse_targets(
     const std::vector<std::string>& texts, const std::optional<compiler::RobotInfo>& robot) {
   if (texts.size() > 255) return make_error("at most 255 servos fit in one move");
-  std::vector<lsc::ServoTarget> targets;
+  std::vector<RequestedTarget> targets;
   for (const std::string& text : texts) {
     auto t = parse_target(text, robot);
     if (!t) return t.error();
-    for (const lsc::ServoTarget& e : targets) {
+    for (const RequestedTarget& e : targets) {
       if (e.id == t->id) return make_error("servo " + std::to_string(t->id) + " is named twice");
     }
     targets.push_back(*t);
   }
   return targets;
+}
+
+PositionRange position_range(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot) {
+  if (robot) {
+    if (const compiler::ServoInfo* s = robot->find_id(id)) return {s->min, s->max};
+  }
+  // Every servo controller profile's range together: what some servo on some controller takes.
+  std::optional<PositionRange> all;
+  for (const std::string& name : compiler::profile_names()) {
+    const compiler::RobotProfile* p = compiler::find_profile(name);
+    if (p->kind != compiler::RobotKind::ServoController) continue;
+    if (!all) all = PositionRange{p->min, p->max};
+    all->min = std::min<long long>(all->min, p->min);
+    all->max = std::max<long long>(all->max, p->max);
+  }
+  return all.value_or(PositionRange{});
+}
+
+Result<std::vector<lsc::ServoTarget>> checked_targets(
+    const std::vector<RequestedTarget>& targets, const std::optional<compiler::RobotInfo>& robot) {
+  std::vector<lsc::ServoTarget> out;
+  for (const RequestedTarget& t : targets) {
+    const PositionRange range = position_range(t.id, robot);
+    if (t.position < range.min || t.position > range.max) {
+      const std::string where =
+          robot ? " on " + robot->profile
+                : " on a servo controller (give --robot for a profile's own range)";
+      return make_error("position of servo " + std::to_string(t.id) + " must be " +
+                        std::to_string(range.min) + ".." + std::to_string(range.max) + where +
+                        ", got " + std::to_string(t.position));
+    }
+    // The range lies within the wire's ushort and below 0xff00 ("do not move").
+    out.push_back({t.id, static_cast<std::uint16_t>(t.position)});
+  }
+  return out;
 }
 
 Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field) {

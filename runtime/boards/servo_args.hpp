@@ -1,10 +1,12 @@
 // What a servo controller accepts as the servos, targets, times, groups and offsets a device
 // command names: ids in 0..255 (a byte on the wire) or, with a robot profile, that profile's
-// servos and names; positions within the wire's ushort and the profile's range, never 0xff00
-// (the wire's "do not move"); whole milliseconds in a ushort; groups 0..254 (255 is the wire's
-// "every group"); offsets as ServoOffsetRead can report them (a signed byte). Every parser
-// returns the value or an error message that names the field and its range, ready for
-// "seqc: error: "; nothing is clamped or wrapped. The CLI adds the exit status (usage).
+// servos and names; positions within the profile's range, or without a profile within the range
+// every servo controller profile shares (0..2500), so a position no servo can reach is never
+// sent; whole milliseconds in a ushort; groups 0..254 (255 is the wire's "every group"); offsets
+// as ServoOffsetRead can report them (a signed byte). Every parser returns the value or an error
+// message that names the field and its range, ready for "seqc: error: "; nothing is clamped or
+// wrapped. The CLI adds the exit status: usage for text that does not parse, invalid input for a
+// position outside the range (checked_targets).
 #pragma once
 
 #include <cstdint>
@@ -43,14 +45,35 @@ struct ServoSelection {
 Result<ServoSelection> select_servos(const std::string& profile,
                                      const std::vector<std::string>& texts);
 
-// "ID=POSITION" or "NAME=POSITION"; with a profile the position must lie within its range.
-Result<lsc::ServoTarget> parse_target(std::string_view text,
-                                      const std::optional<compiler::RobotInfo>& robot);
+// A move target as written: the servo parsed, the position a whole number not yet checked
+// against any range (checked_targets does that).
+struct RequestedTarget {
+  std::uint8_t id = 0;
+  long long position = 0;
+  friend bool operator==(const RequestedTarget&, const RequestedTarget&) = default;
+};
+
+// "ID=POSITION" or "NAME=POSITION": the servo as parse_servo, the position a whole number.
+Result<RequestedTarget> parse_target(std::string_view text,
+                                     const std::optional<compiler::RobotInfo>& robot);
 
 // The targets of one move, each as parse_target: at most 255 (the count is a byte), no servo
 // twice.
-Result<std::vector<lsc::ServoTarget>> parse_targets(
-    const std::vector<std::string>& texts, const std::optional<compiler::RobotInfo>& robot);
+Result<std::vector<RequestedTarget>> parse_targets(const std::vector<std::string>& texts,
+                                                   const std::optional<compiler::RobotInfo>& robot);
+
+// The positions a servo may be sent: its profile's range, or without a profile the range of
+// every servo controller profile together (0..2500).
+struct PositionRange {
+  long long min = 0;
+  long long max = 0;
+};
+PositionRange position_range(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot);
+
+// The targets as the wire carries them, or an error naming the first servo whose position lies
+// outside position_range (its value and the range).
+Result<std::vector<lsc::ServoTarget>> checked_targets(
+    const std::vector<RequestedTarget>& targets, const std::optional<compiler::RobotInfo>& robot);
 
 // "500ms" or "1.5s" as whole milliseconds 0..65535 (the protocol's ushort milliseconds).
 Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field);

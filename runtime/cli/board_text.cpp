@@ -1,7 +1,10 @@
 #include "runtime/cli/board_text.hpp"
 
 #include <ostream>
+#include <string>
+#include <vector>
 
+#include "compiler/lang/profiles.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -118,9 +121,33 @@ ExitCode exit_code_for(upload::UploadStatus s) {
       return ExitCode::Interrupted;
     case upload::UploadStatus::BadPlan:
       return ExitCode::Internal;
+    case upload::UploadStatus::OtherDialect:
+      return ExitCode::Usage;
     default:
       return ExitCode::DeviceFailure;
   }
+}
+
+std::string other_dialect_text(const boards::Board& board, const std::string& profile) {
+  const boards::Board* answered = nullptr;
+  for (const boards::Board* b : boards::all_boards()) {
+    if (b != &board && b->plan != nullptr && boards::same_family(*b, board)) answered = b;
+  }
+  if (answered == nullptr) return "the board on the port is not " + std::string(board.name);
+  std::vector<std::string> profiles;  // the profiles whose files that board runs
+  for (const std::string& name : compiler::profile_names()) {
+    if (compiler::find_profile(name)->board == answered->key) profiles.push_back(name);
+  }
+  std::string fix = profiles.empty() ? std::string("another profile")
+                                     : "a file with `robot: " + profiles.front() + "`";
+  if (profiles.size() > 1) {
+    std::string rest;
+    for (std::size_t i = 1; i < profiles.size(); ++i) rest += (i > 1 ? ", " : "") + profiles[i];
+    fix += " (or " + rest + ")";
+  }
+  return "this is an " + std::string(answered->name) + " board; the file is for " + profile +
+         ": use " + fix + " for this board, or give --port the port the " +
+         std::string(board.name) + " is on";
 }
 
 }  // namespace seqc::cli

@@ -178,15 +178,7 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       cmd->add_option("--baud", opts->baud,
                       "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "
                       "9600)");
-  opts->faults_opt =
-      cmd->add_option("--faults", opts->faults,
-                      "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
-                      "keys: drop, corrupt, late, dup, busy, reset (rates 0..1),\n"
-                      "late-by, busy-for, boot-time, silent-after, hangup-at,\n"
-                      "back-after (a hung-up device returns on a new terminal),\n"
-                      "reset-at, seed\n"
-                      "lsc6: drop, seed, no-run-reply, no-finish (firmware copies\n"
-                      "that never answer Run or never announce the end of a run)");
+  opts->faults_opt = cmd->add_option("--faults", opts->faults, emu::faults_help());
   opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
   opts->link_opt =
       cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");

@@ -1,6 +1,7 @@
 // `seqc servo read|off|move|mode`: single servos on the servo controller (ServoPositionRead,
 // MultiServoOff, MultiServoMove, ServoSpeed). With --robot PROFILE, servos may be named
-// (claw=200) and positions are checked against the profile's range.
+// (claw=200) and positions are checked against the profile's range; without one against every
+// servo controller's (boards::position_range). A position outside it sends nothing (exit 1).
 #include <memory>
 #include <ostream>
 #include <string>
@@ -87,8 +88,14 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
   if (!robot) return usage_error(ctx, robot.error().message);
   auto ms = boards::parse_milliseconds(o.time, "--time");
   if (!ms) return usage_error(ctx, ms.error().message);
-  auto targets = boards::parse_targets(o.targets, *robot);
-  if (!targets) return usage_error(ctx, targets.error().message);
+  auto requested = boards::parse_targets(o.targets, *robot);
+  if (!requested) return usage_error(ctx, requested.error().message);
+  // A position no servo there can reach is a bad value, not a bad command line.
+  auto targets = boards::checked_targets(*requested, *robot);
+  if (!targets) {
+    ctx.err << "seqc: error: " << targets.error().message << "; nothing was sent\n";
+    return ExitCode::InvalidInput;
+  }
   std::string summary;
   for (const lsc::ServoTarget& t : *targets) {
     summary += (summary.empty() ? "" : ", ") + servo_label(t.id, *robot) + " to " +

@@ -8,6 +8,7 @@
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/trace_option.hpp"
 
 namespace seqc::cli {
 
@@ -31,6 +32,7 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
   cmd.add_option("--port", options.port, "Port, as for `seqc upload` (default: the connected one)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
       ->capture_default_str();
+  add_trace_option(cmd, options.trace);
 }
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
@@ -67,6 +69,8 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
                       const LineBody& body) {
   auto timeout = parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
+  Trace trace;
+  if (const ExitCode c = trace.open(ctx, options.trace); c != ExitCode::Ok) return c;
   const boards::PortRequest request{options.port, &board};
   boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
@@ -75,8 +79,9 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
     return e.code;
   }
   boards::OpenedPort& port = *opened.port;
-  const boards::Line line{*port.transport, *port.clock, ctx.interrupted, *timeout};
-  return body(line, port.transport->describe());
+  io::Transport& transport = trace.wrap(*port.transport, *port.clock, board);
+  const boards::Line line{transport, *port.clock, ctx.interrupted, *timeout};
+  return body(line, transport.describe());
 }
 
 ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,

@@ -33,6 +33,7 @@ struct DeviceOptions {
   std::string robot;                          // --robot, when the command has no other use for it
   const CLI::Option* robot_option = nullptr;  // the command's own --robot, when it has one
   std::string command;                        // "group speed", "battery": for messages
+  std::string trace;                          // --trace FILE ("" = none)
 
   // The --robot profile given ("" if none): `lsc-6` selects that board's dialect.
   std::string profile() const;
@@ -60,7 +61,8 @@ using SessionBody = std::function<ExitCode(boards::XarmSession&)>;
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body);
 // Opens the port `options` names for `board` and runs `body` with the line to it and the port's
 // description for messages. The --timeout text is checked first (usage error); a port that does
-// not open is said on ctx.err. Returns body's status, or the failure's.
+// not open is said on ctx.err. With --trace the line's transport writes every byte to that file
+// (trace_option.hpp), which is opened first. Returns body's status, or the failure's.
 using LineBody = std::function<ExitCode(const boards::Line& line, const std::string& port)>;
 ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::Board& board,
                       const LineBody& body);

@@ -5,12 +5,16 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "compiler/source/units.hpp"
+#include "runtime/boards/first_move.hpp"
 #include "runtime/boards/live.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/device_command.hpp"
 #include "runtime/cli/play_progress.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
@@ -172,11 +176,22 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
   return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, r);
 }
 
+// "'base' is at 120; reaching 880 in 0.5 s is 1520 units/s, above its max_speed 800/s; slow the
+// first move or pass --force"
+std::string first_move_text(const boards::FirstMoveTooFast& f) {
+  return fmt::format(
+      "'{}' is at {}; reaching {} in {} is {:.0f} units/s, above its max_speed {:.0f}/s; slow the "
+      "first move or pass --force",
+      f.name, f.from, f.to, compiler::format_seconds(f.time_ms), f.speed, f.max_speed);
+}
+
 }  // namespace
 
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
                        const PlayArgs& args) {
   const boards::Board& board = boards::board_for(compiled);
+  Trace trace;
+  if (const ExitCode c = trace.open(ctx, args.trace); c != ExitCode::Ok) return c;
   const boards::PortRequest request{args.port, &board};
   boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
@@ -185,7 +200,14 @@ ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
     return e.code;
   }
   boards::OpenedPort& port = *opened.port;
-  const boards::Line line{*port.transport, *port.clock, ctx.interrupted};
+  const boards::Line line{trace.wrap(*port.transport, *port.clock, board), *port.clock,
+                          ctx.interrupted};
+  if (const compiler::ServoProgram* program = compiled.servo_program(); program && !args.force) {
+    if (const auto fast = boards::first_move_too_fast(board, line, *program)) {
+      ctx.err << "seqc: error: " << first_move_text(*fast) << "\n";
+      return ExitCode::InvalidInput;
+    }
+  }
   const ExitCode code = play_and_word(ctx, compiled, board, line, args);
   if (const auto got = boards::received(port); got && ctx.verbosity >= 0) {
     ctx.err << "seqc: " << port.transport->describe() << " received " << got->packets

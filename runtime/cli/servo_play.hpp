@@ -24,10 +24,14 @@ struct PlayArgs {
   bool strict = false;
   bool realtime = false;
   bool allow_late = false;  // play a schedule the link cannot keep, with a warning
+  std::string trace;        // --trace FILE ("" = none)
+  bool force = false;       // start even when a servo's first move is too fast from where it is
 };
 
 // Opens the port `args` names for the board `compiled` is for, plays it live and says how it
-// went.
+// went. Where the servos report their positions, they are read first and a first move faster
+// than a servo's max_speed from there is refused (InvalidInput, nothing moves) unless
+// args.force (boards/first_move.hpp).
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled, const PlayArgs& args);
 
 // The same over a line that is already open (tests drive it over their own transport).

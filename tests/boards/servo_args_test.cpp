@@ -24,16 +24,44 @@ TEST(ServoArgs, ServoIdsAndNames) {
 }
 
 TEST(ServoArgs, Targets) {
-  auto t = parse_target("2=65279", std::nullopt);
-  ASSERT_TRUE(t);
-  EXPECT_EQ(*t, (lsc::ServoTarget{2, 65279}));
-  EXPECT_EQ(parse_target("2=65536", std::nullopt).error().message,
-            "position of servo 2 must be 0..65535, got 65536");
-  EXPECT_EQ(parse_target("claw=1001", xarm()).error().message,
-            "position of servo 1 must be 0..1000 on xarm, got 1001");
-  EXPECT_EQ(*parse_target("claw=0", xarm()), (lsc::ServoTarget{1, 0}));
+  // The text is parsed first; the range is checked_targets' business.
+  EXPECT_EQ(*parse_target("2=65536", std::nullopt), (RequestedTarget{2, 65536}));
+  EXPECT_EQ(*parse_target("claw=-3", xarm()), (RequestedTarget{1, -3}));
+  EXPECT_EQ(parse_target("2=lots", std::nullopt).error().message,
+            "position of servo 2: 'lots' is not a whole number");
   EXPECT_FALSE(parse_target("=5", std::nullopt));
   EXPECT_FALSE(parse_target("5=", std::nullopt));
+}
+
+TEST(ServoArgs, PositionRanges) {
+  // A profile's servo: that profile's range (xarm 0..1000, lsc-6 500..2500).
+  EXPECT_EQ(position_range(1, xarm()).min, 0);
+  EXPECT_EQ(position_range(1, xarm()).max, 1000);
+  auto lsc6 = *robot_for_profile("lsc-6");
+  EXPECT_EQ(position_range(1, lsc6).min, 500);
+  EXPECT_EQ(position_range(1, lsc6).max, 2500);
+  // No profile: xarm/bus 0..1000 and lsc-16/32/6 500..2500 together, 0..2500.
+  EXPECT_EQ(position_range(9, std::nullopt).min, 0);
+  EXPECT_EQ(position_range(9, std::nullopt).max, 2500);
+}
+
+TEST(ServoArgs, CheckedTargets) {
+  EXPECT_EQ(*checked_targets({{2, 2500}, {3, 0}}, std::nullopt),
+            (std::vector<lsc::ServoTarget>{{2, 2500}, {3, 0}}));
+  EXPECT_EQ(checked_targets({{1, 500}, {2, 2501}}, std::nullopt).error().message,
+            "position of servo 2 must be 0..2500 on a servo controller (give --robot for a "
+            "profile's own range), got 2501");
+  EXPECT_EQ(checked_targets({{2, -1}}, std::nullopt).error().message,
+            "position of servo 2 must be 0..2500 on a servo controller (give --robot for a "
+            "profile's own range), got -1");
+  // 0xff00 is the wire's "do not move": outside every range, so never sent as a position.
+  EXPECT_FALSE(checked_targets({{2, 65280}}, std::nullopt));
+  EXPECT_EQ(checked_targets({{1, 1001}}, xarm()).error().message,
+            "position of servo 1 must be 0..1000 on xarm, got 1001");
+  EXPECT_EQ(*checked_targets({{1, 0}, {6, 1000}}, xarm()),
+            (std::vector<lsc::ServoTarget>{{1, 0}, {6, 1000}}));
+  EXPECT_EQ(checked_targets({{1, 499}}, *robot_for_profile("lsc-6")).error().message,
+            "position of servo 1 must be 500..2500 on lsc-6, got 499");
 }
 
 TEST(ServoArgs, Milliseconds) {
@@ -63,10 +91,8 @@ TEST(ServoArgs, ServoLists) {
 
 TEST(ServoArgs, TargetsOfOneMove) {
   EXPECT_EQ(*parse_targets({"2=300", "claw=0"}, xarm()),
-            (std::vector<lsc::ServoTarget>{{2, 300}, {1, 0}}));
+            (std::vector<RequestedTarget>{{2, 300}, {1, 0}}));
   EXPECT_EQ(parse_targets({"1=300", "claw=0"}, xarm()).error().message, "servo 1 is named twice");
-  EXPECT_EQ(parse_targets({"1=300", "2=65280"}, std::nullopt).error().message,
-            "position of servo 2: 65280 (0xff00) is the protocol's \"do not move\" value");
   const std::vector<std::string> many(256, "1=5");
   EXPECT_EQ(parse_targets(many, std::nullopt).error().message,
             "at most 255 servos fit in one move");

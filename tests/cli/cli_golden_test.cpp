@@ -212,4 +212,33 @@ TEST(Simulate, CarStateOverTime) {
   expect_golden(kCliGolden / "simulate-car-dance.csv", r.out);
 }
 
+// A show: one CSV per performer, each exactly what simulating that performer's file alone gives
+// (the car's is the golden above), after a "# performer NAME (FILE)" line on stdout, or in
+// OUT-NAME.csv with -o OUT.csv.
+TEST(Simulate, AShowGivesOneCsvPerPerformer) {
+  const SeqcRun walk = seqc(kSource, "simulate --step 250 examples/walk.yaml");
+  ASSERT_EQ(walk.status, 0) << walk.err;
+  const std::string car = slurp(kCliGolden / "simulate-car-dance.csv");
+  SeqcRun r = seqc(kSource, "simulate --step 250 examples/duet.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "# performer arm (examples/walk.yaml)\n" + walk.out +
+                       "# performer car (examples/car-dance.yaml)\n" + car);
+  EXPECT_EQ(r.err.rfind("seqc: examples/walk.yaml (arm): 29 actions, 8 s\n"
+                        "seqc: examples/car-dance.yaml (car): ",
+                        0),
+            0u)
+      << r.err;
+
+  const fs::path dir = fs::temp_directory_path() / "seqc-simulate-show";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  SeqcRun files =
+      seqc(kSource, "simulate --step 250 examples/duet.yaml -o " + (dir / "duet.csv").string());
+  EXPECT_EQ(files.status, 0) << files.err;
+  EXPECT_EQ(files.out, "");
+  EXPECT_EQ(slurp(dir / "duet-arm.csv"), walk.out);
+  EXPECT_EQ(slurp(dir / "duet-car.csv"), car);
+  EXPECT_FALSE(fs::exists(dir / "duet.csv"));
+}
+
 }  // namespace
