@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "compiler/backend/car_path.hpp"
 #include "compiler/backend/plot_axes.hpp"
 #include "compiler/backend/plot_svg.hpp"
 #include "compiler/backend/raspblock_simulate.hpp"
@@ -24,31 +25,10 @@ constexpr double kLaneLeft = kLeft;
 constexpr double kLaneLow = 400, kLaneHigh = 2600;
 constexpr double kPi = 3.14159265358979323846;
 
-struct Pose {
-  double x = 0, y = 0, heading = 0;  // cm, cm, degrees clockwise from "forward" (up)
-};
-
-// The model printed on the picture: speed units as cm/s (x sideways, right positive; y
-// forward), z as degrees per second clockwise. The board's speeds are not calibrated to any
-// unit, so the shape is right and the scale is nominal.
-std::vector<Pose> integrate(const CarSimulation& sim) {
-  std::vector<Pose> out{Pose{}};
-  for (std::size_t i = 1; i < sim.samples.size(); ++i) {
-    const double dt = (sim.samples[i].time_ms - sim.samples[i - 1].time_ms) / 1000.0;
-    const CarState& s = sim.samples[i - 1].state;
-    Pose p = out.back();
-    const double h = p.heading * kPi / 180;
-    // Body frame (x right, y forward) to the world (x right, y up), heading clockwise.
-    p.x += (s.x * std::cos(h) + s.y * std::sin(h)) * dt;
-    p.y += (-s.x * std::sin(h) + s.y * std::cos(h)) * dt;
-    p.heading += s.z * dt;
-    out.push_back(p);
-  }
-  return out;
-}
+using Pose = CarPose;
 
 std::string path_panel(const CarSimulation& sim, double top) {
-  const std::vector<Pose> path = integrate(sim);
+  const std::vector<Pose> path = car_path(sim);
   double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
   for (const Pose& p : path) {
     min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);

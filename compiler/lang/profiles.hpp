@@ -40,6 +40,8 @@ struct RobotProfile {
   double rated_speed = 0;
   // Actions one stored group holds on this controller.
   std::size_t max_actions = lsc::kMaxActions;
+  // The arm's built-in geometry (its degrees_per_unit is taken from units_per_degree), if any.
+  const ArmGeometry* arm = nullptr;
 };
 
 const RobotProfile* find_profile(std::string_view name);

@@ -20,6 +20,17 @@ std::string plot(const compiler::CompileOutput& output, const backend::PlotOptio
   return "";
 }
 
+std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+                                                 const std::string& title, double end_ms) {
+  if (const compiler::ServoProgram* p = output.servo_program()) {
+    return backend::preview_servo_part(*p, title, end_ms);
+  }
+  if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
+    return backend::preview_car_part(*p, title, end_ms);
+  }
+  return std::nullopt;
+}
+
 Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare) {
   Simulated out;
   if (const compiler::ServoProgram* program = output.servo_program()) {

@@ -7,11 +7,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "compiler/backend/plot_svg.hpp"
+#include "compiler/backend/preview_html.hpp"
 #include "compiler/backend/simulate.hpp"
 #include "compiler/compile.hpp"
 
@@ -22,6 +24,11 @@ std::uint64_t length_ms(const compiler::CompileOutput& output);
 
 // The program as a picture (backend/plot_svg); "" without a program.
 std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options);
+
+// The program as one performer of `seqc preview`'s page (backend/preview_html), on a time axis
+// of `end_ms`; nullopt without a program.
+std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+                                                 const std::string& title, double end_ms);
 
 struct Simulated {
   bool ok = false;  // false: no program of a kind that can be simulated

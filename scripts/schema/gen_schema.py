@@ -168,6 +168,30 @@ robot_object = doc(
         "mirror": doc("Mirror table", "Left/right pairs (`left_arm: right_arm`); a servo paired "
                       "with itself is reflected in place.", type="object",
                       propertyNames=ref("servoName"), additionalProperties=ref("servoName")),
+        "arm": doc("Arm geometry", "Link lengths in mm and the servo of each joint, over the "
+                   "profile's built-in geometry (the xArm has one), for `seqc preview` and "
+                   "`seqc simulate`'s tip columns.", type="object", additionalProperties=False,
+                   properties=dict(
+                       {k: doc(k, f"`{k}` in mm: `97` or `97mm`.", type=["number", "string"],
+                               exclusiveMinimum=0, pattern=r"^[0-9]+(\.[0-9]+)?(mm)?$",
+                               patternErrorMessage="a length in mm: 97 or 97mm")
+                        for k in ["base_height", "upper_arm", "forearm", "hand"]},
+                       joints=doc("Joints", "Per joint its servo, the position where its angle "
+                                  "is 0 and the direction it turns.", type="object",
+                                  additionalProperties=False,
+                                  properties={j: doc(
+                                      f"{j} joint", f"The {j} joint: `{{servo, zero, sign}}`.",
+                                      type="object", additionalProperties=False,
+                                      properties={
+                                          "servo": ref("servoName"),
+                                          "zero": doc("Zero", "The position at which the "
+                                                      "joint's angle is 0 (default: home).",
+                                                      type="integer", minimum=0),
+                                          "sign": doc("Sign", "1: a larger position turns the "
+                                                      "joint the positive way; -1: the other.",
+                                                      enum=[1, -1])})
+                                      for j in ["base", "shoulder", "elbow", "wrist"]}),
+                       claw=ref("servoName"))),
     },
     allOf=[{"if": {"properties": {"profile": {"const": p}}},
             "then": {"properties": {"servos": {"additionalProperties": ref("servo_" + p)}}}}

@@ -52,12 +52,15 @@ TEST(ProgramViews, AServoProgramIsSimulatedFromItsKeyframes) {
   EXPECT_EQ(sim.steps_are, "actions");
   EXPECT_EQ(sim.duration_ms, 1750u);
   EXPECT_TRUE(sim.differences.empty());
-  // At 1000 ms the first move is done and the elbow is half way from 500 to 300.
+  // At 1000 ms the first move is done and the elbow is half way from 500 to 300. The xArm's
+  // tip (mm) follows: the base at 700 is 48 deg, the elbow at 400 then 300 is 24 then 48 deg
+  // (sign -1, 0.24 deg a unit), so r = 246 sin e, z = 72 + 97 + 246 cos e,
+  // x = r cos 48 deg, y = r sin 48 deg.
   EXPECT_EQ(sim.csv,
-            "time_ms,claw,elbow,base\n"
-            "0,500,500,500\n"
-            "1000,200,400,700\n"
-            "1750,400,300,700\n");
+            "time_ms,claw,elbow,base,tip_x,tip_y,tip_z\n"
+            "0,500,500,500,0.00,0.00,415.00\n"
+            "1000,200,400,700,66.95,74.36,393.73\n"
+            "1750,400,300,700,122.33,135.86,333.61\n");
   EXPECT_EQ(length_ms(out), 1750u);
 }
 
@@ -66,7 +69,8 @@ TEST(ProgramViews, ComparingGivesEachServoItsLargestDifference) {
   ASSERT_TRUE(sim.ok);
   ASSERT_EQ(sim.differences.size(), 3u);
   EXPECT_EQ(sim.csv.substr(0, sim.csv.find('\n')),
-            "time_ms,claw,claw_intended,elbow,elbow_intended,base,base_intended");
+            "time_ms,claw,claw_intended,elbow,elbow_intended,base,base_intended,tip_x,tip_y,"
+            "tip_z");
 }
 
 TEST(ProgramViews, TheCarIsCountedInPackets) {
