@@ -497,10 +497,9 @@ bool StepWalker::apply_at(const YamlNode& step) {
   const std::optional<ExactMs> target =
       at_target(timeline_.tempo_map, *at, now_, lists_.back().start, reporter_);
   if (!target) return false;
-  if (*target > now_) {
-    if (!hold_until(*target, *at)) return false;
-    timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
-  }
+  if (*target > now_ && !hold_until(*target, *at)) return false;
+  // A cue is drawn wherever it falls, also where the steps before it already end there.
+  timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
   return true;
 }
 

@@ -78,6 +78,33 @@ sequence:
   EXPECT_EQ(p.keyframes[2].targets, T({{6, 700}}));
 }
 
+// A cue is a marker for the plot wherever it falls: where the steps before it end exactly on
+// it (bar 2 at 120 bpm in 4/4 is 4 x 500 ms = 2 s, where the first move ends) as well as after
+// a hold (bar 3 at 4 s, while the second move ends at 3 s).
+TEST(MusicalTime, EveryCueIsAMarkerWithOrWithoutAHold) {
+  auto out = compile_text(R"(robot: xarm
+tempo: 120
+meter: 4/4
+sequence:
+  - move: home
+    time: 2s
+  - move: {base: 700}
+    at: bar 2
+    time: 1s
+  - move: {base: 300}
+    at: bar 3
+    time: 1s
+)");
+  const ServoProgram& p = program_of(out);
+  std::vector<std::pair<double, std::string>> cues;
+  for (const TimelineMarker& m : p.timeline.markers) {
+    if (m.label.rfind("at ", 0) == 0) cues.emplace_back(m.at.value(), m.label);
+  }
+  EXPECT_EQ(cues, (std::vector<std::pair<double, std::string>>{{2000.0, "at bar 2"},
+                                                               {4000.0, "at bar 3"}}))
+      << diagnostics_of(out);
+}
+
 TEST(MusicalTime, AFractionalBeatAndAPlainBar) {
   auto out = compile_text(R"(robot: xarm
 tempo: 60

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/backend/plot_svg.hpp"
 #include "compiler/backend/raspblock_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
@@ -243,6 +244,36 @@ TEST(RaspblockStream, GimbalMovesFollowTheSameCurvesAsTheArm) {
   const std::vector<std::pair<std::uint32_t, int>> want = {
       {0, 1000}, {100, 1146}, {150, 1500}, {200, 1854}, {250, 2000}};
   EXPECT_EQ(got, want);
+}
+
+// The car's plot reads like the arm's: values on each lane, seconds on the time axis, and a
+// scale on the path. Lanes span 400-2600 us over 70 px from y = 74 (pan), 154 (tilt), 234
+// (servo1), so 1500 us sits 35 px up from a lane's bottom: y = 74 + 70 - 35 = 109 for pan
+// (its label 3 px lower, at 112), 189 for tilt, 269 for servo1; labels right-aligned at x = 144.
+// Driving y = 10 for 2 s goes 20 nominal cm forward: the path panel's 320 px span 20 cm, and
+// the scale bar is a quarter of that, 5 cm = 80 px.
+TEST(RaspblockPlot, LanesHaveValuesAndThePathHasAScale) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - move: {pan: 1500, tilt: 1500, servo1: 900}\n"
+      "    time: 100ms\n"
+      "  - drive: {y: 10}\n"
+      "    time: 2s\n");
+  ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
+  const std::string svg = backend::plot_car_program(*out.raspblock_program(), {});
+  for (
+      const char* label :
+      {"<text x=\"144\" y=\"112\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       "<text x=\"144\" y=\"192\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       "<text x=\"144\" y=\"272\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       ">2500</text>", ">500</text>", ">1 s</text>", ">2 s</text>",
+       "<title>scale: 5 cm (nominal)</title>", ">5 cm</text>"}) {
+    EXPECT_NE(svg.find(label), std::string::npos) << label;
+  }
+  // The bar itself: from the panel's left edge (x = 150) 80 px long.
+  EXPECT_NE(svg.find("x1=\"150\""), std::string::npos);
+  EXPECT_NE(svg.find("x2=\"230\""), std::string::npos);
 }
 
 TEST(RaspblockStream, HexListsSendTimesRightAligned) {
