@@ -25,6 +25,10 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
     // Safety: whatever the steps did, the stream ends with every speed at zero.
     emit(raspblock::Rocker{0, 0, 0}, end_at_);
   }
+  // Tracks of a `together` each run from the block's start: the stream goes out in time order
+  // (packets at one instant keep the order the steps wrote them in).
+  std::stable_sort(packets_.begin(), packets_.end(),
+                   [](const TimedPacket& a, const TimedPacket& b) { return a.at_ms < b.at_ms; });
   check_capacity();
   RaspblockProgram program;
   program.packets = std::move(packets_);
@@ -39,9 +43,10 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   const YamlNode* map = file_root(f, reporter_);
   if (map == nullptr) return;
   const YamlNode& root = *map;
-  reporter_.check_keys(
-      root, {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name", "description"},
-      "at the top level");
+  reporter_.check_keys(root,
+                       {"robot", "tempo", "meter", "resolution", "poses", "sections", "pid",
+                        "sequence", "name", "description"},
+                       "at the top level");
   reporter_.check_free_text(root);
   if (!is_main) {
     check_included_robot(root, robot_.info.profile, reporter_);
@@ -61,9 +66,7 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   const YamlNode* sequence = find_sequence(root, reporter_);
   if (sequence == nullptr) return;
   if (is_main) end_at_ = sequence->location;
-  scopes_.push(scope);
-  run_steps(*sequence, "'sequence'");
-  scopes_.pop();
+  run_sequence(root, scope, *sequence, is_main);
 }
 
 FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
@@ -82,6 +85,7 @@ FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
       scope.resolution_ms = *ms;
     }
   }
+  if (const YamlNode* s = root.find("sections")) read_sections(*s, scope, reporter_);
   return scope;
 }
 
@@ -139,8 +143,9 @@ bool RaspblockLowering::check_limits(const PositionEntry& t, double units, std::
 }
 
 std::optional<ExactMs> RaspblockLowering::exact_time(const YamlNode& node, std::string_view what) {
-  auto exact = scopes_.exact_ms(node, what, std::nullopt, reporter_);
-  if (!exact) return std::nullopt;
+  const std::optional<ExactMs> end = musical_time(node, what, now_);
+  if (!end) return std::nullopt;
+  const std::optional<ExactMs> exact = *end - now_;
   if (exact->value() > static_cast<double>(kRaspblockMaxStreamMs)) {
     reporter_.error(node.location,
                     "'" + node.scalar + "' is longer than a stream may last (24 hours)");

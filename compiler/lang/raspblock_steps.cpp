@@ -1,5 +1,6 @@
-// The Raspblock front end's steps: drive, move (gimbal and servos, eased), wait, repeat and
-// include, each into packets on the stream.
+// The Raspblock front end's own steps (drive, move of the gimbal and servos, eased, and wait)
+// into packets on the stream, and its hooks into the shared walk (step_walk.hpp): how it holds
+// for `at:`, repeats within the stream's limits and stops a drive around `together` tracks.
 #include <algorithm>
 #include <cmath>
 
@@ -9,77 +10,149 @@
 
 namespace seqc::compiler {
 
-void RaspblockLowering::run_steps(const YamlNode& list, std::string_view what) {
-  for (const YamlNode& step : step_items(list, what, reporter_)) {
-    if (full_) return;
-    run_step(step);
+const StepTable kRaspblockSteps = {
+    {"drive", "move", "wait"},
+    {"drive", "move"},
+    {"drive", "move", "wait", "repeat", "include", "section", "together", "tempo", "meter", "time",
+     "ease", "steps", "do", "with", "at"},
+    "a step needs one of: drive, move, wait, repeat, include, section, together, tempo, meter",
+    "'drive: {x: 10}' or 'wait: 1s'",
+    "spin.yaml",
+    "'together: {wheels: [...], camera: [...]}'",
+    [](const std::string& path, const std::string& reason) {
+      return "cannot read included file '" + path + "': " + reason;
+    },
+};
+
+void RaspblockLowering::own_step(const YamlNode& verb, const YamlNode& step) {
+  if (verb.scalar == "wait") {
+    if (reporter_.check_keys(step, {"wait", "at"}, "in a wait step") && apply_at(step)) {
+      wait_step(step, *step.find("wait"));
+    }
+    return;
+  }
+  const YamlNode* drive = step.find("drive");
+  const YamlNode* move = step.find("move");
+  if (reporter_.check_keys(step, {"drive", "move", "time", "ease", "steps", "at"},
+                           drive != nullptr && move != nullptr
+                               ? "in a drive-and-move step"
+                               : (drive ? "in a drive step" : "in a move step")) &&
+      apply_at(step)) {
+    motion_step(step, drive, move);
   }
 }
 
-void RaspblockLowering::run_step(const YamlNode& step) {
-  static constexpr std::string_view kAlone[] = {"wait", "repeat", "include"};
-  if (!step.is_map()) {
-    reporter_.error(step.location,
-                    "a step must be a map such as 'drive: {x: 10}' or 'wait: 1s', not " +
-                        std::string(kind_name(step)));
-    return;
+bool RaspblockLowering::hold_until(ExactMs target, const YamlNode& at) {
+  // A drive lasts for its step, not until the next one starts.
+  begin_step(false);
+  advance(target - now_, at.location);
+  return true;
+}
+
+// After one pass the whole repeat's length is known: one that cannot fit fails there,
+// unexpanded (repeat 65535 nested six deep would otherwise run for hours).
+class RaspblockRepeatBudget final : public StepWalker::RepeatBudget {
+ public:
+  RaspblockRepeatBudget(RaspblockLowering& car, const YamlNode& step, long long times)
+      : car_(car), step_(step), times_(times) {}
+  bool before_pass(long long /*pass*/) override {
+    t0_ = car_.now_;
+    p0_ = car_.packets_.size();
+    return true;
   }
-  const YamlNode* alone = nullptr;
-  const YamlNode* other = nullptr;
-  for (const auto& [key, value] : step.entries) {
-    bool is_alone = false;
-    for (std::string_view v : kAlone) is_alone = is_alone || key.scalar == v;
-    const bool is_motion = key.scalar == "drive" || key.scalar == "move";
-    if (is_alone && alone == nullptr) {
-      alone = &key;
-    } else if (is_alone || is_motion) {
-      other = other == nullptr ? &key : other;
+  bool after_pass(long long pass) override {
+    if (car_.full_) return false;
+    if (pass > 0) return true;
+    const auto rest = static_cast<std::uint64_t>(times_ - 1);
+    const double dt = (car_.now_ - t0_).value();
+    const std::uint64_t dp = car_.packets_.size() - p0_;
+    const double left = static_cast<double>(kRaspblockMaxStreamMs) - car_.now_.value();
+    if (dt > 0 && static_cast<double>(rest) * dt > left) {
+      car_.reporter_.error(step_.location,
+                           "this repeat would make the stream last longer than 24 hours");
+      car_.full_ = true;
+    } else if (dp > 0 && rest > (kRaspblockMaxPackets - car_.packets_.size()) / dp) {
+      car_.reporter_.error(step_.location,
+                           fmt::format("this repeat would make the stream need more than {} "
+                                       "packets; use a coarser 'resolution' or fewer repeats",
+                                       grouped(kRaspblockMaxPackets)));
+      car_.full_ = true;
+    }
+    return !car_.full_;
+  }
+
+ private:
+  RaspblockLowering& car_;
+  const YamlNode& step_;
+  long long times_;
+  ExactMs t0_;
+  std::size_t p0_ = 0;
+};
+
+std::unique_ptr<StepWalker::RepeatBudget> RaspblockLowering::repeat_budget(const YamlNode& step,
+                                                                           long long times) {
+  return std::make_unique<RaspblockRepeatBudget>(*this, step, times);
+}
+
+// The block is a step that does not drive: a drive before it has lasted its time. The drive a
+// track ends with (one track drives, at most) lasts for its step, so it stops where that track
+// ends, unless the block ends there too (then the step after the block may take over its
+// speeds at the same instant).
+class RaspblockBlockRun final : public StepWalker::BlockRun {
+ public:
+  explicit RaspblockBlockRun(RaspblockLowering& car) : car_(car) { car_.begin_step(false); }
+  void track_ends() override {
+    if (car_.stop_due_) drive_ends_ = {car_.now_, car_.last_drive_at_};
+    car_.stop_due_ = false;
+  }
+  void block_ends(ExactMs /*start*/, ExactMs longest) override {
+    if (!drive_ends_) return;
+    if (drive_ends_->first < longest) {
+      car_.emit_at(drive_ends_->first, raspblock::Rocker{0, 0, 0}, drive_ends_->second);
+    } else {
+      car_.stop_due_ = true;
+      car_.last_drive_at_ = drive_ends_->second;
     }
   }
-  if (alone != nullptr && other != nullptr) {
-    const YamlNode& later = other->location.line > alone->location.line ||
-                                    (other->location.line == alone->location.line &&
-                                     other->location.column > alone->location.column)
-                                ? *other
-                                : *alone;
-    const YamlNode& earlier = &later == other ? *alone : *other;
-    reporter_.error(later.location, "a step does one thing: '" + later.scalar +
-                                        "' cannot be combined with '" + earlier.scalar +
-                                        "'; make it a separate step");
-    return;
-  }
-  if (alone == nullptr) {
-    const YamlNode* drive = step.find("drive");
-    const YamlNode* move = step.find("move");
-    if (drive == nullptr && move == nullptr) {
-      if (reporter_.check_keys(
-              step, {"drive", "move", "wait", "repeat", "include", "time", "ease", "steps", "do"},
-              "in a step")) {
-        reporter_.error(step.location,
-                        "a step needs one of: drive, move, wait, repeat, "
-                        "include");
-      }
-      return;
+
+ private:
+  RaspblockLowering& car_;
+  std::optional<std::pair<ExactMs, Location>> drive_ends_;
+};
+
+std::unique_ptr<StepWalker::BlockRun> RaspblockLowering::block_run(const YamlNode& /*step*/) {
+  return std::make_unique<RaspblockBlockRun>(*this);
+}
+
+bool RaspblockLowering::claim(const std::map<std::size_t, int>& targets, bool drives, Location at) {
+  static constexpr std::string_view kOneTrack =
+      "an output may move in one track of a "
+      "'together' only";
+  bool ok = true;
+  bool gimbal = false;
+  for (const auto& [c, units] : targets) {
+    if (kChannels[c].gimbal) {
+      gimbal = true;
+      continue;
     }
-    if (reporter_.check_keys(step, {"drive", "move", "time", "ease", "steps"},
-                             drive != nullptr && move != nullptr
-                                 ? "in a drive-and-move step"
-                                 : (drive ? "in a drive step" : "in a move step"))) {
-      motion_step(step, drive, move);
-    }
-    return;
+    ok = claims_.claim(c, "'" + std::string(kChannels[c].name) + "'", "moves", kOneTrack, at,
+                       reporter_) &&
+         ok;
   }
-  const std::string& verb = alone->scalar;
-  const YamlNode& value = *step.find(verb);
-  if (verb == "wait") {
-    if (reporter_.check_keys(step, {"wait"}, "in a wait step")) wait_step(step, value);
-  } else if (verb == "repeat") {
-    if (reporter_.check_keys(step, {"repeat", "do"}, "in a repeat step")) {
-      repeat_step(step, value);
-    }
-  } else if (reporter_.check_keys(step, {"include"}, "in an include step")) {
-    include_step(value);
+  // One command sets both gimbal servos, so pan and tilt belong to the same track.
+  if (gimbal) {
+    ok = claims_.claim(kPan, "the gimbal (pan and tilt)", "moves",
+                       "pan and tilt share one command, so they move in one track of a "
+                       "'together' only",
+                       at, reporter_) &&
+         ok;
   }
+  if (drives) {
+    ok = claims_.claim(kChannels.size(), "the car", "drives",
+                       "the drive belongs to one track of a 'together' only", at, reporter_) &&
+         ok;
+  }
+  return ok;
 }
 
 void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_node,
@@ -156,6 +229,7 @@ void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_
     n = std::max<std::uint64_t>(1, (t + res / 2) / res);
   }
 
+  if (!claim(targets, drive.has_value(), step.location)) return;
   begin_step(drive.has_value());
   const ExactMs start = now_;
   if (drive) {
@@ -279,49 +353,6 @@ void RaspblockLowering::wait_step(const YamlNode& step, const YamlNode& value) {
   if (!total) return;
   begin_step(false);
   advance(*total, step.location);
-}
-
-void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
-  const auto repeat = parse_repeat(step, value, reporter_);
-  if (!repeat) return;
-  for (long long i = 0; i < repeat->times && !full_; ++i) {
-    const std::size_t errors_before = reporter_.errors_reported();
-    const ExactMs t0 = now_;
-    const std::size_t p0 = packets_.size();
-    run_steps(*repeat->body, "'do'");
-    // Further passes would only repeat the same mistakes (and nested repeats never end).
-    if (reporter_.errors_reported() > errors_before || full_) break;
-    if (i > 0) continue;
-    // After one pass the whole repeat's length is known: one that cannot fit fails here,
-    // unexpanded (repeat 65535 nested six deep would otherwise run for hours).
-    const auto rest = static_cast<std::uint64_t>(repeat->times - 1);
-    const double dt = (now_ - t0).value();
-    const std::uint64_t dp = packets_.size() - p0;
-    const double left = static_cast<double>(kRaspblockMaxStreamMs) - now_.value();
-    if (dt > 0 && static_cast<double>(rest) * dt > left) {
-      reporter_.error(step.location, "this repeat would make the stream last longer than 24 hours");
-      full_ = true;
-    } else if (dp > 0 && rest > (kRaspblockMaxPackets - packets_.size()) / dp) {
-      reporter_.error(step.location,
-                      fmt::format("this repeat would make the stream need more than {} packets; "
-                                  "use a coarser 'resolution' or fewer repeats",
-                                  grouped(kRaspblockMaxPackets)));
-      full_ = true;
-    }
-  }
-}
-
-void RaspblockLowering::include_step(const YamlNode& value) {
-  const LoadedFile* loaded = scopes_.load_include(
-      value, "spin.yaml",
-      [](const std::string& path, const std::string& reason) {
-        return "cannot read included file '" + path + "': " + reason;
-      },
-      loader_, reporter_);
-  if (loaded == nullptr) return;
-  reporter_.push_include(value.location);
-  run_file(*loaded, false);
-  reporter_.pop_include();
 }
 
 }  // namespace seqc::compiler

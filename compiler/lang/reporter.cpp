@@ -55,7 +55,7 @@ void Reporter::check_free_text(const YamlNode& root) {
   }
 }
 
-bool Reporter::check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
+bool Reporter::check_keys(const YamlNode& map, std::span<const std::string_view> allowed,
                           std::string_view where) {
   bool ok = true;
   for (const auto& [key, value] : map.entries) {

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -57,6 +58,11 @@ class Reporter {
 
   // Reports every key of `map` that is not in `allowed`, with "did you mean". True if all known.
   bool check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
+                  std::string_view where) {
+    return check_keys(map, std::span<const std::string_view>(allowed.begin(), allowed.size()),
+                      where);
+  }
+  bool check_keys(const YamlNode& map, std::span<const std::string_view> allowed,
                   std::string_view where);
 
   // `name` and `description` are free text: a list or map there is an error.

@@ -1,15 +1,17 @@
 // The servo-controller front end's state while it walks a file's steps (private to
-// servo_lowering.cpp, which walks files, lists and the structural steps, and servo_motion.cpp,
-// which turns move, wait and through steps into timeline segments and checks them).
+// servo_lowering.cpp, which reads files and supplies the shared walk's hooks, and
+// servo_motion.cpp, which turns move, wait and through steps into timeline segments and checks
+// them). The walk itself (lists, repeat, include, sections, together, at, tempo, meter) is
+// StepWalker's (step_walk.hpp).
 //
 // Time is exact (ExactMs): each step list remembers when it started (for `at:`) and its
-// tolerance override; beats and bars go through the timeline's tempo map, which tempo and meter
-// changes extend as they happen. A `together` block runs each track from the block's start (a
-// track may hold another `together`), and a servo may move in one track of each block only.
+// tolerance override; beats and bars go through the timeline's tempo map. A `together` block
+// runs each track from the block's start, and a servo may move in one track of each block only.
 #pragma once
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -22,45 +24,35 @@
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
 #include "compiler/lang/scope_chain.hpp"
+#include "compiler/lang/step_walk.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
 
-class ServoLowering {
+class ServoLowering final : public StepWalker {
  public:
   ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
   ServoProgram run(const LoadedFile& main);
 
  private:
-  // ---- files, lists and structural steps (servo_lowering.cpp) -------------------------------
-  void run_file(const LoadedFile& f, bool is_main);
+  // ---- files and the walk's hooks (servo_lowering.cpp) --------------------------------------
+  void run_file(const LoadedFile& f, bool is_main) override;
   FileScope& scope_for(const LoadedFile& f);
-  void run_steps(const YamlNode& list, std::string_view what);
-  void run_step(const YamlNode& step);
-  void repeat_step(const YamlNode& step, const YamlNode& value);
+  // move, wait, through, mirror and tolerance.
+  void own_step(const YamlNode& verb, const YamlNode& step) override;
+  // 'tolerance' is a verb only on its own: on a move or through it is a setting.
+  bool is_verb(std::string_view key, const YamlNode& step) const override;
+  bool hold_until(ExactMs target, const YamlNode& at) override;
+  std::unique_ptr<RepeatBudget> repeat_budget(const YamlNode& step, long long times) override;
+  std::unique_ptr<BlockRun> block_run(const YamlNode& step) override;
+  // After a `together` block (from `start` to `longest`): unless some servo `held` a position
+  // before it, reports a block none of whose tracks moves at its start.
+  void check_block_start(const YamlNode& step, ExactMs start, ExactMs longest, bool held,
+                         std::size_t errors_before);
+  friend class ServoBlockRun;
   void mirror_step(const YamlNode& step, const YamlNode& body);
-  void include_step(const YamlNode& value);
-  void section_step(const YamlNode& step, const YamlNode& value);
-  // The steps of a performance of `section` (called `name`) with its parameters' values put in
-  // for every `$name`; nullptr after reporting. `copy` holds them when anything was put in.
-  const YamlNode* perform_section(const YamlNode& step, const YamlNode& name,
-                                  const YamlNode& section, YamlNode& copy,
-                                  std::optional<Reporter::Note>& performance);
-  void together_step(const YamlNode& step, const YamlNode& tracks);
-  void tempo_step(const YamlNode& value);
-  void meter_step(const YamlNode& value);
-  // Reports a tempo or meter step inside a `together` track (it would change the other tracks'
-  // beats too); false if it is one.
-  bool outside_tracks(const YamlNode& value, std::string_view verb);
-  // The meter from now on, after checking that now is on a bar line (`what` names the change
-  // for the message); false after reporting.
-  bool change_meter(int beats_per_bar, Location at, std::string_view what);
   void tolerance_step(const YamlNode& value);
-  // Moves the clock to the step's `at:` (holding until then); false after reporting.
-  bool apply_at(const YamlNode& step);
-  // The instant of `at: bar N` / `at: bar N beat B`; nullopt after reporting.
-  std::optional<ExactMs> bar_position(const YamlNode& at);
   void finish(ServoProgram& program);
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
@@ -72,9 +64,6 @@ class ServoLowering {
   // A time value as exact milliseconds (ms, s, or beats and bars counted through the tempo map
   // from now).
   std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
-  // `node` (a time) after `from`, beats and bars counted through the tempo map; nullopt after
-  // reporting.
-  std::optional<ExactMs> musical_time(const YamlNode& node, std::string_view what, ExactMs from);
   // Device units of a tolerance ("1", "0.5deg"); nullopt after reporting.
   std::optional<double> parse_tolerance(const YamlNode& node);
   double tolerance() const;
@@ -119,35 +108,11 @@ class ServoLowering {
   bool claim(std::size_t servo, Location at);
   void count_actions(std::uint64_t n, Location at);
 
-  struct ListFrame {
-    ExactMs start;                    // for `at:`
-    std::optional<double> tolerance;  // a `tolerance:` step in this list
-  };
-  struct Track {
-    std::string name;
-    Location at;
-    std::vector<std::size_t> servos;  // moved so far (in it or in blocks inside it), in order
-  };
-  // A running `together` block: its running track and which of its tracks moved each servo.
-  struct Block {
-    Track* track = nullptr;
-    std::map<std::size_t, std::pair<std::string, Location>> claimed;
-  };
-
   // Actions one group holds on the robot's controller.
   std::size_t capacity() const { return group_capacity(robot_.profile); }
 
   const Robot& robot_;
-  FileLoader& loader_;
-  Reporter& reporter_;
-  ScopeChain scopes_;
-  Timeline timeline_;
-  ExactMs now_;
   std::vector<std::optional<int>> pos_;
-  std::vector<ListFrame> lists_;
-  std::vector<const YamlNode*> sections_running_;  // for cycle detection
-  Track* track_ = nullptr;                         // the innermost running track
-  std::vector<Block> blocks_;                      // the running `together` blocks, outermost first
   bool mirrored_ = false;
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
   std::uint64_t min_actions_ = 0;

@@ -227,14 +227,14 @@ void ServoLowering::wait_step(const YamlNode& step, const YamlNode& value) {
   }
   // Inside a track a wait holds that track's servos; elsewhere every servo with a position.
   std::vector<std::size_t> held;
-  if (track_ != nullptr) {
-    held = track_->servos;
+  if (const TrackClaims::Track* track = claims_.track()) {
+    held = track->outputs;
   } else {
     for (std::size_t i = 0; i < pos_.size(); ++i) {
       if (pos_[i]) held.push_back(i);
     }
   }
-  if (held.empty() && track_ != nullptr) {
+  if (held.empty() && claims_.in_block()) {
     // A track that has moved nothing yet waits: its servos simply do not move yet.
     count_actions((static_cast<std::uint64_t>(t) + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs,
                   step.location);
@@ -268,26 +268,8 @@ void ServoLowering::add_segment(std::size_t servo, Segment segment) {
 }
 
 bool ServoLowering::claim(std::size_t servo, Location at) {
-  // One track of each running block: the innermost block is checked first (its tracks are
-  // the closest places to name).
-  for (auto block = blocks_.rbegin(); block != blocks_.rend(); ++block) {
-    auto it = block->claimed.find(servo);
-    if (it == block->claimed.end() || it->second.first == block->track->name) continue;
-    const std::string& name = robot_.info.servos[servo].name;
-    reporter_.error(
-        at,
-        "'" + name + "' moves in two tracks, '" + it->second.first + "' and '" +
-            block->track->name + "'; a servo may move in one track of a 'together' only",
-        Reporter::Note{it->second.second,
-                       "'" + name + "' moves in track '" + it->second.first + "' here"});
-    return false;
-  }
-  for (Block& block : blocks_) {
-    block.claimed.try_emplace(servo, block.track->name, at);
-    std::vector<std::size_t>& servos = block.track->servos;
-    if (std::find(servos.begin(), servos.end(), servo) == servos.end()) servos.push_back(servo);
-  }
-  return true;
+  return claims_.claim(servo, "'" + robot_.info.servos[servo].name + "'", "moves",
+                       "a servo may move in one track of a 'together' only", at, reporter_);
 }
 
 void ServoLowering::count_actions(std::uint64_t n, Location at) {

@@ -56,35 +56,6 @@ std::optional<ExactMs> ServoLowering::exact_time(const YamlNode& node, std::stri
   return *end - now_;
 }
 
-std::optional<ExactMs> ServoLowering::musical_time(const YamlNode& node, std::string_view what,
-                                                   ExactMs from) {
-  const std::optional<TimeValue> t = parse_time_node(node, what, reporter_);
-  if (!t) return std::nullopt;
-  const ExactMs amount = ExactMs::from_double(t->amount);
-  const TempoMap& map = timeline_.tempo_map;
-  switch (t->unit) {
-    case TimeUnit::Milliseconds:
-      return from + amount;
-    case TimeUnit::Seconds:
-      return from + amount * ExactMs(1000);
-    case TimeUnit::Beats:
-    case TimeUnit::Bars:
-      break;
-  }
-  if (map.bpm_at(from) <= 0) {
-    report_no_tempo(node, reporter_);
-    return std::nullopt;
-  }
-  if (t->unit == TimeUnit::Bars && map.meter_at(from) <= 0) {
-    report_no_meter(node, reporter_);
-    return std::nullopt;
-  }
-  const std::optional<ExactMs> end =
-      t->unit == TimeUnit::Beats ? map.after_beats(from, amount) : map.after_bars(from, amount);
-  if (!end) report_no_tempo(node, reporter_);  // a stretch on the way has none
-  return end;
-}
-
 std::optional<double> ServoLowering::parse_tolerance(const YamlNode& node) {
   std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
   const bool degrees = text.size() > 3 && text.substr(text.size() - 3) == "deg";

@@ -81,8 +81,9 @@ definitions = {
                         "number is an error)"),
     "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bar)$",
                    "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
-    "carTime": string("Time", "`500ms`, `1.5s` or `2b` (beats at `tempo`).", f"^{NUM}(ms|s|b)$",
-                      "a time with its unit: 500ms, 1.5s or 2b (a bare number is an error)"),
+    "carTime": string("Time", "`500ms`, `1.5s`, `2b` (beats at `tempo`) or `2bar` (bars; needs "
+                      "`meter`).", f"^{NUM}(ms|s|b|bar)$",
+                      "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "at": string("Start at", "Start this step exactly this long after the start of the list "
                  "that holds it (`at: 4bar`), or at a bar of the sequence counted from 1 "
                  "(`at: bar 9`, `at: bar 9 beat 2.5`); the gap before it is a hold.",
@@ -314,6 +315,11 @@ definitions["section"] = doc(
     type=["array", "null", "object"],
     allOf=[{"if": {"type": "array"}, "then": ref("servoSteps")},
            {"if": {"type": "object"}, "then": section_with_params}])
+definitions["carSection"] = doc(
+    "Section", "A list of steps, or `{params, steps}` for a section with parameters.",
+    type=["array", "null", "object"],
+    allOf=[{"if": {"type": "array"}, "then": ref("carSteps")},
+           {"if": {"type": "object"}, "then": section_with_params}])
 
 CAR_OUTPUTS = ["pan", "tilt", "servo1", "servo2", "servo3", "servo4"]
 car_positions = doc("Pose or positions", "A pose name (`home`: the gimbal to 1500/1500) or "
@@ -342,10 +348,22 @@ CAR_KEYS = {
     "repeat": STEP_KEYS["repeat"],
     "do": doc("Do", "The steps to repeat.", **{"$ref": "#/definitions/carSteps"}),
     "include": STEP_KEYS["include"],
+    "at": ref("at"),
+    "section": STEP_KEYS["section"],
+    "with": STEP_KEYS["with"],
+    "together": doc("Together", "Named tracks of steps that run side by side from the same "
+                    "instant; the drive, the gimbal (pan and tilt) and each servo belong to one "
+                    "track only.", type="object", minProperties=1,
+                    additionalProperties=ref("carSteps")),
+    "tempo": ref("tempo"),
+    "meter": ref("meter"),
 }
-CAR_VERBS = {"drive": ["drive", "move", "time", "ease", "steps"],
-             "move": ["drive", "move", "time", "ease", "steps"],
-             "wait": ["wait"], "repeat": ["repeat", "do"], "include": ["include"]}
+# drive and move first: their rules are given `time` below by position.
+CAR_VERBS = {"drive": ["drive", "move", "time", "ease", "steps", "at"],
+             "move": ["drive", "move", "time", "ease", "steps", "at"],
+             "wait": ["wait", "at"], "repeat": ["repeat", "do", "at"],
+             "include": ["include", "at"], "section": ["section", "with", "at"],
+             "together": ["together", "at"], "tempo": ["tempo"], "meter": ["meter"]}
 car_step = step_schema(CAR_KEYS, CAR_VERBS, "Step")
 car_step["allOf"][0]["then"]["required"] = ["time"]
 car_step["allOf"][1]["then"]["required"] = ["time"]
@@ -390,8 +408,7 @@ TOP = {
                  additionalProperties=doc("Pose", "`servo: position, ...`", type=["object", "null"],
                                           additionalProperties=ref("position"))),
     "sections": doc("Sections", "Named step lists, performed with `- section: name`; a section "
-                    "with parameters is `{params, steps}`.", type="object",
-                    additionalProperties=ref("section")),
+                    "with parameters is `{params, steps}`.", type="object"),
     "sequence": doc("Sequence", "The steps the robot performs, in order.",
                     type=["array", "null"]),
     "pid": pid,
@@ -407,11 +424,13 @@ servo_file = {
         "sequence": {"type": "array", "minItems": 1, "items": ref("servoStep")},
         "resolution": ref("servoTime"),
         "poses": {"additionalProperties": {"propertyNames": ref("servoName")}},
+        "sections": {"additionalProperties": ref("section")},
     }}
 car_file = {
     "properties": {
-        "meter": False, "tolerance": False, "sections": False,
+        "tolerance": False,
         "sequence": ref("carSteps"),
+        "sections": {"additionalProperties": ref("carSection")},
         "resolution": ref("carTime"),
         "poses": {"additionalProperties": {"propertyNames": {"enum": CAR_OUTPUTS}}},
     }}

@@ -45,10 +45,12 @@ ALLOWED = {
     "tests/golden/bad-duplicate-servo-id.yaml": "two servos with one id",
     "tests/golden/bad-servo-in-two-tracks.yaml": "a servo moved in two tracks",
     "tests/golden/bad-servo-in-nested-tracks.yaml": "a servo moved in two tracks, one nested",
+    "tests/golden/bad-car-output-in-two-tracks.yaml": "a car output or the drive in two tracks",
     "tests/golden/bad-tempo-in-together.yaml": "a tempo step inside a track, at any depth",
     # Section parameters: what `$name` becomes is known only where the section is performed.
     "tests/golden/bad-section-unknown-param.yaml": "'with' names a parameter not declared",
     "tests/golden/bad-section-undefined-param.yaml": "'$name' of a parameter not declared",
+    "tests/golden/bad-car-section-unknown-param.yaml": "a car section's parameters, by name",
     "tests/golden/bad-section-param-does-not-fit.yaml": "a value that fits no position",
     "tests/golden/bad-home-outside-limits.yaml": "limits that exclude the profile's home",
     # Time: beats at the tempo in force, sums and positions in time.
