@@ -25,6 +25,13 @@ if(NOT HIDAPI_FOUND)
     "seqc needs hidapi (hidapi-hidraw), which is missing. On Debian or Ubuntu install it with:\n"
     "  sudo apt-get install libhidapi-dev")
 endif()
+# Audio files for `seqc beats` (LGPL, linked dynamically).
+pkg_check_modules(SNDFILE QUIET IMPORTED_TARGET sndfile)
+if(NOT SNDFILE_FOUND)
+  message(FATAL_ERROR
+    "seqc needs libsndfile (sndfile), which is missing. On Debian or Ubuntu install it with:\n"
+    "  sudo apt-get install libsndfile1-dev")
+endif()
 
 # GoogleTest only for the tests: `-DBUILD_TESTING=OFF` builds the tool without it.
 if(BUILD_TESTING)

@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "compiler/arm_geometry.hpp"
 #include "compiler/raspblock_program.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/source.hpp"
@@ -54,6 +55,8 @@ struct RobotInfo {
   std::vector<ServoInfo> servos;  // in id order
   // The highest id the file's `servos:` section names (0 when it names none).
   std::uint8_t highest_defined_id = 0;
+  // Link lengths and joint servos, for an arm whose profile or file gives them.
+  std::optional<ArmGeometry> arm;
 
   const ServoInfo* find_id(std::uint8_t id) const;
   const ServoInfo* find_name(std::string_view name) const;

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cstdlib>
 #include <functional>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -68,6 +72,8 @@ bool looks_lsc6(ByteView bytes) {
 
 bool is_trace_line(std::string_view line) { return trim(line).starts_with("t="); }
 constexpr std::string_view kRecordHeader = "time_s,status,bytes,message";
+// `seqc emulate raspblock --record`: the car board's state, one line per change.
+constexpr std::string_view kCarRecordHeader = "time_s,field,previous,value";
 
 // Describes every whole frame in `bytes` as `describe` says; frames that do not decode, and
 // bytes outside frames, are issues.
@@ -135,8 +141,60 @@ class TextTable {
   DecodeResult out_;
 };
 
+// A trace's Raspblock packets: the car answers nothing, so only what was written ("> ").
+DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines) {
+  TextTable t;
+  t.row("# trace, Raspblock packets");
+  raspblock::PacketDecoder packets;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string_view l = trim(lines[i]);
+    if (!is_trace_line(l)) continue;
+    const std::string time(l.substr(0, l.find(' ')));
+    const std::size_t dir = l.find_first_of("<>#");
+    if (dir == std::string_view::npos) continue;
+    const std::string_view rest = trim(l.substr(dir + 1));
+    if (l[dir] != '>') {
+      t.row(time + " " + l[dir] + " " + std::string(rest));
+      continue;
+    }
+    auto bytes = parse_hex(rest);
+    if (!bytes) {
+      t.issue(fmt::format("line {}", i + 1), bytes.error().message);
+      continue;
+    }
+    packets.feed(*bytes);
+    while (auto p = packets.next()) {
+      ++n;
+      if (*p) {
+        t.row(time + " > " + raspblock::describe(**p));
+      } else {
+        t.issue(fmt::format("line {}", i + 1), p->error().message);
+      }
+    }
+  }
+  if (packets.skipped_bytes() > 0) {
+    t.issue("input", fmt::format("{} byte(s) are not part of any packet", packets.skipped_bytes()));
+  }
+  return t.finish(fmt::format("{} packet(s)", n));
+}
+
+// The dialect a trace's "# dialect: NAME" line names (seqc writes the board's name there), or
+// "" for a trace without one (traces written before it, or by hand).
+std::string trace_dialect(const std::vector<std::string>& lines) {
+  constexpr std::string_view kDialect = "# dialect:";
+  for (const std::string& l : lines) {
+    const std::string_view s = trim(l);
+    if (s.starts_with(kDialect)) return std::string(trim(s.substr(kDialect.size())));
+    if (is_trace_line(s)) break;  // the header comes first
+  }
+  return "";
+}
+
 DecodeResult decode_trace(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
+  const std::string dialect = trace_dialect(lines);
+  if (dialect == "Raspblock") return decode_raspblock_trace(lines);
   Bytes all;
   for (const std::string& l : lines) {
     if (!is_trace_line(l)) continue;
@@ -146,7 +204,8 @@ DecodeResult decode_trace(std::string_view text) {
       all.insert(all.end(), b->begin(), b->end());
     }
   }
-  const bool lsc6 = looks_lsc6(all);
+  // The header's dialect when it names one; else LSC-6 when a download frame shows it.
+  const bool lsc6 = dialect.empty() ? looks_lsc6(all) : dialect == "LSC-6";
   TextTable t;
   t.row(fmt::format("# trace, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
   lsc::FrameDecoder sent, received;
@@ -248,6 +307,73 @@ DecodeResult decode_record(std::string_view text) {
   return t.finish(fmt::format("{} record(s)", n));
 }
 
+std::optional<int> whole_number(std::string_view s) {
+  int v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+// The car record holds each change with the value it replaced, so a record that was cut,
+// merged or edited shows: a `previous` that is not the field's last value, or time running
+// backwards, is an issue.
+DecodeResult decode_car_record(std::string_view text) {
+  const std::vector<std::string> lines = split_lines(text);
+  TextTable t;
+  t.row("# Raspblock emulator record: each change of the board's state");
+  std::map<std::string, int, std::less<>> last;
+  double last_time = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    if (trim(lines[i]).empty()) continue;
+    const std::string where = fmt::format("line {}", i + 1);
+    std::vector<std::string_view> f;
+    std::string_view rest = lines[i];
+    for (std::size_t comma; (comma = rest.find(',')) != std::string_view::npos;) {
+      f.push_back(rest.substr(0, comma));
+      rest.remove_prefix(comma + 1);
+    }
+    f.push_back(rest);
+    int value = 0, previous = 0;
+    bool well_formed = f.size() == 4;
+    if (well_formed) {
+      const auto v = whole_number(f[3]);
+      const auto p = f[2].empty() ? std::optional<int>(0) : whole_number(f[2]);
+      well_formed = v.has_value() && p.has_value();
+      value = v.value_or(0);
+      previous = p.value_or(0);
+    }
+    char* end = nullptr;
+    const std::string time(f[0]);
+    const double seconds = std::strtod(time.c_str(), &end);
+    if (!well_formed || end == time.c_str() || *end != '\0') {
+      t.issue(where, "not a record line (time_s,field,previous,value)");
+      continue;
+    }
+    ++n;
+    const bool has_previous = !f[2].empty();
+    const std::string field(f[1]);
+    t.row(has_previous ? fmt::format("{} {:<18} {} -> {}", time, field, previous, value)
+                       : fmt::format("{} {:<18} = {}", time, field, value));
+    if (seconds < last_time) {
+      t.issue(where, fmt::format("time runs backwards ({} after {:.6f})", time, last_time));
+    }
+    last_time = std::max(last_time, seconds);
+    const auto known = last.find(field);
+    if (known == last.end() && has_previous) {
+      t.issue(where, fmt::format("{} had no value before, yet the record says it was {}", field,
+                                 previous));
+    } else if (known != last.end() && !has_previous) {
+      t.issue(where, fmt::format("{} was {}, yet the record gives no previous value", field,
+                                 known->second));
+    } else if (known != last.end() && previous != known->second) {
+      t.issue(where, fmt::format("{} was {}, not {}", field, known->second, previous));
+    }
+    last[field] = value;
+  }
+  return t.finish(fmt::format("{} change(s)", n));
+}
+
 DecodeResult decode_raspblock(std::string_view text) {
   TextTable t;
   t.row(fmt::format("{:<7} {:>8}  {}", "packet", "time_ms", "message"));
@@ -311,7 +437,7 @@ const char* to_string(DecodeFormat format) {
 DecodeFormat detect_format(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
   for (const std::string& l : lines) {
-    if (l == kRecordHeader) return DecodeFormat::Record;
+    if (l == kRecordHeader || l == kCarRecordHeader) return DecodeFormat::Record;
     if (is_trace_line(l)) return DecodeFormat::Trace;
   }
   std::vector<std::string> errors;
@@ -326,6 +452,10 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format) {
     case DecodeFormat::Trace:
       return decode_trace(text);
     case DecodeFormat::Record:
+      for (const std::string& l : split_lines(text)) {
+        if (trim(l).empty()) continue;
+        return l == kCarRecordHeader ? decode_car_record(text) : decode_record(text);
+      }
       return decode_record(text);
     case DecodeFormat::Raspblock:
       return decode_raspblock(text);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "compiler/backend/car_path.hpp"
+#include "compiler/backend/plot_axes.hpp"
 #include "compiler/backend/plot_svg.hpp"
 #include "compiler/backend/raspblock_simulate.hpp"
 #include "compiler/backend/svg_text.hpp"
@@ -14,34 +16,19 @@ using svg::num;
 
 // Lanes share the servo plot's left edge, so a show's performers line up on one time axis; the
 // path from above sits under them.
-constexpr double kWidth = 1100, kPanel = 360, kTop = 74, kLaneLeft = 150, kLane = 70, kGap = 10;
+using plot::kLeft;
+using plot::kRight;
+using plot::kWidth;
+constexpr double kPanel = 360, kTop = 74, kLane = 70, kGap = 10;
+constexpr double kLaneLeft = kLeft;
+// A lane spans 400-2600 us so the outputs' whole range (500-2500) sits inside its frame.
+constexpr double kLaneLow = 400, kLaneHigh = 2600;
 constexpr double kPi = 3.14159265358979323846;
 
-struct Pose {
-  double x = 0, y = 0, heading = 0;  // cm, cm, degrees clockwise from "forward" (up)
-};
-
-// The model printed on the picture: speed units as cm/s (x sideways, right positive; y
-// forward), z as degrees per second clockwise. The board's speeds are not calibrated to any
-// unit, so the shape is right and the scale is nominal.
-std::vector<Pose> integrate(const CarSimulation& sim) {
-  std::vector<Pose> out{Pose{}};
-  for (std::size_t i = 1; i < sim.samples.size(); ++i) {
-    const double dt = (sim.samples[i].time_ms - sim.samples[i - 1].time_ms) / 1000.0;
-    const CarState& s = sim.samples[i - 1].state;
-    Pose p = out.back();
-    const double h = p.heading * kPi / 180;
-    // Body frame (x right, y forward) to the world (x right, y up), heading clockwise.
-    p.x += (s.x * std::cos(h) + s.y * std::sin(h)) * dt;
-    p.y += (-s.x * std::sin(h) + s.y * std::cos(h)) * dt;
-    p.heading += s.z * dt;
-    out.push_back(p);
-  }
-  return out;
-}
+using Pose = CarPose;
 
 std::string path_panel(const CarSimulation& sim, double top) {
-  const std::vector<Pose> path = integrate(sim);
+  const std::vector<Pose> path = car_path(sim);
   double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
   for (const Pose& p : path) {
     min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
@@ -80,6 +67,17 @@ std::string path_panel(const CarSimulation& sim, double top) {
     out += svg::line(X(path[i].x), Y(path[i].y), X(path[i].x) + 9 * std::sin(h),
                      Y(path[i].y) - 9 * std::cos(h), "stroke=\"#2563eb\" stroke-width=\"1.2\"");
   }
+  // The scale: a bar of a round number of (nominal) centimetres, about a quarter of the panel.
+  const double bar_cm = svg::nice_step(span, 4);
+  const double bar_x = kLaneLeft, bar_y = top + kPanel + 14;  // under the panel, clear of the path
+  out += "<g class=\"scale\"><title>scale: " + num(bar_cm) + " cm (nominal)</title>\n";
+  out += svg::line(bar_x, bar_y, bar_x + bar_cm * scale, bar_y, "stroke=\"#374151\"");
+  out += svg::line(bar_x, bar_y - 4, bar_x, bar_y + 4, "stroke=\"#374151\"");
+  out += svg::line(bar_x + bar_cm * scale, bar_y - 4, bar_x + bar_cm * scale, bar_y + 4,
+                   "stroke=\"#374151\"");
+  out += svg::text(bar_x + bar_cm * scale + 6, bar_y + 4, num(bar_cm) + " cm",
+                   "fill=\"#374151\" font-size=\"10\"");
+  out += "</g>\n";
   out += "<g><title>start</title><circle cx=\"" + num(X(0)) + "\" cy=\"" + num(Y(0)) +
          "\" r=\"5\" fill=\"#16a34a\"/></g>\n";
   out += "<g><title>end</title><circle cx=\"" + num(xs.back()) + "\" cy=\"" + num(ys.back()) +
@@ -93,11 +91,11 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
                              const PlotOptions& options) {
   const CarSimulation sim = simulate_car(program, 20);
   const double duration = sim.duration_ms;
-  const double from = options.from_ms.value_or(0);
-  const double to = std::max(from + 1, options.to_ms.value_or(duration));
-  auto x = [&](double t) {
-    return kLaneLeft + (t - from) / (to - from) * (kWidth - kLaneLeft - 24);
-  };
+  plot::Frame f;
+  f.from = options.from_ms.value_or(0);
+  f.to = std::max(f.from + 1, options.to_ms.value_or(duration));
+  const double from = f.from, to = f.to;
+  auto x = [&](double t) { return f.x(t); };
   struct Output {
     std::string name;
     std::optional<int> (*get)(const CarState&);
@@ -116,11 +114,17 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
     const bool used = std::any_of(sim.samples.begin(), sim.samples.end(),
                                   [&](const CarSimulation::Sample& s) { return o.get(s.state); });
     if (!used && o.name != "pan" && o.name != "tilt") continue;
-    auto y = [&](double v) { return y0 + kLane - (v - 400) / 2200.0 * kLane; };
-    lanes += svg::rect(kLaneLeft, y0, kWidth - kLaneLeft - 24, kLane,
+    auto y = [&](double v) { return y0 + kLane - (v - kLaneLow) / (kLaneHigh - kLaneLow) * kLane; };
+    lanes += svg::rect(kLaneLeft, y0, kWidth - kLaneLeft - kRight, kLane,
                        "fill=\"none\" stroke=\"#d1d5db\"");
     lanes += svg::text(12, y0 + 16, o.name, "font-weight=\"bold\"");
     lanes += svg::text(12, y0 + 30, "us", "fill=\"#6b7280\"");
+    // The value axis: the outputs' ends and centre, each with a faint line across the lane.
+    for (const int v : {500, 1500, 2500}) {
+      lanes += svg::line(kLaneLeft, y(v), kWidth - kRight, y(v), "stroke=\"#f3f4f6\"");
+      lanes += svg::text(kLaneLeft - 6, y(v) + 3, std::to_string(v),
+                         "text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\"");
+    }
     std::vector<double> xs, ys;
     for (const CarSimulation::Sample& s : sim.samples) {
       if (s.time_ms < from || s.time_ms > to) continue;
@@ -131,20 +135,18 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
     lanes += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
     y0 += kLane + kGap;
   }
-  const double panel_top = y0 + 30;
-  lanes += svg::line(kLaneLeft, y0, kWidth - 24, y0, "stroke=\"#374151\"");
-  const double step = svg::nice_step((to - from) / 1000.0, 8) * 1000.0;
-  for (double t = std::ceil(from / step) * step; t <= to + 1e-6; t += step) {
-    lanes +=
-        svg::text(x(t), y0 + 15, num(t / 1000.0) + " s", "text-anchor=\"middle\" fill=\"#374151\"");
-  }
+  const double lanes_bottom = y0 - kGap;
+  const double panel_top = y0 + 40;
+  lanes += plot::markers(program.timeline, f, kTop, lanes_bottom);
+  lanes += plot::time_axis(f, y0);
   std::string body = svg::text(12, 20, options.title, "font-size=\"15\" font-weight=\"bold\"");
+  body += plot::beat_grid(program.timeline, f, kTop, lanes_bottom);
   body += svg::text(12, 38,
                     std::to_string(program.packets.size()) + " packets, " + num(duration / 1000.0) +
                         " s; the gimbal and servo outputs over time",
                     "fill=\"#4b5563\"");
   body += lanes + path_panel(sim, panel_top);
-  return svg::document(kWidth, panel_top + kPanel + 12, options.title, body);
+  return svg::document(kWidth, panel_top + kPanel + 30, options.title, body);
 }
 
 }  // namespace seqc::backend

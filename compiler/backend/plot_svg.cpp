@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
+#include "compiler/backend/plot_axes.hpp"
 #include "compiler/backend/simulate.hpp"
 #include "compiler/backend/svg_text.hpp"
 
@@ -13,78 +16,16 @@ namespace {
 
 using svg::num;
 
-constexpr double kWidth = 1100, kLeft = 150, kRight = 24, kTop = 74, kLane = 84, kGap = 12;
+using plot::beat_grid;
+using plot::Frame;
+using plot::kLeft;
+using plot::kRight;
+using plot::kWidth;
+using plot::markers;
+using plot::time_axis;
+
+constexpr double kTop = 74, kLane = 84, kGap = 12;
 constexpr double kAxis = 40;
-
-struct Frame {  // time window -> x
-  double from = 0, to = 1;
-  double x(double t) const { return kLeft + (t - from) / (to - from) * (kWidth - kLeft - kRight); }
-  bool inside(double t) const { return t >= from && t <= to; }
-};
-
-// Beat and bar lines from the file's tempo (and its tempo steps), with bar numbers.
-std::string beat_grid(const compiler::Timeline& tl, const Frame& f, double top, double bottom) {
-  if (tl.tempo <= 0) return "";
-  std::vector<std::pair<double, double>> tempos{{0.0, tl.tempo}};  // from, bpm
-  for (const compiler::TimelineMarker& m : tl.markers) {
-    if (m.label.rfind("tempo ", 0) == 0) {
-      const double bpm = std::atof(m.label.c_str() + 6);
-      if (bpm > 0) tempos.push_back({m.at.value(), bpm});
-    }
-  }
-  std::sort(tempos.begin(), tempos.end());
-  std::string out = "<g class=\"grid\">\n";
-  double t = 0;
-  int beat = 0;
-  const int per_bar = tl.beats_per_bar;
-  const double end = std::max(f.to, tl.end.value());
-  for (std::size_t k = 0; t <= end && beat < 100000; ++beat) {
-    while (k + 1 < tempos.size() && tempos[k + 1].first <= t + 1e-9) ++k;
-    const bool bar = per_bar > 0 && beat % per_bar == 0;
-    if (f.inside(t)) {
-      out += svg::line(
-          f.x(t), top, f.x(t), bottom,
-          bar ? "stroke=\"#b0b8c8\" stroke-width=\"1\"" : "stroke=\"#e4e8ef\" stroke-width=\"1\"");
-      if (bar) {
-        out += svg::text(f.x(t) + 2, top - 4, std::to_string(beat / per_bar + 1),
-                         "fill=\"#6b7280\" font-size=\"9\"");
-      }
-    }
-    t += 60000.0 / tempos[k].second;
-  }
-  return out + "</g>\n";
-}
-
-std::string time_axis(const Frame& f, double y) {
-  std::string out = svg::line(kLeft, y, kWidth - kRight, y, "stroke=\"#374151\"");
-  const double step = svg::nice_step((f.to - f.from) / 1000.0, 10) * 1000.0;
-  for (double t = std::ceil(f.from / step) * step; t <= f.to + 1e-6; t += step) {
-    out += svg::line(f.x(t), y, f.x(t), y + 5, "stroke=\"#374151\"");
-    out += svg::text(f.x(t), y + 17, num(t / 1000.0) + " s",
-                     "text-anchor=\"middle\" fill=\"#374151\"");
-  }
-  return out;
-}
-
-std::string markers(const compiler::Timeline& tl, const Frame& f, double top, double bottom) {
-  std::string out;
-  int row = 0;
-  for (const compiler::TimelineMarker& m : tl.markers) {
-    const double t = m.at.value();
-    if (!f.inside(t)) continue;
-    const bool section = m.label.rfind("section ", 0) == 0;
-    const char* colour =
-        section ? "#7c3aed" : (m.label.rfind("at ", 0) == 0 ? "#0e7490" : "#b45309");
-    out += "<g class=\"marker\"><title>" + svg::escape(m.label) + "</title>\n";
-    out += svg::line(f.x(t), top - 20 + 10.0 * (row % 2), f.x(t), bottom,
-                     std::string("stroke=\"") + colour + "\" stroke-dasharray=\"4 3\"");
-    out += svg::text(f.x(t) + 3, top - 22 + 10.0 * (row % 2), m.label,
-                     std::string("fill=\"") + colour + "\" font-size=\"10\"");
-    out += "</g>\n";
-    ++row;
-  }
-  return out;
-}
 
 }  // namespace
 

@@ -8,8 +8,10 @@
 // sections, `at:` cues and tempo changes as labelled markers; every warning (speed,
 // acceleration, fit) as a marker at its time whose <title> is the message.
 //
-// Raspblock: the car's path seen from above, integrating the rocker speeds (the model is
-// printed on the picture), and the gimbal and servo outputs over time.
+// Raspblock: the gimbal and servo outputs over time on the same time axis, each lane with its
+// values (500, 1500, 2500 us), under the same bar grid and markers; and the car's path seen from
+// above, integrating the rocker speeds (the model is printed on the picture), with a scale bar
+// in its nominal centimetres.
 #pragma once
 
 #include <cstdint>

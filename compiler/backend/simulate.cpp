@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "compiler/backend/arm_geometry.hpp"
 #include "compiler/backend/servo_backend.hpp"
 
 namespace seqc::backend {
@@ -77,6 +78,7 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
                     bool with_intended) {
   Simulation sim;
   sim.with_intended = with_intended;
+  sim.with_tip = program.robot.arm.has_value();
   const std::vector<std::uint8_t> ids = used_servo_ids(program);
   std::vector<double> pos;
   for (std::uint8_t id : ids) {
@@ -115,6 +117,16 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
       }
     }
     for (double p : now) sample.positions.push_back(static_cast<int>(std::lround(p)));
+    if (sim.with_tip) {
+      // From the unrounded positions; a servo the program never moves stays at home.
+      sample.tip = arm_points(*program.robot.arm, [&](std::string_view name) {
+                     for (std::size_t c = 0; c < ids.size(); ++c) {
+                       if (sim.columns[c] == name) return now[c];
+                     }
+                     const compiler::ServoInfo* s = program.robot.find_name(name);
+                     return s != nullptr ? double(s->home) : 0.0;
+                   }).tip;
+    }
     if (with_intended) {
       for (std::uint8_t id : ids) {
         const auto want = program.timeline.value(servo_index(program, id), static_cast<double>(t));
@@ -134,6 +146,7 @@ std::string to_csv(const Simulation& sim) {
     out += "," + c;
     if (sim.with_intended) out += "," + c + "_intended";
   }
+  if (sim.with_tip) out += ",tip_x,tip_y,tip_z";
   out += "\n";
   for (const Simulation::Sample& s : sim.samples) {
     out += std::to_string(s.time_ms);
@@ -146,6 +159,12 @@ std::string to_csv(const Simulation& sim) {
         std::snprintf(buf, sizeof buf, "%.2f", s.intended[i]);
         out += buf;
       }
+    }
+    for (std::size_t i = 0; sim.with_tip && i < 3; ++i) {
+      char buf[32];
+      // +0.0 turns a -0.00 (a rounding of a tiny negative) into 0.00.
+      std::snprintf(buf, sizeof buf, ",%.2f", std::round(s.tip[i] * 100) / 100 + 0.0);
+      out += buf;
     }
     out += "\n";
   }

@@ -3,6 +3,7 @@
 // action's time; servos start at their home position (the program cannot know better).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,8 +19,10 @@ struct Simulation {
     std::vector<int> positions;  // one per column
     // With the intended curve: one per column, NaN while the servo's position is unknown.
     std::vector<double> intended;
+    std::array<double, 3> tip{};  // with_tip: the arm's tip in mm (backend/arm_geometry.hpp)
   };
   bool with_intended = false;
+  bool with_tip = false;        // the robot has an arm geometry
   std::vector<Sample> samples;  // every step_ms from 0, plus the final instant
   std::uint64_t duration_ms = 0;
 };
@@ -29,7 +32,8 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
                     bool with_intended = false);
 
 // "time_ms,claw,elbow\n0,500,500\n..."; with the intended curve each servo's column is
-// followed by "<name>_intended" (two decimals, empty while unknown).
+// followed by "<name>_intended" (two decimals, empty while unknown); an arm with geometry ends
+// each row with "tip_x,tip_y,tip_z" (mm, two decimals).
 std::string to_csv(const Simulation& sim);
 
 // Per servo the program moves: the largest distance between the compiled motion and the

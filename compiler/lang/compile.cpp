@@ -52,8 +52,7 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
   if (const YamlNode* r = file.root->find("robot")) {
     robot = parse_robot(*r, reporter);
   } else {
-    reporter.error(file.root->location,
-                   "missing 'robot': name the robot this file is for (" + profile_list() + ")");
+    report_missing_robot(*file.root, file.path, reporter);
   }
   if (!robot) return out;
 

@@ -11,6 +11,23 @@ namespace {
 // degrees. 375 deg/s is 1562.5 units/s on the xArm (1000 units over 240 deg) and 4166.7 us/s on
 // a PWM servo (2000 us over 180 deg).
 constexpr double kRatedDegreesPerSecond = 60 / 0.16;
+// The xArm 1S's links, from public xArm 1S URDF descriptions (upper arm and forearm about 97 and
+// 96 mm; the hand measured to the claw's tip). Shoulder, elbow and wrist servos are mounted so
+// that a larger position tilts the arm back towards the base axis.
+// A function's static, so the table (itself a function's static) never sees it uninitialised.
+const ArmGeometry& xarm_arm() {
+  static const ArmGeometry arm = {.base_height = 72,
+                                  .upper_arm = 97,
+                                  .forearm = 96,
+                                  .hand = 150,
+                                  .base = {"base", 500, 1},
+                                  .shoulder = {"shoulder", 500, -1},
+                                  .elbow = {"elbow", 500, -1},
+                                  .wrist = {"wrist_pitch", 500, -1},
+                                  .degrees_per_unit = 1,  // robot_from_profile sets the profile's
+                                  .claw = "claw"};
+  return arm;
+}
 const std::vector<RobotProfile>& profiles() {
   // One row per profile reads better than one field per line.
   // clang-format off
@@ -23,7 +40,7 @@ const std::vector<RobotProfile>& profiles() {
         {"elbow", 4},
         {"shoulder", 5},
         {"base", 6}},
-       "servo", kRatedDegreesPerSecond * 1000.0 / 240.0},
+       "servo", kRatedDegreesPerSecond * 1000.0 / 240.0, lsc::kMaxActions, &xarm_arm()},
       // Any LewanSoul/Hiwonder bus servos on the controller (humanoids, hexapods, the .d6a files
       // of Hiwonder's tools): ids 1-32 named s1..s32, the xArm's units and speed.
       {"bus", RobotKind::ServoController, "xarm", 1, 32, 0, 1000, 500, 0.0, 1000.0 / 240.0, {},
@@ -84,6 +101,10 @@ RobotInfo robot_from_profile(const RobotProfile& profile) {
     s.home = profile.home;
     if (profile.rated_speed > 0) s.max_speed = profile.rated_speed;
     robot.servos.push_back(std::move(s));
+  }
+  if (profile.arm != nullptr) {
+    robot.arm = *profile.arm;
+    robot.arm->degrees_per_unit = 1 / profile.units_per_degree;
   }
   return robot;
 }

@@ -25,10 +25,15 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
     // Safety: whatever the steps did, the stream ends with every speed at zero.
     emit(raspblock::Rocker{0, 0, 0}, end_at_);
   }
+  // Tracks of a `together` each run from the block's start: the stream goes out in time order
+  // (packets at one instant keep the order the steps wrote them in).
+  std::stable_sort(packets_.begin(), packets_.end(),
+                   [](const TimedPacket& a, const TimedPacket& b) { return a.at_ms < b.at_ms; });
   check_capacity();
   RaspblockProgram program;
   program.packets = std::move(packets_);
-  program.duration_ms = static_cast<std::uint32_t>(std::min(now_ms_, kRaspblockMaxStreamMs));
+  program.duration_ms = static_cast<std::uint32_t>(std::min<std::uint64_t>(
+      static_cast<std::uint64_t>(std::max<std::int64_t>(now_.round(), 0)), kRaspblockMaxStreamMs));
   timeline_.end = ExactMs(static_cast<std::int64_t>(program.duration_ms));
   program.timeline = std::move(timeline_);
   return program;
@@ -38,9 +43,10 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   const YamlNode* map = file_root(f, reporter_);
   if (map == nullptr) return;
   const YamlNode& root = *map;
-  reporter_.check_keys(
-      root, {"robot", "tempo", "resolution", "poses", "pid", "sequence", "name", "description"},
-      "at the top level");
+  reporter_.check_keys(root,
+                       {"robot", "tempo", "meter", "resolution", "poses", "sections", "pid",
+                        "sequence", "name", "description"},
+                       "at the top level");
   reporter_.check_free_text(root);
   if (!is_main) {
     check_included_robot(root, robot_.info.profile, reporter_);
@@ -60,9 +66,7 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   const YamlNode* sequence = find_sequence(root, reporter_);
   if (sequence == nullptr) return;
   if (is_main) end_at_ = sequence->location;
-  scopes_.push(scope);
-  run_steps(*sequence, "'sequence'");
-  scopes_.pop();
+  run_sequence(root, scope, *sequence, is_main);
 }
 
 FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
@@ -72,7 +76,8 @@ FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
   if (const YamlNode* p = root.find("poses")) parse_poses(*p, scope);
   if (const YamlNode* r = root.find("resolution")) {
     scopes_.push(scope);  // so beats use this file's tempo
-    auto ms = time_ms(*r, "'resolution'");
+    auto ms = scopes_.time_ms(*r, "'resolution'", kRaspblockMaxStreamMs,
+                              "is longer than a stream may last (24 hours)", reporter_);
     scopes_.pop();
     if (ms && *ms == 0) {
       reporter_.error(r->location, "'resolution' must be at least 1ms");
@@ -80,6 +85,7 @@ FileScope& RaspblockLowering::scope_for(const LoadedFile& f) {
       scope.resolution_ms = *ms;
     }
   }
+  if (const YamlNode* s = root.find("sections")) read_sections(*s, scope, reporter_);
   return scope;
 }
 
@@ -136,10 +142,16 @@ bool RaspblockLowering::check_limits(const PositionEntry& t, double units, std::
                                reporter_);
 }
 
-std::optional<std::uint32_t> RaspblockLowering::time_ms(const YamlNode& node,
-                                                        std::string_view what) {
-  return scopes_.time_ms(node, what, kRaspblockMaxStreamMs,
-                         "is longer than a stream may last (24 hours)", reporter_);
+std::optional<ExactMs> RaspblockLowering::exact_time(const YamlNode& node, std::string_view what) {
+  const std::optional<ExactMs> end = musical_time(node, what, now_);
+  if (!end) return std::nullopt;
+  const std::optional<ExactMs> exact = *end - now_;
+  if (exact->value() > static_cast<double>(kRaspblockMaxStreamMs)) {
+    reporter_.error(node.location,
+                    "'" + node.scalar + "' is longer than a stream may last (24 hours)");
+    return std::nullopt;
+  }
+  return exact;
 }
 
 // A drive lasts for its step: unless this step drives too (its speeds replace the old ones
@@ -149,15 +161,15 @@ void RaspblockLowering::begin_step(bool drives) {
   stop_due_ = false;
 }
 
-void RaspblockLowering::advance(std::uint32_t t, Location at) {
-  now_ms_ += t;
-  if (now_ms_ > kRaspblockMaxStreamMs && !full_) {
+void RaspblockLowering::advance(ExactMs t, Location at) {
+  now_ += t;
+  if (now_.value() > static_cast<double>(kRaspblockMaxStreamMs) && !full_) {
     reporter_.error(at, "the stream would last longer than 24 hours after this step");
     full_ = true;
   }
 }
 
-void RaspblockLowering::emit_at(std::uint64_t at_ms, raspblock::Packet packet, Location at) {
+void RaspblockLowering::emit_at(ExactMs at_time, raspblock::Packet packet, Location at) {
   if (full_) return;
   if (packets_.size() >= kRaspblockMaxPackets) {
     reporter_.error(at, "the stream would need more than " + grouped(kRaspblockMaxPackets) +
@@ -168,6 +180,8 @@ void RaspblockLowering::emit_at(std::uint64_t at_ms, raspblock::Packet packet, L
   }
   if (std::holds_alternative<raspblock::Rocker>(packet)) last_drive_at_ = at;
   include_sites_.try_emplace(key_of(at), reporter_.include_sites());
+  const std::int64_t at_ms = std::clamp<std::int64_t>(
+      at_time.round(), 0, static_cast<std::int64_t>(kRaspblockMaxStreamMs));
   packets_.push_back(TimedPacket{static_cast<std::uint32_t>(at_ms), std::move(packet), at});
 }
 

@@ -1,7 +1,9 @@
 // Lowers a choreography for the Raspblock car board (`robot: raspblock`, docs/raspblock.md)
 // into a timed packet stream: drives, gimbal and servo moves interpolated at the file's
-// resolution, waits, repeats, includes, tempo, and the PID settings sent first. Checks every
-// range, every key (with "did you mean"), and that the stream fits the 115200-baud link.
+// resolution, waits, and the PID settings sent first, with the structure and musical time
+// every robot kind shares (repeat, include, sections, together, at, tempo, meter;
+// step_walk.hpp). Checks every range, every key (with "did you mean"), and that the stream
+// fits the 115200-baud link.
 #pragma once
 
 #include <cstdint>

@@ -1,11 +1,18 @@
 // The Raspblock front end's state while it walks a file's steps (private to
 // raspblock_lowering.cpp, which reads files, values and builds the packet stream, and
 // raspblock_steps.cpp, which lowers each step). The board's outputs and their ranges are here.
+//
+// The walk (lists, repeat, include, sections, together, at, tempo, meter) is StepWalker's
+// (step_walk.hpp), as for the servo controllers: beats and bars go through the timeline's tempo
+// map, and a `together` block runs each track from the block's start. In a block the gimbal
+// (pan and tilt share one command), each of servo1-4 and the drive belong to one track each;
+// packets from the tracks are put in time order when the walk ends.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +25,7 @@
 #include "compiler/lang/raspblock_settings.hpp"
 #include "compiler/lang/scope_chain.hpp"
 #include "compiler/lang/step_parts.hpp"
+#include "compiler/lang/step_walk.hpp"
 #include "compiler/source/units.hpp"
 #include "compiler/timeline/easing.hpp"
 
@@ -57,19 +65,20 @@ inline std::string grouped(std::uint64_t n) {
 using LocationKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>;
 inline LocationKey key_of(const Location& at) { return {at.file, at.line, at.column}; }
 
-class RaspblockLowering {
+extern const StepTable kRaspblockSteps;
+
+class RaspblockLowering final : public StepWalker {
  public:
   RaspblockLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
-      : robot_(robot), loader_(loader), reporter_(reporter), scopes_({kPan, kTilt}) {
-    timeline_.resize(kChannels.size());
-  }
+      : StepWalker(loader, reporter, kRaspblockSteps, {kPan, kTilt}, kChannels.size()),
+        robot_(robot) {}
 
   RaspblockProgram run(const LoadedFile& main);
 
  private:
   // ---- files ---------------------------------------------------------------------------------
 
-  void run_file(const LoadedFile& f, bool is_main);
+  void run_file(const LoadedFile& f, bool is_main) override;
   FileScope& scope_for(const LoadedFile& f);
 
   // ---- values --------------------------------------------------------------------------------
@@ -80,12 +89,20 @@ class RaspblockLowering {
   static double absolute_units(const PositionEntry& t);
   bool check_limits(const PositionEntry& t, double units, std::string how,
                     std::optional<Reporter::Note> note = {});
-  std::optional<std::uint32_t> time_ms(const YamlNode& node, std::string_view what);
+  // A written time, exact (beats at any tempo stay fractions); nullopt after reporting.
+  std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
 
   // ---- steps ---------------------------------------------------------------------------------
 
-  void run_steps(const YamlNode& list, std::string_view what);
-  void run_step(const YamlNode& step);
+  // drive, move and wait.
+  void own_step(const YamlNode& verb, const YamlNode& step) override;
+  // A drive before the gap stops when its own step ends; nothing else is sent.
+  bool hold_until(ExactMs target, const YamlNode& at) override;
+  bool stopped() const override { return full_; }
+  std::unique_ptr<RepeatBudget> repeat_budget(const YamlNode& step, long long times) override;
+  std::unique_ptr<BlockRun> block_run(const YamlNode& step) override;
+  friend class RaspblockRepeatBudget;
+  friend class RaspblockBlockRun;
   void motion_step(const YamlNode& step, const YamlNode* drive_node, const YamlNode* move_node);
 
   // Resolves a move's targets into device units; false after reporting a mistake.
@@ -95,33 +112,32 @@ class RaspblockLowering {
   // the way and is sent at (k-1)/n of the time, so the servo reaches the target as the step
   // ends. An output without a known start goes straight to its target in the first packet.
   // A packet that would repeat the previous value of its output is left out.
-  void interpolate(Location at, std::uint64_t start, std::uint32_t t, std::uint64_t n, Easing ease,
+  // Times are exact: each packet's send time is rounded once, on the absolute timeline, so
+  // steps of fractional milliseconds (beats at 128 bpm are 468.75 ms) never drift.
+  void interpolate(Location at, ExactMs start, ExactMs t, std::uint64_t n, Easing ease,
                    const std::map<std::size_t, int>& targets);
   void wait_step(const YamlNode& step, const YamlNode& value);
-  void repeat_step(const YamlNode& step, const YamlNode& value);
-  void include_step(const YamlNode& value);
+  // Marks the outputs a motion step moves (and the drive) as its track's; false after
+  // reporting one that another track of a running block owns.
+  bool claim(const std::map<std::size_t, int>& targets, bool drives, Location at);
 
   // ---- the stream ----------------------------------------------------------------------------
 
   // A drive lasts for its step: unless this step drives too (its speeds replace the old ones
   // at the same instant), the car is stopped before the step starts.
   void begin_step(bool drives);
-  void advance(std::uint32_t t, Location at);
-  void emit(raspblock::Packet packet, Location at) { emit_at(now_ms_, std::move(packet), at); }
-  void emit_at(std::uint64_t at_ms, raspblock::Packet packet, Location at);
+  void advance(ExactMs t, Location at);
+  void emit(raspblock::Packet packet, Location at) { emit_at(now_, std::move(packet), at); }
+  // Sends at `at_time` rounded to the nearest millisecond of the stream's clock.
+  void emit_at(ExactMs at_time, raspblock::Packet packet, Location at);
   void check_capacity();
   const Robot& robot_;
-  FileLoader& loader_;
-  Reporter& reporter_;
-  ScopeChain scopes_;
   std::array<std::optional<int>, kChannels.size()> pos_;
-  std::uint64_t now_ms_ = 0;
   bool stop_due_ = false;
   bool full_ = false;
   Location last_drive_at_;
   Location end_at_;
   std::vector<TimedPacket> packets_;
-  Timeline timeline_;
   std::map<LocationKey, std::vector<Location>> include_sites_;
 };
 

@@ -1,5 +1,6 @@
-// The Raspblock front end's steps: drive, move (gimbal and servos, eased), wait, repeat and
-// include, each into packets on the stream.
+// The Raspblock front end's own steps (drive, move of the gimbal and servos, eased, and wait)
+// into packets on the stream, and its hooks into the shared walk (step_walk.hpp): how it holds
+// for `at:`, repeats within the stream's limits and stops a drive around `together` tracks.
 #include <algorithm>
 #include <cmath>
 
@@ -9,77 +10,149 @@
 
 namespace seqc::compiler {
 
-void RaspblockLowering::run_steps(const YamlNode& list, std::string_view what) {
-  for (const YamlNode& step : step_items(list, what, reporter_)) {
-    if (full_) return;
-    run_step(step);
+const StepTable kRaspblockSteps = {
+    {"drive", "move", "wait"},
+    {"drive", "move"},
+    {"drive", "move", "wait", "repeat", "include", "section", "together", "tempo", "meter", "time",
+     "ease", "steps", "do", "with", "at"},
+    "a step needs one of: drive, move, wait, repeat, include, section, together, tempo, meter",
+    "'drive: {x: 10}' or 'wait: 1s'",
+    "spin.yaml",
+    "'together: {wheels: [...], camera: [...]}'",
+    [](const std::string& path, const std::string& reason) {
+      return "cannot read included file '" + path + "': " + reason;
+    },
+};
+
+void RaspblockLowering::own_step(const YamlNode& verb, const YamlNode& step) {
+  if (verb.scalar == "wait") {
+    if (reporter_.check_keys(step, {"wait", "at"}, "in a wait step") && apply_at(step)) {
+      wait_step(step, *step.find("wait"));
+    }
+    return;
+  }
+  const YamlNode* drive = step.find("drive");
+  const YamlNode* move = step.find("move");
+  if (reporter_.check_keys(step, {"drive", "move", "time", "ease", "steps", "at"},
+                           drive != nullptr && move != nullptr
+                               ? "in a drive-and-move step"
+                               : (drive ? "in a drive step" : "in a move step")) &&
+      apply_at(step)) {
+    motion_step(step, drive, move);
   }
 }
 
-void RaspblockLowering::run_step(const YamlNode& step) {
-  static constexpr std::string_view kAlone[] = {"wait", "repeat", "include"};
-  if (!step.is_map()) {
-    reporter_.error(step.location,
-                    "a step must be a map such as 'drive: {x: 10}' or 'wait: 1s', not " +
-                        std::string(kind_name(step)));
-    return;
+bool RaspblockLowering::hold_until(ExactMs target, const YamlNode& at) {
+  // A drive lasts for its step, not until the next one starts.
+  begin_step(false);
+  advance(target - now_, at.location);
+  return true;
+}
+
+// After one pass the whole repeat's length is known: one that cannot fit fails there,
+// unexpanded (repeat 65535 nested six deep would otherwise run for hours).
+class RaspblockRepeatBudget final : public StepWalker::RepeatBudget {
+ public:
+  RaspblockRepeatBudget(RaspblockLowering& car, const YamlNode& step, long long times)
+      : car_(car), step_(step), times_(times) {}
+  bool before_pass(long long /*pass*/) override {
+    t0_ = car_.now_;
+    p0_ = car_.packets_.size();
+    return true;
   }
-  const YamlNode* alone = nullptr;
-  const YamlNode* other = nullptr;
-  for (const auto& [key, value] : step.entries) {
-    bool is_alone = false;
-    for (std::string_view v : kAlone) is_alone = is_alone || key.scalar == v;
-    const bool is_motion = key.scalar == "drive" || key.scalar == "move";
-    if (is_alone && alone == nullptr) {
-      alone = &key;
-    } else if (is_alone || is_motion) {
-      other = other == nullptr ? &key : other;
+  bool after_pass(long long pass) override {
+    if (car_.full_) return false;
+    if (pass > 0) return true;
+    const auto rest = static_cast<std::uint64_t>(times_ - 1);
+    const double dt = (car_.now_ - t0_).value();
+    const std::uint64_t dp = car_.packets_.size() - p0_;
+    const double left = static_cast<double>(kRaspblockMaxStreamMs) - car_.now_.value();
+    if (dt > 0 && static_cast<double>(rest) * dt > left) {
+      car_.reporter_.error(step_.location,
+                           "this repeat would make the stream last longer than 24 hours");
+      car_.full_ = true;
+    } else if (dp > 0 && rest > (kRaspblockMaxPackets - car_.packets_.size()) / dp) {
+      car_.reporter_.error(step_.location,
+                           fmt::format("this repeat would make the stream need more than {} "
+                                       "packets; use a coarser 'resolution' or fewer repeats",
+                                       grouped(kRaspblockMaxPackets)));
+      car_.full_ = true;
+    }
+    return !car_.full_;
+  }
+
+ private:
+  RaspblockLowering& car_;
+  const YamlNode& step_;
+  long long times_;
+  ExactMs t0_;
+  std::size_t p0_ = 0;
+};
+
+std::unique_ptr<StepWalker::RepeatBudget> RaspblockLowering::repeat_budget(const YamlNode& step,
+                                                                           long long times) {
+  return std::make_unique<RaspblockRepeatBudget>(*this, step, times);
+}
+
+// The block is a step that does not drive: a drive before it has lasted its time. The drive a
+// track ends with (one track drives, at most) lasts for its step, so it stops where that track
+// ends, unless the block ends there too (then the step after the block may take over its
+// speeds at the same instant).
+class RaspblockBlockRun final : public StepWalker::BlockRun {
+ public:
+  explicit RaspblockBlockRun(RaspblockLowering& car) : car_(car) { car_.begin_step(false); }
+  void track_ends() override {
+    if (car_.stop_due_) drive_ends_ = {car_.now_, car_.last_drive_at_};
+    car_.stop_due_ = false;
+  }
+  void block_ends(ExactMs /*start*/, ExactMs longest) override {
+    if (!drive_ends_) return;
+    if (drive_ends_->first < longest) {
+      car_.emit_at(drive_ends_->first, raspblock::Rocker{0, 0, 0}, drive_ends_->second);
+    } else {
+      car_.stop_due_ = true;
+      car_.last_drive_at_ = drive_ends_->second;
     }
   }
-  if (alone != nullptr && other != nullptr) {
-    const YamlNode& later = other->location.line > alone->location.line ||
-                                    (other->location.line == alone->location.line &&
-                                     other->location.column > alone->location.column)
-                                ? *other
-                                : *alone;
-    const YamlNode& earlier = &later == other ? *alone : *other;
-    reporter_.error(later.location, "a step does one thing: '" + later.scalar +
-                                        "' cannot be combined with '" + earlier.scalar +
-                                        "'; make it a separate step");
-    return;
-  }
-  if (alone == nullptr) {
-    const YamlNode* drive = step.find("drive");
-    const YamlNode* move = step.find("move");
-    if (drive == nullptr && move == nullptr) {
-      if (reporter_.check_keys(
-              step, {"drive", "move", "wait", "repeat", "include", "time", "ease", "steps", "do"},
-              "in a step")) {
-        reporter_.error(step.location,
-                        "a step needs one of: drive, move, wait, repeat, "
-                        "include");
-      }
-      return;
+
+ private:
+  RaspblockLowering& car_;
+  std::optional<std::pair<ExactMs, Location>> drive_ends_;
+};
+
+std::unique_ptr<StepWalker::BlockRun> RaspblockLowering::block_run(const YamlNode& /*step*/) {
+  return std::make_unique<RaspblockBlockRun>(*this);
+}
+
+bool RaspblockLowering::claim(const std::map<std::size_t, int>& targets, bool drives, Location at) {
+  static constexpr std::string_view kOneTrack =
+      "an output may move in one track of a "
+      "'together' only";
+  bool ok = true;
+  bool gimbal = false;
+  for (const auto& [c, units] : targets) {
+    if (kChannels[c].gimbal) {
+      gimbal = true;
+      continue;
     }
-    if (reporter_.check_keys(step, {"drive", "move", "time", "ease", "steps"},
-                             drive != nullptr && move != nullptr
-                                 ? "in a drive-and-move step"
-                                 : (drive ? "in a drive step" : "in a move step"))) {
-      motion_step(step, drive, move);
-    }
-    return;
+    ok = claims_.claim(c, "'" + std::string(kChannels[c].name) + "'", "moves", kOneTrack, at,
+                       reporter_) &&
+         ok;
   }
-  const std::string& verb = alone->scalar;
-  const YamlNode& value = *step.find(verb);
-  if (verb == "wait") {
-    if (reporter_.check_keys(step, {"wait"}, "in a wait step")) wait_step(step, value);
-  } else if (verb == "repeat") {
-    if (reporter_.check_keys(step, {"repeat", "do"}, "in a repeat step")) {
-      repeat_step(step, value);
-    }
-  } else if (reporter_.check_keys(step, {"include"}, "in an include step")) {
-    include_step(value);
+  // One command sets both gimbal servos, so pan and tilt belong to the same track.
+  if (gimbal) {
+    ok = claims_.claim(kPan, "the gimbal (pan and tilt)", "moves",
+                       "pan and tilt share one command, so they move in one track of a "
+                       "'together' only",
+                       at, reporter_) &&
+         ok;
   }
+  if (drives) {
+    ok = claims_.claim(kChannels.size(), "the car", "drives",
+                       "the drive belongs to one track of a 'together' only", at, reporter_) &&
+         ok;
+  }
+  return ok;
 }
 
 void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_node,
@@ -123,20 +196,23 @@ void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_
   }
   // The time after the targets, so mistakes come out in the order they are written.
   const YamlNode* time_node = step.find("time");
-  std::optional<std::uint32_t> total;
+  std::optional<ExactMs> total;
   if (time_node == nullptr) {
     reporter_.error(step.location, std::string("this ") + (move_node ? "move" : "drive") +
                                        " needs a 'time', e.g. 'time: 500ms'");
   } else {
-    total = time_ms(*time_node, "'time'");
-    if (total && *total == 0) {
+    total = exact_time(*time_node, "'time'");
+    // Under half a millisecond the stream's clock cannot tell the step from nothing.
+    if (total && total->round() <= 0) {
       reporter_.error(time_node->location, "'time' must be at least 1ms");
       total.reset();
     }
   }
   if (!ok || !total) return;
 
-  const std::uint32_t t = total.value_or(0);
+  const ExactMs exact_t = *total;
+  // Packet counts come from the step's length on the stream's 1 ms clock.
+  const auto t = static_cast<std::uint32_t>(exact_t.round());
   std::uint64_t n = 1;
   if (steps) {
     n = static_cast<std::uint64_t>(*steps);
@@ -153,14 +229,15 @@ void RaspblockLowering::motion_step(const YamlNode& step, const YamlNode* drive_
     n = std::max<std::uint64_t>(1, (t + res / 2) / res);
   }
 
+  if (!claim(targets, drive.has_value(), step.location)) return;
   begin_step(drive.has_value());
-  const std::uint64_t start = now_ms_;
+  const ExactMs start = now_;
   if (drive) {
     emit(*drive, step.location);
     stop_due_ = true;
   }
-  if (move_node != nullptr) interpolate(step.location, start, t, n, ease, targets);
-  advance(t, step.location);
+  if (move_node != nullptr) interpolate(step.location, start, exact_t, n, ease, targets);
+  advance(exact_t, step.location);
 }
 
 // Resolves a move's targets into device units; false after reporting a mistake.
@@ -223,9 +300,8 @@ bool RaspblockLowering::resolve_move(const YamlNode& target, std::map<std::size_
 // the way and is sent at (k-1)/n of the time, so the servo reaches the target as the step
 // ends. An output without a known start goes straight to its target in the first packet.
 // A packet that would repeat the previous value of its output is left out.
-void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint32_t t,
-                                    std::uint64_t n, Easing ease,
-                                    const std::map<std::size_t, int>& targets) {
+void RaspblockLowering::interpolate(Location at, ExactMs start, ExactMs t, std::uint64_t n,
+                                    Easing ease, const std::map<std::size_t, int>& targets) {
   // The move on the timeline first (an output without a known start jumps: a flat segment at
   // its target); the packets then sample each output's segment.
   std::map<std::size_t, Segment> curve;
@@ -233,8 +309,8 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
     Segment seg;
     seg.kind = ease.is_linear() ? CurveKind::Linear : CurveKind::Eased;
     seg.easing = ease;
-    seg.start = ExactMs(static_cast<std::int64_t>(start));
-    seg.end = ExactMs(static_cast<std::int64_t>(start + t));
+    seg.start = start;
+    seg.end = start + t;
     seg.from = pos_[c] ? *pos_[c] : end;
     seg.to = end;
     seg.at = at;
@@ -242,10 +318,11 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
     timeline_.add(c, seg);
   }
   for (std::uint64_t k = 1; k <= n && !full_; ++k) {
-    const std::uint64_t send = start + (std::uint64_t{t} * (k - 1) + n / 2) / n;
+    const auto parts = static_cast<std::int64_t>(n);
+    const auto done = static_cast<std::int64_t>(k);
+    const ExactMs send = start + t * ExactMs::ratio(done - 1, parts);
     // The position k/n of the way through the move, sent at (k-1)/n of its time.
-    const double when = static_cast<double>(start) +
-                        static_cast<double>(t) * static_cast<double>(k) / static_cast<double>(n);
+    const double when = (start + t * ExactMs::ratio(done, parts)).value();
     std::array<std::optional<int>, kChannels.size()> next;
     for (const auto& [c, seg] : curve) {
       next[c] = k < n ? static_cast<int>(std::llround(seg.value(when))) : targets.at(c);
@@ -272,52 +349,10 @@ void RaspblockLowering::interpolate(Location at, std::uint64_t start, std::uint3
 }
 
 void RaspblockLowering::wait_step(const YamlNode& step, const YamlNode& value) {
-  auto total = time_ms(value, "'wait'");
+  auto total = exact_time(value, "'wait'");
   if (!total) return;
   begin_step(false);
   advance(*total, step.location);
-}
-
-void RaspblockLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
-  const auto repeat = parse_repeat(step, value, reporter_);
-  if (!repeat) return;
-  for (long long i = 0; i < repeat->times && !full_; ++i) {
-    const std::size_t errors_before = reporter_.errors_reported();
-    const std::uint64_t t0 = now_ms_;
-    const std::size_t p0 = packets_.size();
-    run_steps(*repeat->body, "'do'");
-    // Further passes would only repeat the same mistakes (and nested repeats never end).
-    if (reporter_.errors_reported() > errors_before || full_) break;
-    if (i > 0) continue;
-    // After one pass the whole repeat's length is known: one that cannot fit fails here,
-    // unexpanded (repeat 65535 nested six deep would otherwise run for hours).
-    const auto rest = static_cast<std::uint64_t>(repeat->times - 1);
-    const std::uint64_t dt = now_ms_ - t0;
-    const std::uint64_t dp = packets_.size() - p0;
-    if (dt > 0 && rest > (kRaspblockMaxStreamMs - std::min(now_ms_, kRaspblockMaxStreamMs)) / dt) {
-      reporter_.error(step.location, "this repeat would make the stream last longer than 24 hours");
-      full_ = true;
-    } else if (dp > 0 && rest > (kRaspblockMaxPackets - packets_.size()) / dp) {
-      reporter_.error(step.location,
-                      fmt::format("this repeat would make the stream need more than {} packets; "
-                                  "use a coarser 'resolution' or fewer repeats",
-                                  grouped(kRaspblockMaxPackets)));
-      full_ = true;
-    }
-  }
-}
-
-void RaspblockLowering::include_step(const YamlNode& value) {
-  const LoadedFile* loaded = scopes_.load_include(
-      value, "spin.yaml",
-      [](const std::string& path, const std::string& reason) {
-        return "cannot read included file '" + path + "': " + reason;
-      },
-      loader_, reporter_);
-  if (loaded == nullptr) return;
-  reporter_.push_include(value.location);
-  run_file(*loaded, false);
-  reporter_.pop_include();
 }
 
 }  // namespace seqc::compiler

@@ -22,17 +22,27 @@ void Reporter::report(Severity severity, Location at, std::string message,
     diags_.warning(at, std::move(message));
   }
   if (note) diags_.note(note->at, std::move(note->message));
+  for (auto it = contexts_.rbegin(); it != contexts_.rend(); ++it) {
+    diags_.note(it->at, it->message);
+  }
+  if (severity == Severity::Warning) {
+    for (auto it = performances_.rbegin(); it != performances_.rend(); ++it) {
+      diags_.note(it->first, "in section '" + it->second + "', performed here");
+    }
+  }
   for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {
     diags_.note(*it, "included from here");
   }
 }
 
 void Reporter::unknown(Location at, std::string_view what, std::string_view word,
-                       const std::vector<std::string>& candidates, std::string_view where) {
+                       const std::vector<std::string>& candidates, std::string_view where,
+                       std::string_view known) {
   std::string message = fmt::format("unknown {} '{}'", what, word);
   if (!where.empty()) fmt::format_to(std::back_inserter(message), " {}", where);
   const std::string suggestion = did_you_mean(word, candidates);
   if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+  if (!known.empty()) fmt::format_to(std::back_inserter(message), " ({})", known);
   error(at, std::move(message));
 }
 
@@ -45,7 +55,7 @@ void Reporter::check_free_text(const YamlNode& root) {
   }
 }
 
-bool Reporter::check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
+bool Reporter::check_keys(const YamlNode& map, std::span<const std::string_view> allowed,
                           std::string_view where) {
   bool ok = true;
   for (const auto& [key, value] : map.entries) {

@@ -24,7 +24,10 @@ const RobotProfile* profile_named(const YamlNode& value, Reporter& reporter) {
     return nullptr;
   }
   const RobotProfile* profile = find_profile(value.scalar);
-  if (profile == nullptr) reporter.unknown(value.location, "robot", value.scalar, profile_names());
+  if (profile == nullptr) {
+    reporter.unknown(value.location, "robot", value.scalar, profile_names(), {},
+                     "robots: " + profile_list());
+  }
   return profile;
 }
 
@@ -191,6 +194,139 @@ void parse_mirror(Robot& robot, const YamlNode& table, Reporter& reporter) {
   }
 }
 
+// A length in mm: "97" or "97mm", above 0 and at most 5000.
+std::optional<double> parse_length(const YamlNode& value, std::string_view what,
+                                   Reporter& reporter) {
+  std::string_view text = value.is_scalar() ? std::string_view(value.scalar) : "";
+  if (text.size() > 2 && text.substr(text.size() - 2) == "mm") text.remove_suffix(2);
+  double mm = 0;
+  if (text.empty() || !parse_decimal(text, mm) || mm <= 0 || mm > 5000) {
+    reporter.error(value.location, "'" + std::string(what) +
+                                       "' must be a length in mm above 0 (at most 5000), e.g. 97 "
+                                       "or 97mm");
+    return std::nullopt;
+  }
+  return mm;
+}
+
+// One entry of `arm: {joints: ...}`: {servo, zero, sign}.
+void parse_joint(const Robot& robot, const YamlNode& key, const YamlNode& value, ArmJoint& joint,
+                 Reporter& reporter) {
+  if (!value.is_map()) {
+    reporter.error(value.location, "joint '" + key.scalar +
+                                       "' must be a map of servo, zero and sign, e.g. {servo: "
+                                       "elbow, zero: 500, sign: -1}");
+    return;
+  }
+  reporter.check_keys(value, {"servo", "zero", "sign"}, "in an arm joint");
+  if (const YamlNode* n = value.find("servo")) {
+    if (!n->is_scalar()) {
+      reporter.error(n->location, "a joint's 'servo' must be a servo name");
+    } else if (robot.names.find(n->scalar) == robot.names.end()) {
+      reporter.unknown(n->location, "servo", n->scalar, robot.name_list(),
+                       "for arm joint '" + key.scalar + "'");
+    } else {
+      joint.servo = robot.info.servos[robot.names.find(n->scalar)->second].name;
+    }
+  }
+  if (const YamlNode* n = value.find("zero")) {
+    if (auto zero =
+            parse_integer(*n, robot.profile->min, robot.profile->max,
+                          "a joint's 'zero' on " + std::string(robot.profile->name), reporter)) {
+      joint.zero = static_cast<double>(*zero);
+    }
+  }
+  if (const YamlNode* n = value.find("sign")) {
+    if (n->is_scalar() && (n->scalar == "1" || n->scalar == "+1" || n->scalar == "-1")) {
+      joint.sign = n->scalar == "-1" ? -1 : 1;
+    } else {
+      reporter.error(n->location, "a joint's 'sign' must be 1 or -1");
+    }
+  }
+}
+
+// `arm:` (docs/language.md, "The arm's geometry"): lengths in mm and the joints' servos, over the
+// profile's built-in geometry when it has one.
+void parse_arm(Robot& robot, const YamlNode& value, Reporter& reporter) {
+  const RobotProfile& profile = *robot.profile;
+  if (profile.kind != RobotKind::ServoController) {
+    reporter.error(value.location,
+                   "'arm' is for servo controllers; " + std::string(profile.name) + " has no arm");
+    return;
+  }
+  if (!value.is_map()) {
+    reporter.error(value.location,
+                   "'arm' must be a map of base_height, upper_arm, forearm, hand (mm), joints and "
+                   "claw");
+    return;
+  }
+  const std::size_t errors = reporter.errors_reported();
+  reporter.check_keys(value, {"base_height", "upper_arm", "forearm", "hand", "joints", "claw"},
+                      "in 'arm'");
+  ArmGeometry arm;
+  if (robot.info.arm) {
+    arm = *robot.info.arm;
+  } else {
+    arm.degrees_per_unit = 1 / profile.units_per_degree;
+    for (ArmJoint* j : {&arm.base, &arm.shoulder, &arm.elbow, &arm.wrist}) {
+      j->zero = profile.home;
+    }
+  }
+  const std::pair<const char*, double*> lengths[] = {{"base_height", &arm.base_height},
+                                                     {"upper_arm", &arm.upper_arm},
+                                                     {"forearm", &arm.forearm},
+                                                     {"hand", &arm.hand}};
+  for (const auto& [name, field] : lengths) {
+    if (const YamlNode* n = value.find(name)) {
+      if (auto mm = parse_length(*n, name, reporter)) *field = *mm;
+    }
+  }
+  if (const YamlNode* joints = value.find("joints")) {
+    if (!joints->is_map()) {
+      reporter.error(joints->location,
+                     "'joints' must be a map of base, shoulder, elbow, wrist: {servo, zero, sign}");
+    } else {
+      reporter.check_keys(*joints, {"base", "shoulder", "elbow", "wrist"}, "in 'joints'");
+      const std::pair<const char*, ArmJoint*> names[] = {{"base", &arm.base},
+                                                         {"shoulder", &arm.shoulder},
+                                                         {"elbow", &arm.elbow},
+                                                         {"wrist", &arm.wrist}};
+      for (const auto& [key, def] : joints->entries) {
+        for (const auto& [name, joint] : names) {
+          if (key.scalar == name) parse_joint(robot, key, def, *joint, reporter);
+        }
+      }
+    }
+  }
+  if (const YamlNode* n = value.find("claw")) {
+    if (!n->is_scalar() || robot.names.find(n->scalar) == robot.names.end()) {
+      reporter.unknown(n->location, "servo", n->is_scalar() ? n->scalar : "", robot.name_list(),
+                       "for the arm's claw");
+    } else {
+      arm.claw = robot.info.servos[robot.names.find(n->scalar)->second].name;
+    }
+  }
+  if (reporter.errors_reported() != errors) return;
+  std::string missing;
+  for (const auto& [name, field] : lengths) {
+    if (*field <= 0) missing += std::string(missing.empty() ? "" : ", ") + name;
+  }
+  for (const auto& [name, joint] : {std::pair<const char*, const ArmJoint*>{"base", &arm.base},
+                                    {"shoulder", &arm.shoulder},
+                                    {"elbow", &arm.elbow},
+                                    {"wrist", &arm.wrist}}) {
+    if (joint->servo.empty()) {
+      missing += std::string(missing.empty() ? "" : ", ") + "joints: " + name + ": servo";
+    }
+  }
+  if (!missing.empty()) {
+    reporter.error(value.location, "'arm' on " + std::string(profile.name) +
+                                       " (no built-in geometry) needs " + missing);
+    return;
+  }
+  robot.info.arm = arm;
+}
+
 }  // namespace
 
 std::vector<std::string> Robot::name_list() const {
@@ -233,7 +369,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
   Robot robot;
   const YamlNode* profile_node = &value;
   if (value.is_map()) {
-    reporter.check_keys(value, {"profile", "servos", "mirror"}, "in 'robot'");
+    reporter.check_keys(value, {"profile", "servos", "mirror", "arm"}, "in 'robot'");
     profile_node = value.find("profile");
     if (profile_node == nullptr) {
       reporter.error(value.location, "'robot' needs a 'profile': one of " + profile_list());
@@ -271,6 +407,19 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
     }
   }
   if (const YamlNode* mirror = value.find("mirror")) parse_mirror(robot, *mirror, reporter);
+  if (robot.info.arm) {
+    // The built-in geometry names the profile's servos; the file may have renamed them.
+    for (ArmJoint* j : {&robot.info.arm->base, &robot.info.arm->shoulder, &robot.info.arm->elbow,
+                        &robot.info.arm->wrist}) {
+      if (auto it = robot.names.find(j->servo); it != robot.names.end()) {
+        j->servo = robot.info.servos[it->second].name;
+      }
+    }
+    if (auto it = robot.names.find(robot.info.arm->claw); it != robot.names.end()) {
+      robot.info.arm->claw = robot.info.servos[it->second].name;
+    }
+  }
+  if (const YamlNode* arm = value.find("arm")) parse_arm(robot, *arm, reporter);
   return finish();
 }
 
@@ -282,13 +431,25 @@ std::optional<RobotInfo> robot_of_text(const std::string& path, const std::strin
   Reporter reporter(diags);
   const YamlNode* robot = root->is_map() ? root->find("robot") : nullptr;
   if (robot == nullptr) {
-    reporter.error(root->location,
-                   "missing 'robot': name the robot this file is for (" + profile_list() + ")");
+    report_missing_robot(*root, path, reporter);
     return std::nullopt;
   }
   std::optional<Robot> parsed = parse_robot(*robot, reporter);
   if (!parsed || diags.has_errors()) return std::nullopt;
   return parsed->info;
+}
+
+void report_missing_robot(const YamlNode& root, const std::string& path, Reporter& reporter) {
+  for (const YamlEntry& entry : root.entries) {
+    if (entry.first.scalar != "performers") continue;
+    reporter.error(
+        entry.first.location,
+        "this is a show file (it has 'performers'), not one robot's choreography",
+        Reporter::Note{entry.first.location, "a show runs with 'seqc show " + path + "'"});
+    return;
+  }
+  reporter.error(root.location,
+                 "missing 'robot': name the robot this file is for (" + profile_list() + ")");
 }
 
 std::optional<std::string> included_robot_name(const YamlNode& value, Reporter& reporter) {

@@ -38,6 +38,10 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter);
 std::optional<RobotInfo> robot_of_text(const std::string& path, const std::string& text,
                                        SourceManager& sources, Diagnostics& diags);
 
+// A main file without `robot:`: "missing 'robot'", or, for a show file (it has `performers:`),
+// that it is a show and `seqc show PATH` runs it.
+void report_missing_robot(const YamlNode& root, const std::string& path, Reporter& reporter);
+
 // The profile name an included file's `robot:` names (it may not define servos).
 std::optional<std::string> included_robot_name(const YamlNode& value, Reporter& reporter);
 

@@ -65,35 +65,20 @@ const YamlNode* ScopeChain::find_section(const YamlNode& name, Reporter& reporte
 std::optional<ExactMs> ScopeChain::exact_ms(const YamlNode& node, std::string_view what,
                                             std::optional<double> tempo_override,
                                             Reporter& reporter) const {
-  if (!node.is_scalar()) {
-    reporter.error(node.location, std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
-    return std::nullopt;
-  }
-  auto t = parse_time(node.scalar);
-  if (!t) {
-    reporter.error(node.location, t.error().message);
-    return std::nullopt;
-  }
-  if (t->amount > 1e9) {
-    reporter.error(node.location, "'" + node.scalar + "' is far longer than any sequence");
-    return std::nullopt;
-  }
+  const std::optional<TimeValue> t = parse_time_node(node, what, reporter);
+  if (!t) return std::nullopt;
   ExactMs ms = ExactMs::from_double(t->amount);
   if (t->unit == TimeUnit::Seconds) ms = ms * ExactMs(1000);
   if (t->unit == TimeUnit::Beats || t->unit == TimeUnit::Bars) {
     const std::optional<double> tempo = tempo_override ? tempo_override : this->tempo();
     if (!tempo) {
-      reporter.error(node.location, "'" + node.scalar +
-                                        "' counts beats but no 'tempo' is set; add e.g. "
-                                        "'tempo: 120' at the top of the file");
+      report_no_tempo(node, reporter);
       return std::nullopt;
     }
     if (t->unit == TimeUnit::Bars) {
       const std::optional<int> bar = beats_per_bar();
       if (!bar) {
-        reporter.error(node.location, "'" + node.scalar +
-                                          "' counts bars but no 'meter' is set; add e.g. "
-                                          "'meter: 4/4' at the top of the file");
+        report_no_meter(node, reporter);
         return std::nullopt;
       }
       ms = ms * ExactMs(*bar);
@@ -240,6 +225,36 @@ const YamlNode* find_sequence(const YamlNode& root, Reporter& reporter) {
     reporter.error(root.location, "missing 'sequence': the list of steps to perform");
   }
   return sequence;
+}
+
+std::optional<TimeValue> parse_time_node(const YamlNode& node, std::string_view what,
+                                         Reporter& reporter) {
+  if (!node.is_scalar()) {
+    reporter.error(node.location, std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
+    return std::nullopt;
+  }
+  auto t = parse_time(node.scalar);
+  if (!t) {
+    reporter.error(node.location, t.error().message);
+    return std::nullopt;
+  }
+  if (t->amount > 1e9) {
+    reporter.error(node.location, "'" + node.scalar + "' is far longer than any sequence");
+    return std::nullopt;
+  }
+  return *t;
+}
+
+void report_no_tempo(const YamlNode& node, Reporter& reporter) {
+  reporter.error(node.location, "'" + node.scalar +
+                                    "' counts beats but no 'tempo' is set; add e.g. "
+                                    "'tempo: 120' at the top of the file");
+}
+
+void report_no_meter(const YamlNode& node, Reporter& reporter) {
+  reporter.error(node.location, "'" + node.scalar +
+                                    "' counts bars but no 'meter' is set; add e.g. "
+                                    "'meter: 4/4' at the top of the file");
 }
 
 std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter) {

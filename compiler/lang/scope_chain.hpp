@@ -17,6 +17,7 @@
 #include "compiler/lang/file_loader.hpp"
 #include "compiler/lang/positions.hpp"
 #include "compiler/lang/reporter.hpp"
+#include "compiler/source/units.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/yaml/yaml_tree.hpp"
 
@@ -120,6 +121,15 @@ bool check_included_robot(const YamlNode& root, const std::string& profile, Repo
 
 // The file's 'sequence'; nullptr after reporting that it is missing.
 const YamlNode* find_sequence(const YamlNode& root, Reporter& reporter);
+
+// `node` as a time value (500ms, 1.5s, 2b, 2bar); nullopt after reporting what is wrong with it
+// (`what` names it in the message for a value that is no time at all).
+std::optional<TimeValue> parse_time_node(const YamlNode& node, std::string_view what,
+                                         Reporter& reporter);
+
+// The errors for a time in beats where no tempo is set and one in bars where no meter is.
+void report_no_tempo(const YamlNode& node, Reporter& reporter);
+void report_no_meter(const YamlNode& node, Reporter& reporter);
 
 // Parses a file's 'tempo': beats per minute, 1-1000, optionally written with "bpm".
 std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter);

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/lang/servo_lowering_state.hpp"
@@ -22,22 +25,25 @@ std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
              : a + b;
 }
 
-std::string format_exact_ms(ExactMs t) {
-  const double ms = t.value();
-  if (ms == std::floor(ms)) return std::to_string(static_cast<long long>(ms)) + "ms";
-  return format_ms(ms);
-}
-
 }  // namespace
 
+const StepTable kServoSteps = {
+    {"move", "wait", "through", "mirror", "tolerance"},
+    {},
+    {"move", "wait", "through", "repeat", "include", "mirror", "section", "together", "tempo",
+     "meter", "tolerance", "time", "ease", "steps", "do", "with", "at"},
+    "a step needs one of: move, wait, through, repeat, include, mirror, section, together, "
+    "tempo, meter, tolerance",
+    "'move: home' or 'wait: 1s'",
+    "wave.yaml",
+    "'together: {arm: [...], claw: [...]}'",
+    [](const std::string&, const std::string& reason) { return "cannot include it: " + reason; },
+};
+
 ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
-    : robot_(robot),
-      loader_(loader),
-      reporter_(reporter),
-      scopes_(robot.home_servos),
-      pos_(robot.info.servos.size()) {
-  timeline_.resize(robot.info.servos.size());
-}
+    : StepWalker(loader, reporter, kServoSteps, robot.home_servos, robot.info.servos.size()),
+      robot_(robot),
+      pos_(robot.info.servos.size()) {}
 
 ServoProgram ServoLowering::run(const LoadedFile& main) {
   run_file(main, true);
@@ -76,16 +82,43 @@ void ServoLowering::finish(ServoProgram& program) {
   } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
     reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
   }
-  for (const FitShortfall& s : fit.shortfalls) {
-    const ServoInfo& info = robot_.info.servos[s.servo];
+  // One warning per curve: its worst miss, naming every servo that misses it (each 20ms
+  // action that falls short is a shortfall of its own, the same fact many times over).
+  std::vector<bool> told(fit.shortfalls.size(), false);
+  for (std::size_t i = 0; i < fit.shortfalls.size(); ++i) {
+    if (told[i]) continue;
+    const FitShortfall& first = fit.shortfalls[i];
+    FitShortfall worst = first;
+    std::vector<std::size_t> servos;
+    for (std::size_t j = i; j < fit.shortfalls.size(); ++j) {
+      const FitShortfall& s = fit.shortfalls[j];
+      if (told[j] || s.where != first.where || s.tolerance != first.tolerance) continue;
+      told[j] = true;
+      if (std::find(servos.begin(), servos.end(), s.servo) == servos.end()) {
+        servos.push_back(s.servo);
+      }
+      if (s.error > worst.error) worst = s;
+    }
     // A curve always has a segment; should one not, the warning still points into the file.
     const Location where =
-        s.where.file != kNoFile ? s.where : sequence_at_.value_or(Location{0, 1, 1});
-    const std::string message = "even 20ms actions cannot keep '" + info.name + "' within " +
-                                format_units(s.tolerance) + " of this curve: it is " +
-                                format_units(s.error) + " off at " + format_seconds(s.at_ms);
+        first.where.file != kNoFile ? first.where : sequence_at_.value_or(Location{0, 1, 1});
+    std::string who;
+    for (std::size_t servo : servos) {
+      who += (who.empty() ? "'" : ", '") + robot_.info.servos[servo].name + "'";
+    }
+    const std::string message =
+        servos.size() == 1
+            ? "even 20ms actions cannot keep " + who + " within " + format_units(worst.tolerance) +
+                  " of this curve: it is " + format_units(worst.error) + " off at " +
+                  format_seconds(worst.at_ms)
+            : "even 20ms actions cannot keep servos " + who + " within " +
+                  format_units(worst.tolerance) + " of this curve: up to " +
+                  format_units(worst.error) + " off ('" + robot_.info.servos[worst.servo].name +
+                  "' at " + format_seconds(worst.at_ms) + ")";
     reporter_.warning(where, message);
-    timeline_.warnings.push_back({static_cast<double>(s.at_ms), s.servo, message});
+    for (std::size_t servo : servos) {
+      timeline_.warnings.push_back({static_cast<double>(worst.at_ms), servo, message});
+    }
   }
   for (const FittedAction& a : fit.actions) {
     Keyframe k;
@@ -124,14 +157,8 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
   FileScope& scope = scope_for(f);
   const YamlNode* sequence = find_sequence(root, reporter_);
   if (sequence == nullptr) return;
-  if (is_main) {
-    sequence_at_ = sequence->location;
-    timeline_.tempo = scope.tempo.value_or(0);
-    timeline_.beats_per_bar = scope.beats_per_bar.value_or(0);
-  }
-  scopes_.push(scope);
-  run_steps(*sequence, "'sequence'");
-  scopes_.pop();
+  if (is_main) sequence_at_ = sequence->location;
+  run_sequence(root, scope, *sequence, is_main);
 }
 
 FileScope& ServoLowering::scope_for(const LoadedFile& f) {
@@ -165,153 +192,150 @@ FileScope& ServoLowering::scope_for(const LoadedFile& f) {
     }
   }
   if (const YamlNode* t = root.find("tolerance")) scope.tolerance = parse_tolerance(*t);
-  if (const YamlNode* s = root.find("sections")) {
-    if (!s->is_map()) {
-      reporter_.error(s->location, "'sections' must be a map of section names to step lists");
-    } else {
-      for (const auto& [name, list] : s->entries) scope.sections[name.scalar] = &list;
-    }
-  }
+  if (const YamlNode* s = root.find("sections")) read_sections(*s, scope, reporter_);
   scopes_.pop();
   return scope;
 }
 
-// ---- step lists and structural steps ----------------------------------------------------------
+// ---- the walk's hooks ------------------------------------------------------------------------
 
-void ServoLowering::run_steps(const YamlNode& list, std::string_view what) {
-  lists_.push_back({now_, std::nullopt, std::nullopt});
-  for (const YamlNode& step : step_items(list, what, reporter_)) run_step(step);
-  lists_.pop_back();
+bool ServoLowering::is_verb(std::string_view key, const YamlNode& step) const {
+  if (key == "tolerance") return step.entries.size() == 1;
+  return StepWalker::is_verb(key, step);
 }
 
-void ServoLowering::run_step(const YamlNode& step) {
-  static constexpr std::string_view kVerbs[] = {"move",    "wait",     "through", "repeat",
-                                                "include", "mirror",   "section", "together",
-                                                "tempo",   "tolerance"};
-  if (!step.is_map()) {
-    reporter_.error(step.location, "a step must be a map such as 'move: home' or 'wait: 1s', not " +
-                                       std::string(kind_name(step)));
-    return;
-  }
-  const YamlNode* verb_key = nullptr;
-  const YamlNode* verb_value = nullptr;
-  for (const auto& [key, value] : step.entries) {
-    // 'tolerance' is a verb only on its own: on a move or through it is a setting.
-    if (key.scalar == "tolerance" && step.entries.size() > 1) continue;
-    for (std::string_view v : kVerbs) {
-      if (key.scalar != v) continue;
-      if (verb_key != nullptr) {
-        reporter_.error(key.location, "a step does one thing: '" + key.scalar +
-                                          "' cannot be combined with '" + verb_key->scalar +
-                                          "'; make it a separate step");
-        return;
-      }
-      verb_key = &key;
-      verb_value = &value;
-    }
-  }
-  if (verb_key == nullptr) {
-    if (reporter_.check_keys(
-            step,
-            {"move", "wait", "through", "repeat", "include", "mirror", "section", "together",
-             "tempo", "tolerance", "time", "ease", "steps", "do", "at"},
-            "in a step")) {
-      reporter_.error(step.location,
-                      "a step needs one of: move, wait, through, repeat, include, mirror, "
-                      "section, together, tempo, tolerance");
-    }
-    return;
-  }
-  const std::string& verb = verb_key->scalar;
-  if (verb == "move") {
+void ServoLowering::own_step(const YamlNode& verb, const YamlNode& step) {
+  const std::string& name = verb.scalar;
+  const YamlNode& value = *step.find(name);
+  if (name == "move") {
     // Every mistake of the step is reported, so unknown keys do not stop the checks.
     const bool keys_ok = reporter_.check_keys(
         step, {"move", "time", "ease", "steps", "tolerance", "at"}, "in a move step");
-    if (apply_at(step)) move_step(step, *verb_value, keys_ok);
-  } else if (verb == "wait") {
+    if (apply_at(step)) move_step(step, value, keys_ok);
+  } else if (name == "wait") {
     reporter_.check_keys(step, {"wait", "at"}, "in a wait step");
-    if (apply_at(step)) wait_step(step, *verb_value);
-  } else if (verb == "through") {
+    if (apply_at(step)) wait_step(step, value);
+  } else if (name == "through") {
     reporter_.check_keys(step, {"through", "tolerance", "at"}, "in a through step");
-    if (apply_at(step)) through_step(step, *verb_value);
-  } else if (verb == "repeat") {
-    if (reporter_.check_keys(step, {"repeat", "do", "at"}, "in a repeat step") && apply_at(step)) {
-      repeat_step(step, *verb_value);
-    }
-  } else if (verb == "include") {
-    if (reporter_.check_keys(step, {"include", "at"}, "in an include step") && apply_at(step)) {
-      include_step(*verb_value);
-    }
-  } else if (verb == "mirror") {
+    if (apply_at(step)) through_step(step, value);
+  } else if (name == "mirror") {
     if (reporter_.check_keys(step, {"mirror", "at"}, "in a mirror step") && apply_at(step)) {
-      mirror_step(step, *verb_value);
+      mirror_step(step, value);
     }
-  } else if (verb == "section") {
-    if (reporter_.check_keys(step, {"section", "at"}, "in a section step") && apply_at(step)) {
-      section_step(*verb_value);
-    }
-  } else if (verb == "together") {
-    if (reporter_.check_keys(step, {"together", "at"}, "in a together step") && apply_at(step)) {
-      together_step(step, *verb_value);
-    }
-  } else if (verb == "tempo") {
-    if (reporter_.check_keys(step, {"tempo"}, "in a tempo step")) tempo_step(*verb_value);
   } else {
-    tolerance_step(*verb_value);
+    tolerance_step(value);
   }
 }
 
-bool ServoLowering::apply_at(const YamlNode& step) {
-  const YamlNode* at = step.find("at");
-  if (at == nullptr) return true;
-  const std::optional<double> tempo = lists_.back().tempo;
-  auto offset = scopes_.exact_ms(*at, "'at'", tempo, reporter_);
-  if (!offset) return false;
-  const ExactMs target = lists_.back().start + *offset;
-  if (target < now_) {
-    reporter_.error(
-        at->location,
-        "'at: " + at->scalar + "' is " + format_exact_ms(now_ - target) +
-            " in the past: the steps before it already run until " +
-            format_seconds(static_cast<std::uint64_t>((now_ - lists_.back().start).round())) +
-            " of this list");
+bool ServoLowering::hold_until(ExactMs target, const YamlNode& at) {
+  const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
+  // In a track another track may be moving meanwhile (block_run checks that one does).
+  if (!known && !claims_.in_block()) {
+    reporter_.error(at.location,
+                    "nothing to hold until 'at': no servo has a position yet; start with a move");
     return false;
   }
-  if (target > now_) {
-    const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
-    if (!known) {
-      reporter_.error(at->location,
-                      "nothing to hold until 'at': no servo has a position yet; start with a "
-                      "move");
-      return false;
-    }
-    timeline_.markers.push_back({target, "at " + at->scalar, at->location});
-    count_actions((target - now_).value() > 30000 ? 2 : 1, at->location);
-    now_ = target;
-  }
+  // The hold is at least one action per 30 s (a far position must not reach the fitter).
+  const auto gap = static_cast<std::uint64_t>((target - now_).value());
+  count_actions(std::max<std::uint64_t>(1, (gap + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs),
+                at.location);
+  now_ = target;
   return true;
 }
 
-void ServoLowering::repeat_step(const YamlNode& step, const YamlNode& value) {
-  const auto repeat = parse_repeat(step, value, reporter_);
-  if (!repeat) return;
-  std::uint64_t per_pass = 0;
-  for (long long i = 0; i < repeat->times; ++i) {
-    if (i > 0 && min_actions_ > capacity()) {  // already too long: count, do not expand
-      const auto rest = static_cast<std::uint64_t>(repeat->times - i);
-      min_actions_ = saturating_add(min_actions_, per_pass > 0 && rest > UINT64_MAX / per_pass
+// Each pass adds at least its actions to the count; once the count is past the group's
+// budget, the passes left are counted, not expanded.
+class ServoRepeatBudget final : public StepWalker::RepeatBudget {
+ public:
+  ServoRepeatBudget(std::uint64_t& min_actions, bool& truncated, std::size_t capacity,
+                    long long times)
+      : min_actions_(min_actions), truncated_(truncated), capacity_(capacity), times_(times) {}
+  bool before_pass(long long pass) override {
+    if (pass > 0 && min_actions_ > capacity_) {  // already too long: count, do not expand
+      const auto rest = static_cast<std::uint64_t>(times_ - pass);
+      min_actions_ = saturating_add(min_actions_, per_pass_ > 0 && rest > UINT64_MAX / per_pass_
                                                       ? UINT64_MAX
-                                                      : rest * per_pass);
+                                                      : rest * per_pass_);
       truncated_ = true;
-      break;
+      return false;
     }
-    const std::uint64_t before = min_actions_;
-    const std::size_t errors_before = reporter_.errors_reported();
-    run_steps(*repeat->body, "'do'");
-    per_pass = min_actions_ - before;
-    // A pass with mistakes makes no actions to count, and the passes after it would only repeat
-    // them: 65535 nested six deep would never end (found by hostile_bench).
-    if (reporter_.errors_reported() > errors_before || per_pass == 0) break;
+    before_ = min_actions_;
+    return true;
+  }
+  bool after_pass(long long /*pass*/) override {
+    per_pass_ = min_actions_ - before_;
+    // A pass that makes no actions would make none again: 65535 nested six deep would never
+    // end (found by hostile_bench).
+    return per_pass_ > 0;
+  }
+
+ private:
+  std::uint64_t& min_actions_;
+  bool& truncated_;
+  std::size_t capacity_;
+  long long times_;
+  std::uint64_t before_ = 0;
+  std::uint64_t per_pass_ = 0;
+};
+
+std::unique_ptr<StepWalker::RepeatBudget> ServoLowering::repeat_budget(const YamlNode& /*step*/,
+                                                                       long long times) {
+  return std::make_unique<ServoRepeatBudget>(min_actions_, truncated_, capacity(), times);
+}
+
+// The block needs as many actions as its busiest track; and when nothing had a position
+// before it, one track must move at its start, or the controller has nothing to send.
+class ServoBlockRun final : public StepWalker::BlockRun {
+ public:
+  ServoBlockRun(ServoLowering& lowering, const YamlNode& step, std::uint64_t& min_actions,
+                bool known, bool outer, std::size_t errors_before)
+      : lowering_(lowering),
+        step_(step),
+        min_actions_(min_actions),
+        before_(min_actions),
+        known_(known),
+        outer_(outer),
+        errors_before_(errors_before) {}
+  void track_begins() override { min_actions_ = before_; }
+  void track_ends() override { most_ = std::max(most_, min_actions_ - before_); }
+  void block_ends(ExactMs start, ExactMs longest) override {
+    min_actions_ = before_ + most_;
+    lowering_.check_block_start(step_, start, longest, known_ || outer_, errors_before_);
+  }
+
+ private:
+  ServoLowering& lowering_;
+  const YamlNode& step_;
+  std::uint64_t& min_actions_;
+  std::uint64_t before_;
+  std::uint64_t most_ = 0;
+  bool known_, outer_;
+  std::size_t errors_before_;
+};
+
+std::unique_ptr<StepWalker::BlockRun> ServoLowering::block_run(const YamlNode& step) {
+  const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
+  return std::make_unique<ServoBlockRun>(*this, step, min_actions_, known, claims_.in_block(),
+                                         reporter_.errors_reported());
+}
+
+void ServoLowering::check_block_start(const YamlNode& step, ExactMs start, ExactMs longest,
+                                      bool held, std::size_t errors_before) {
+  // A track may wait (or start `at:` later) while another moves.
+  if (held || reporter_.errors_reported() > errors_before) return;
+  std::optional<double> first;
+  for (std::size_t s = 0; s < timeline_.servo_count(); ++s) {
+    if (timeline_.count(s) == 0) continue;
+    const double t = timeline_.start_of(s, 0).value();
+    first = first ? std::min(*first, t) : t;
+  }
+  const double until = first.value_or(longest.value());
+  if (until > start.value()) {
+    reporter_.error(step.location,
+                    "nothing to hold from the start of this 'together' until " +
+                        format_seconds(static_cast<std::uint64_t>(std::llround(until))) +
+                        ": no servo has a position yet and no track moves at the start; begin "
+                        "one track with a move");
   }
 }
 
@@ -325,69 +349,6 @@ void ServoLowering::mirror_step(const YamlNode& step, const YamlNode& body) {
   mirrored_ = !mirrored_;
   run_steps(body, "'mirror'");
   mirrored_ = !mirrored_;
-}
-
-void ServoLowering::include_step(const YamlNode& value) {
-  const LoadedFile* loaded = scopes_.load_include(
-      value, "wave.yaml",
-      [](const std::string&, const std::string& reason) { return "cannot include it: " + reason; },
-      loader_, reporter_);
-  if (loaded == nullptr) return;
-  reporter_.push_include(value.location);
-  run_file(*loaded, false);
-  reporter_.pop_include();
-}
-
-void ServoLowering::section_step(const YamlNode& value) {
-  const YamlNode* list = scopes_.find_section(value, reporter_);
-  if (list == nullptr) return;
-  if (std::find(sections_running_.begin(), sections_running_.end(), list) !=
-      sections_running_.end()) {
-    reporter_.error(value.location, "section '" + value.scalar + "' performs itself");
-    return;
-  }
-  timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
-  sections_running_.push_back(list);
-  run_steps(*list, "section '" + value.scalar + "'");
-  sections_running_.pop_back();
-}
-
-void ServoLowering::together_step(const YamlNode& step, const YamlNode& tracks) {
-  if (!tracks.is_map() || tracks.entries.empty()) {
-    reporter_.error(tracks.location,
-                    "'together' takes named tracks, each a list of steps, e.g. "
-                    "'together: {arm: [...], claw: [...]}'");
-    return;
-  }
-  if (track_ != nullptr) {
-    reporter_.error(step.location, "'together' cannot be used inside a track of another");
-    return;
-  }
-  const ExactMs start = now_;
-  ExactMs longest = start;
-  std::uint64_t most_actions = 0;
-  const std::uint64_t before = min_actions_;
-  claimed_.clear();
-  for (const auto& [name, list] : tracks.entries) {
-    Track track{name.scalar, name.location, {}};
-    track_ = &track;
-    now_ = start;
-    min_actions_ = before;
-    run_steps(list, "track '" + name.scalar + "'");
-    longest = std::max(longest, now_);
-    most_actions = std::max(most_actions, min_actions_ - before);
-  }
-  track_ = nullptr;
-  claimed_.clear();
-  min_actions_ = before + most_actions;
-  now_ = longest;
-}
-
-void ServoLowering::tempo_step(const YamlNode& value) {
-  if (auto bpm = parse_tempo(value, reporter_)) {
-    lists_.back().tempo = bpm;
-    timeline_.markers.push_back({now_, "tempo " + value.scalar, value.location});
-  }
 }
 
 void ServoLowering::tolerance_step(const YamlNode& value) {

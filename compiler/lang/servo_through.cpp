@@ -1,7 +1,9 @@
 // `through`: a smooth curve through waypoints, each reached at its time. Per servo it is a C1
 // cubic Hermite curve: zero velocity at the first and last point, and at an interior waypoint k
-// the slope (p[k+1] - p[k-1]) / (t[k+1] - t[k-1]). A servo a waypoint does not name keeps its
-// value from the waypoint before; the curve starts where the servos are.
+// the slope (p[k+1] - p[k-1]) / (t[k+1] - t[k-1]), except 0 where p[k] equals p[k-1] or
+// p[k+1] (the servo holds between equal waypoints, never swinging past them). A servo a
+// waypoint does not name keeps its value from the waypoint before; the curve starts where the
+// servos are.
 #include <algorithm>
 #include <cmath>
 
@@ -84,13 +86,16 @@ void ServoLowering::through_step(const YamlNode& step, const YamlNode& waypoints
 
   const double tol = step_tolerance.value_or(tolerance());
   const std::size_t n = points.size() - 1;
+  std::vector<KinematicFinding> findings;
   for (std::size_t s = 0; s < named.size(); ++s) {
     if (!named[s]) continue;
     if (!claim(s, step.location)) return;
     auto p = [&](std::size_t k) { return static_cast<double>(*points[k][s]); };
     auto t = [&](std::size_t k) { return times[k].value(); };
     auto slope = [&](std::size_t k) {
-      if (k == 0 || k == n) return 0.0;
+      // A servo with the same value at two waypoints in a row holds there: a slope at either
+      // end of that stretch would carry it past the value and back.
+      if (k == 0 || k == n || p(k) == p(k - 1) || p(k) == p(k + 1)) return 0.0;
       return (p(k + 1) - p(k - 1)) / (t(k + 1) - t(k - 1));
     };
     for (std::size_t k = 0; k < n; ++k) {
@@ -105,11 +110,12 @@ void ServoLowering::through_step(const YamlNode& step, const YamlNode& waypoints
       seg.tolerance = tol;
       seg.at = waypoints.items[k].location;
       if (!check_overshoot(s, seg, seg.at, std::nullopt)) return;
-      check_kinematics(s, seg, std::nan(""), std::nullopt);
+      check_kinematics(s, seg, std::nan(""), std::nullopt, findings);
       add_segment(s, seg);
     }
     pos_[s] = points[n][s];
   }
+  report_kinematics(findings);
   count_actions(n, step.location);
   now_ = times.back();
 }

@@ -1,5 +1,5 @@
-// The servo-controller front end's values: positions with their limits, exact times at the
-// tempo in force, and tolerances.
+// The servo-controller front end's values: positions with their limits, exact times through
+// the tempo map, and tolerances.
 #include "compiler/lang/servo_lowering_state.hpp"
 #include "compiler/source/units.hpp"
 
@@ -51,9 +51,9 @@ bool ServoLowering::check_limits(const PositionEntry& e, std::size_t target, dou
 }
 
 std::optional<ExactMs> ServoLowering::exact_time(const YamlNode& node, std::string_view what) {
-  std::optional<double> tempo;
-  for (auto it = lists_.rbegin(); it != lists_.rend() && !tempo; ++it) tempo = it->tempo;
-  return scopes_.exact_ms(node, what, tempo, reporter_);
+  const std::optional<ExactMs> end = musical_time(node, what, now_);
+  if (!end) return std::nullopt;
+  return *end - now_;
 }
 
 std::optional<double> ServoLowering::parse_tolerance(const YamlNode& node) {

@@ -36,7 +36,8 @@ std::optional<RepeatStep> parse_repeat(const YamlNode& step, const YamlNode& cou
 std::optional<Easing> parse_ease(const YamlNode& node, Reporter& reporter) {
   const EaseParse parsed = node.is_scalar() ? parse_easing(node.scalar) : EaseParse{};
   if (!parsed.easing && parsed.message.empty()) {
-    reporter.unknown(node.location, "easing", node.is_scalar() ? node.scalar : "", easing_names());
+    reporter.unknown(node.location, "easing", node.is_scalar() ? node.scalar : "", easing_names(),
+                     {}, easing_name_list());
   } else if (!parsed.easing) {
     reporter.error(node.location, parsed.message);
   }

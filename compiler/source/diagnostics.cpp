@@ -45,6 +45,35 @@ std::string caret_padding(std::string_view line, std::size_t column) {
   return pad;
 }
 
+// Whether a source line may be copied to a terminal: tabs, printable ASCII and well-formed
+// UTF-8 only. A line with a control byte (NUL, an escape sequence) or a stray byte of a binary
+// file is not quoted, so the file's bytes never reach the terminal.
+bool quotable(std::string_view line) {
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const auto c = static_cast<unsigned char>(line[i]);
+    if (c == '\t' || (c >= 0x20 && c < 0x7F)) continue;
+    if (c == '\r' && i + 1 == line.size()) continue;  // a CRLF line end
+    std::size_t len = 0;
+    if (c >= 0xC2 && c <= 0xDF) {
+      len = 2;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      len = 3;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      len = 4;
+    } else {
+      return false;
+    }
+    if (i + len > line.size()) return false;
+    for (std::size_t k = 1; k < len; ++k) {
+      if ((static_cast<unsigned char>(line[i + k]) & 0xC0) != 0x80) return false;
+    }
+    // C1 control characters (U+0080..U+009F) act like escapes on some terminals.
+    if (c == 0xC2 && static_cast<unsigned char>(line[i + 1]) < 0xA0) return false;
+    i += len - 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 // Layout (stable; golden-tested in tests/compiler/diagnostics_test.cpp):
@@ -52,7 +81,8 @@ std::string caret_padding(std::string_view line, std::size_t column) {
 //      12 |   source line
 //         |   ^
 // Without a column the caret line is left out; with line 0 only "path: error: message" is
-// printed; a location in no known file (kNoFile or a stale index) prints "seqc: error: message".
+// printed; a line that is not plain text (a control byte, invalid UTF-8) is not quoted; a location
+// in no known file (kNoFile or a stale index) prints "seqc: error: message".
 std::string render(const Diagnostic& d, const SourceManager& sources, bool strict, bool color) {
   const Location& at = d.location;
   const bool known_file = at.file < sources.file_count();
@@ -90,6 +120,7 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
   const std::string number = std::to_string(at.line);
   const std::size_t width = std::max<std::size_t>(5, number.size() + 1);
   const std::string_view line = sources.line(at.file, at.line);
+  if (!quotable(line)) return out;
   out += std::string(width - number.size(), ' ') + number + " | ";
   out += line;
   out += '\n';

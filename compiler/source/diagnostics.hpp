@@ -42,7 +42,9 @@ class Diagnostics {
   std::size_t warnings_ = 0;
 };
 
-// "path:line:col: error: message", the source line, and a caret under the column.
+// "path:line:col: error: message", the source line, and a caret under the column. A line that
+// is not plain text (control bytes, invalid UTF-8: a binary file) is not quoted, so a file's
+// bytes never reach a terminal.
 // With strict, warnings are rendered as errors. With color, ANSI SGR codes as clang uses them:
 // bold location and message, red error, magenta warning, cyan note, green caret.
 std::string render(const Diagnostic& d, const SourceManager& sources, bool strict = false,

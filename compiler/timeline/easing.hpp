@@ -37,6 +37,9 @@ struct Easing {
   bool is_linear() const { return family == EaseFamily::Linear; }
   // The eased fraction at normalised time t in [0, 1]; at(0) = 0 and at(1) = 1.
   double at(double t) const;
+  // d at / dt at t in [0, 1], one-sided at the ends (never across them). Infinite where the
+  // curve is vertical: circ at the end of its -in half, a cubic-bezier with x'(s) = 0.
+  double slope(double t) const;
   // The name as written in a file ("sine-in-out", "cubic-bezier(0.42, 0, 0.58, 1)").
   std::string name() const;
   friend bool operator==(const Easing&, const Easing&) = default;
@@ -53,5 +56,8 @@ EaseParse parse_easing(std::string_view text);
 
 // Every name parse_easing() accepts except cubic-bezier, for "did you mean" and the docs.
 const std::vector<std::string>& easing_names();
+// The same names in one line for a message: "easings: linear, in, out, in-out, ..." (the
+// families once each, with their three modes, and cubic-bezier's form).
+std::string easing_name_list();
 
 }  // namespace seqc::compiler

@@ -15,17 +15,42 @@ double Segment::value(double t_ms) const {
     case CurveKind::Eased:
       return from + (to - from) * easing.at(u);
     case CurveKind::Hermite: {
-      // Cubic Hermite basis on [0, 1]; slopes are per ms, so scale them by the length.
+      // Cubic Hermite basis on [0, 1]; slopes are per ms, so scale them by the length. Written
+      // as `from` plus what changes, so a piece with equal ends and no slope is exactly flat.
       const double h = t1 - t0;
       const double u2 = u * u;
       const double u3 = u2 * u;
-      return (2 * u3 - 3 * u2 + 1) * from + (u3 - 2 * u2 + u) * h * slope_from +
-             (-2 * u3 + 3 * u2) * to + (u3 - u2) * h * slope_to;
+      return from + (3 * u2 - 2 * u3) * (to - from) + (u3 - 2 * u2 + u) * h * slope_from +
+             (u3 - u2) * h * slope_to;
     }
     case CurveKind::Hold:
       break;
   }
   return from;
+}
+
+double Segment::velocity(double t_ms) const {
+  const double t0 = start.value();
+  const double t1 = end.value();
+  if (kind == CurveKind::Hold || t1 <= t0) return 0;
+  const double h = t1 - t0;
+  const double u = std::clamp((t_ms - t0) / h, 0.0, 1.0);
+  switch (kind) {
+    case CurveKind::Linear:
+      return (to - from) / h;
+    case CurveKind::Eased:
+      return to == from ? 0 : (to - from) * easing.slope(u) / h;
+    case CurveKind::Hermite: {
+      // d/du of the basis above, divided by the length.
+      const double u2 = u * u;
+      return ((6 * u2 - 6 * u) * (from - to) + (3 * u2 - 4 * u + 1) * h * slope_from +
+              (3 * u2 - 2 * u) * h * slope_to) /
+             h;
+    }
+    case CurveKind::Hold:
+      break;
+  }
+  return 0;
 }
 
 bool Timeline::Span::same(const Segment& s) const {

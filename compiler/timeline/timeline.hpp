@@ -23,6 +23,7 @@
 #include "compiler/source/source.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/tempo_map.hpp"
 
 namespace seqc::compiler {
 
@@ -43,6 +44,9 @@ struct Segment {
   bool is_straight() const { return kind == CurveKind::Hold || kind == CurveKind::Linear; }
   // The intended position at absolute time t (ms), clamped to the segment.
   double value(double t_ms) const;
+  // The intended speed at absolute time t (units per ms, signed), from the curve's exact
+  // derivative, one-sided at the segment's ends; infinite where the curve is vertical.
+  double velocity(double t_ms) const;
 };
 
 // A named moment for plots and listings: a section starting, an `at:` cue, a tempo change.
@@ -81,9 +85,9 @@ class Timeline {
   std::vector<TimelineMarker> markers;
   std::vector<TimelineWarning> warnings;
   ExactMs end;  // when the last step ends
-  // Tempo and meter in force at the start, for a beat/bar grid (0 = none).
-  double tempo = 0;
-  int beats_per_bar = 0;
+  // Where beats and bars fall (the file's tempo and meter and every change of them), for a
+  // beat/bar grid.
+  TempoMap tempo_map;
 
  private:
   struct Span {  // what the servos of one step share

@@ -1,7 +1,9 @@
 #include "compiler/yaml/yaml_prescan.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 
 namespace seqc::compiler::yaml_detail {
 
@@ -51,6 +53,18 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; 
 }  // namespace
 
 std::optional<ScanProblem> check_bytes(std::string_view text) {
+  // A NUL anywhere means a binary (or UTF-16) file, whatever odd bytes come before it (a PNG
+  // starts with 0x89): say so once, for the first NUL. YAML text never holds one.
+  const auto not_text = [](std::size_t offset) {
+    return "not a text file (byte 0x00 at offset " + std::to_string(offset) + ")";
+  };
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const std::string_view before = text.substr(0, nul);
+    const std::size_t line_start =
+        before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
+    const auto lines = static_cast<std::uint32_t>(std::count(before.begin(), before.end(), '\n'));
+    return ScanProblem{lines + 1, static_cast<std::uint32_t>(nul - line_start + 1), not_text(nul)};
+  }
   std::uint32_t line = 1;
   std::size_t line_start = 0;
   auto at = [&](std::size_t i, std::string message) {
@@ -62,8 +76,6 @@ std::optional<ScanProblem> check_bytes(std::string_view text) {
     if (c == '\n') {
       ++line;
       line_start = i + 1;
-    } else if (c == 0) {
-      return at(i, "file contains a NUL byte (is it a binary or UTF-16 file?)");
     } else if (c == '\r') {
       if (i + 1 >= text.size() || text[i + 1] != '\n') {
         return at(i, "carriage return without a line feed (only LF and CRLF line ends are read)");

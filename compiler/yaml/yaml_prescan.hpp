@@ -16,7 +16,9 @@ struct ScanProblem {
   std::string message;
 };
 
-// The first byte that is not allowed in a YAML file we read: NUL, other C0 control characters
+// The first byte that is not allowed in a YAML file we read: the first NUL if there is one
+// anywhere (then the file is not text: "not a text file (byte 0x00 at offset N)"), else the
+// first of the other C0 control characters
 // except tab/LF/CR, DEL, a CR not followed by LF, or invalid UTF-8 (overlong forms, surrogates,
 // code points past U+10FFFF, truncated sequences).
 std::optional<ScanProblem> check_bytes(std::string_view text);

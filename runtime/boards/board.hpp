@@ -28,7 +28,7 @@
 
 namespace seqc::boards {
 
-struct Hooks;       // ports.hpp
+struct Hooks;       // hooks.hpp
 struct OpenedPort;  // ports.hpp
 
 // A board's link for one command.
@@ -126,6 +126,8 @@ struct Board {
   bool confirms_moves = true;
   // Battery, servo read/off/mode, offsets, bus-info, group speed (XarmSession).
   bool queries = false;
+  // The profile whose names a pose read back from the board uses when --robot gives none.
+  std::string_view pose_profile;
   // "its firmware knows only moves, group run/stop, erasing every group and storing actions"
   std::string_view lacks;
 
@@ -148,6 +150,15 @@ const Board* board_for_emulator(std::string_view emulator);     // emu:NAME -> i
 // emu:NAME's board, else the --robot profile's board, else the first discoverable board.
 const Board& board_for_device(std::string_view profile, std::string_view port);
 bool same_family(const Board& a, const Board& b);
+// The emulator that serves each board of `board`'s family, in table order ("xarm", "lsc6").
+std::vector<std::string_view> family_emulators(const Board& board);
+// What `seqc emulate` serves: each board's own emulator, in table order.
+std::vector<std::string_view> served_emulators();
+// The board a device command (group, servo, battery, offset, bus-info, teach) talks to: the one
+// board_for_device finds, when it is of the family discovery finds (the servo controllers);
+// else the first discoverable board. So an emulator of another family is refused when its port
+// is opened (PortProblem::WrongEmulator), and a --robot profile of another family is ignored.
+const Board& board_for_command(std::string_view profile, std::string_view port);
 
 Result<Plan> plan_for(const Board& board, const compiler::CompileOutput& output,
                       std::uint8_t group);
@@ -155,5 +166,15 @@ std::optional<std::size_t> first_too_big(const Plan& plan, const io::Transport& 
 upload::UploadResult upload(const Board& board, const Line& line, const Plan& plan,
                             const upload::UploadOptions& options, upload::UploadObserver* observer);
 RunOutcome run_group(const Board& board, const Line& line, std::uint8_t group, std::uint16_t times);
+
+// The first of the `seqc emulate` options `given` (EmulatorOption bits) that `board`'s emulator
+// does not take, in the order kFaults, kSeed, kDumpGroups, kPositions, with the row's reason
+// when it has one; option 0 when it takes them all. The seed is the faults' seed, so a board
+// without faults refuses it too.
+struct RefusedOption {
+  unsigned option = 0;
+  std::string_view reason;  // "the Raspblock board never replies"; may be empty
+};
+RefusedOption refused_emulator_option(const Board& board, unsigned given);
 
 }  // namespace seqc::boards

@@ -63,6 +63,28 @@ const Board& board_for_device(std::string_view profile, std::string_view port) {
 
 bool same_family(const Board& a, const Board& b) { return a.family == b.family; }
 
+std::vector<std::string_view> family_emulators(const Board& board) {
+  std::vector<std::string_view> names;
+  for (const Board* b : kBoards) {
+    if (same_family(*b, board) && !b->emulators.empty()) names.push_back(b->emulators.front());
+  }
+  return names;
+}
+
+std::vector<std::string_view> served_emulators() {
+  std::vector<std::string_view> names;
+  for (const Board* b : kBoards) {
+    if (b->serve != nullptr && !b->emulators.empty()) names.push_back(b->emulators.front());
+  }
+  return names;
+}
+
+const Board& board_for_command(std::string_view profile, std::string_view port) {
+  const Board& reached = board_for_device(profile, port);
+  const Board& discovered = board_for_device("", "");
+  return same_family(reached, discovered) ? reached : discovered;
+}
+
 Result<Plan> plan_for(const Board& board, const compiler::CompileOutput& output,
                       std::uint8_t group) {
   if (board.plan == nullptr) return make_error(std::string(board.name) + " stores no groups");
@@ -116,6 +138,17 @@ RunOutcome run_group(const Board& board, const Line& line, std::uint8_t group,
   // The row's confirmation does not know the count; the failure names the request as sent.
   if (!confirmed.ok()) confirmed.request = out.request;
   return confirmed;
+}
+
+RefusedOption refused_emulator_option(const Board& board, unsigned given) {
+  for (const unsigned option : {kFaults, kSeed, kDumpGroups, kPositions}) {
+    if ((given & option) == 0 || (board.emulator_options & option) != 0) continue;
+    const std::string_view reason = option == kFaults || option == kSeed ? board.no_faults_reason
+                                    : option == kDumpGroups              ? board.no_groups_reason
+                                                                         : std::string_view();
+    return {option, reason};
+  }
+  return {};
 }
 
 }  // namespace seqc::boards

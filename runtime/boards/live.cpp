@@ -4,23 +4,13 @@
 #include <chrono>
 #include <utility>
 
+#include "runtime/boards/program_views.hpp"
+
 namespace seqc::boards {
 namespace {
 
 // How often Ctrl-C is looked at while the last move finishes.
 constexpr io::Duration kPollInterval = std::chrono::milliseconds(20);
-
-// How long the program runs from its start: the last move ends then, not when it is sent.
-io::Duration program_duration(const compiler::CompileOutput& output,
-                              const std::vector<player::ScheduledFrame>& frames) {
-  if (const compiler::ServoProgram* p = output.servo_program()) {
-    return std::chrono::milliseconds(p->duration_ms());
-  }
-  if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
-    return std::chrono::milliseconds(p->duration_ms);
-  }
-  return frames.empty() ? io::Duration{0} : frames.back().at;
-}
 
 bool interrupted(const Line& line) {
   return line.interrupted != nullptr && line.interrupted->load();
@@ -43,6 +33,14 @@ LiveReport play_live(const Board& board, const compiler::CompileOutput& output, 
     return report;
   }
   report.frames = std::move(frames).value();
+  if (const compiler::ServoProgram* p = output.servo_program();
+      p != nullptr && p->keyframes.size() == report.frames.size()) {
+    for (const compiler::Keyframe& k : p->keyframes)
+      report.origins.push_back({k.start_ms, k.source});
+  }
+  // The last move ends then, not when it is sent.
+  report.length_ms = length_ms(output);
+  const io::Duration length = std::chrono::milliseconds(report.length_ms);
   io::Transport& transport = line.transport;
 
   // Nothing is sent when one frame cannot go over the link at all.
@@ -97,7 +95,7 @@ LiveReport play_live(const Board& board, const compiler::CompileOutput& output, 
   if (board.wait_for_end) {
     // The last move is still running: return when the sequence ends, so "played" means the
     // robot is in its final pose (and the next command sees it there).
-    const io::TimePoint end = report.play.started + program_duration(output, report.frames);
+    const io::TimePoint end = report.play.started + length;
     while (line.clock.now() < end) {
       if (interrupted(line)) {
         report.status = LiveStatus::InterruptedAtEnd;

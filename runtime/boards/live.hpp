@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -29,9 +30,20 @@ enum class LiveStatus {
   BadProgram
 };
 
+// The program step a live frame comes from, for the messages that name a move: its start and
+// where the source writes it.
+struct FrameOrigin {
+  std::uint64_t start_ms = 0;
+  compiler::Location source;
+};
+
 struct LiveReport {
   LiveStatus status = LiveStatus::Played;
   std::vector<player::ScheduledFrame> frames;
+  std::uint64_t length_ms = 0;  // how long the program runs: when its last move ends
+  // One per frame when the program is made of steps (a servo program is played one frame per
+  // keyframe); empty for a stream.
+  std::vector<FrameOrigin> origins;
   std::optional<std::size_t> too_big;  // its limit: line.transport.max_frame_bytes()
   player::ScheduleCheck check;         // boards with check_schedule
   Outcome probe;                       // NoBoard: why

@@ -10,6 +10,7 @@
 #include "compiler/backend/listing.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
@@ -86,8 +87,8 @@ Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::CompileO
   const compiler::ServoProgram* program = output.servo_program();
   if (program == nullptr) return make_error("the program is not a servo program");
   std::vector<player::ScheduledFrame> frames;
-  for (const backend::TimedLsc6Move& m : backend::live_lsc6_moves(*program)) {
-    auto bytes = lsc6::encode_serial(lsc6::Request{m.move});
+  for (const LiveMove& m : changed_moves(*program)) {
+    auto bytes = lsc6::encode_serial(lsc6::Request{lsc6::Move{m.time_ms, m.targets}});
     if (!bytes) return bytes.error();
     frames.push_back({std::chrono::milliseconds(m.send_ms), std::move(*bytes)});
   }
@@ -248,6 +249,7 @@ const Board kLsc6Board = {
     .move = move,
     .confirms_moves = false,
     .queries = false,
+    .pose_profile = "lsc-6",
     .lacks =
         "its firmware knows only moves, group run/stop, erasing every group and storing "
         "actions",

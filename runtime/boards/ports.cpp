@@ -94,4 +94,9 @@ OpenResult open_port(const PortRequest& request, io::Clock& clock, const Hooks& 
   return opened(std::move(port));
 }
 
+std::optional<Received> received(const OpenedPort& port) {
+  if (!port.raspblock) return std::nullopt;
+  return Received{port.raspblock->packets().size(), port.raspblock->rejections().size()};
+}
+
 }  // namespace seqc::boards

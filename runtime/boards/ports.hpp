@@ -12,6 +12,7 @@
 #include <string>
 
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/hooks.hpp"
 #include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
@@ -22,15 +23,6 @@
 #include "runtime/transport/port_discovery.hpp"
 
 namespace seqc::boards {
-
-// What tests inject (the CLI copies Context::xarm_emulator/lsc6_emulator/xarm_clock here).
-struct Hooks {
-  emu::XArmEmulator* xarm = nullptr;  // emu:xarm reaches this one (its config holds its faults)
-  emu::Lsc6Emulator* lsc6 = nullptr;  // emu:lsc6 reaches this one
-  // The time of both; the emulator hooks apply only when this is set.
-  io::ManualClock* emulated_clock = nullptr;
-  const transport::DeviceLister* lister = nullptr;  // what discovery sees; null: the system's
-};
 
 struct PortRequest {
   std::string text;  // --port as given; "" = discovery
@@ -74,5 +66,13 @@ struct OpenResult {
 };
 
 OpenResult open_port(const PortRequest& request, io::Clock& clock, const Hooks& hooks = {});
+
+// What the board behind an emulated port received, for emulators that count what they take and
+// refuse (emu:raspblock's packets); nullopt for every other port.
+struct Received {
+  std::size_t packets = 0;
+  std::size_t rejected = 0;
+};
+std::optional<Received> received(const OpenedPort& port);
 
 }  // namespace seqc::boards

@@ -95,6 +95,7 @@ const Board kRaspblockBoard = {
     .move = nullptr,
     .confirms_moves = false,
     .queries = false,
+    .pose_profile = "",
     .lacks = "",
     .emulators = kEmulators,
     .open_emulator = open_emulator,

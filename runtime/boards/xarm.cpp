@@ -12,6 +12,7 @@
 #include "compiler/backend/listing.hpp"
 #include "compiler/backend/servo_backend.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/boards/xarm_session.hpp"
 #include "runtime/emulator/emulator_transport.hpp"
@@ -118,8 +119,11 @@ Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::CompileO
   auto program = servo_program(output);
   if (!program) return program.error();
   std::vector<player::ScheduledFrame> frames;
-  for (const backend::TimedMove& m : backend::live_moves(**program)) {
-    auto bytes = lsc::encode_serial(m.move);
+  for (const LiveMove& m : changed_moves(**program)) {
+    lsc::MultiServoMove move;
+    move.time_ms = m.time_ms;
+    for (const lsc::ServoTarget& t : m.targets) move.servos.push_back({t.id, t.position});
+    auto bytes = lsc::encode_serial(lsc::Request{move});
     if (!bytes) return bytes.error();
     frames.push_back({std::chrono::milliseconds(m.send_ms), std::move(*bytes)});
   }
@@ -288,6 +292,7 @@ const Board kXarmBoard = {
     .move = move,
     .confirms_moves = true,
     .queries = true,
+    .pose_profile = "xarm",
     .lacks = "",
     .emulators = kEmulators,
     .open_emulator = open_emulator,

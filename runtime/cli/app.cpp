@@ -72,6 +72,7 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_decode_command(app, ctx, outcome);
   add_simulate_command(app, ctx, outcome);
   add_plot_command(app, ctx, outcome);
+  add_preview_command(app, ctx, outcome);
   add_emulate_command(app, ctx, outcome);
   add_ports_command(app, ctx, outcome);
   add_play_command(app, ctx, outcome);
@@ -85,6 +86,7 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_export_command(app, ctx, outcome);
   add_teach_command(app, ctx, outcome);
   add_show_command(app, ctx, outcome);
+  add_beats_command(app, ctx, outcome);
   add_help_command(app, ctx, outcome);
 }
 

@@ -1,7 +1,10 @@
 #include "runtime/cli/board_text.hpp"
 
 #include <ostream>
+#include <string>
+#include <vector>
 
+#include "compiler/lang/profiles.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -11,26 +14,18 @@ namespace {
 // "emu:lsc6?seed=3" -> "emu:lsc6".
 std::string without_options(const std::string& port) { return port.substr(0, port.find('?')); }
 
-// "emu:xarm or emu:lsc6": the emulator each board of `board`'s family is served by.
-std::string family_emulators(const boards::Board& board) {
-  std::vector<std::string> names;
-  for (const boards::Board* b : boards::all_boards()) {
-    if (boards::same_family(*b, board) && !b->emulators.empty()) {
-      names.push_back("emu:" + std::string(b->emulators.front()));
-    }
-  }
+// "emu:xarm or emu:lsc6": the emulators of `board`'s family, as --port names them.
+std::string emulator_ports(const boards::Board& board) {
+  const std::vector<std::string_view> names = boards::family_emulators(board);
   std::string out;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    const char* joint = i == 0 ? "" : i + 1 == names.size() ? " or " : ", ";
+    out += joint + std::string("emu:") + std::string(names[i]);
   }
   return out;
 }
 
 }  // namespace
-
-boards::Hooks hooks_of(const Context& ctx) {
-  return boards::Hooks{ctx.xarm_emulator, ctx.lsc6_emulator, ctx.xarm_clock};
-}
 
 BoardError port_failure(const boards::PortFailure& f, const boards::PortRequest& request,
                         const std::string& subject) {
@@ -46,15 +41,14 @@ BoardError port_failure(const boards::PortFailure& f, const boards::PortRequest&
     case boards::PortProblem::WrongEmulator:
       if (request.board == nullptr || f.reached == nullptr) break;
       if (subject.empty()) {
-        return {ExitCode::Usage, "--port " + without_options(port) +
-                                     ": this command talks to the " +
-                                     std::string(request.board->family) + "; use " +
-                                     family_emulators(*request.board)};
+        return {ExitCode::Usage,
+                "--port " + without_options(port) + ": this command talks to the " +
+                    std::string(request.board->family) + "; use " + emulator_ports(*request.board)};
       }
       return {ExitCode::Usage, "--port " + port + " is the " + std::string(f.reached->family) +
                                    "'s emulator; " + subject + " is for the " +
                                    std::string(request.board->key) + " (use --port " +
-                                   family_emulators(*request.board) + ")"};
+                                   emulator_ports(*request.board) + ")"};
     case boards::PortProblem::WrongKind:
       if (request.board == nullptr) break;
       return {ExitCode::Usage, "--port " + port + " is a USB HID device (the xArm's link); the " +
@@ -66,7 +60,7 @@ BoardError port_failure(const boards::PortFailure& f, const boards::PortRequest&
       return {ExitCode::Usage,
               "name the board's serial port with --port, e.g. --port /dev/ttyAMA0 or --port "
               "ttyUSB0 (the board does not announce itself)\n  hint: --port " +
-                  family_emulators(*request.board) + " plays to the built-in board emulator"};
+                  emulator_ports(*request.board) + " plays to the built-in board emulator"};
     case boards::PortProblem::NotFound:
     case boards::PortProblem::CannotOpen:
       return {ExitCode::PortUnavailable, f.detail};
@@ -127,9 +121,33 @@ ExitCode exit_code_for(upload::UploadStatus s) {
       return ExitCode::Interrupted;
     case upload::UploadStatus::BadPlan:
       return ExitCode::Internal;
+    case upload::UploadStatus::OtherDialect:
+      return ExitCode::Usage;
     default:
       return ExitCode::DeviceFailure;
   }
+}
+
+std::string other_dialect_text(const boards::Board& board, const std::string& profile) {
+  const boards::Board* answered = nullptr;
+  for (const boards::Board* b : boards::all_boards()) {
+    if (b != &board && b->plan != nullptr && boards::same_family(*b, board)) answered = b;
+  }
+  if (answered == nullptr) return "the board on the port is not " + std::string(board.name);
+  std::vector<std::string> profiles;  // the profiles whose files that board runs
+  for (const std::string& name : compiler::profile_names()) {
+    if (compiler::find_profile(name)->board == answered->key) profiles.push_back(name);
+  }
+  std::string fix = profiles.empty() ? std::string("another profile")
+                                     : "a file with `robot: " + profiles.front() + "`";
+  if (profiles.size() > 1) {
+    std::string rest;
+    for (std::size_t i = 1; i < profiles.size(); ++i) rest += (i > 1 ? ", " : "") + profiles[i];
+    fix += " (or " + rest + ")";
+  }
+  return "this is an " + std::string(answered->name) + " board; the file is for " + profile +
+         ": use " + fix + " for this board, or give --port the port the " +
+         std::string(board.name) + " is on";
 }
 
 }  // namespace seqc::cli

@@ -24,9 +24,6 @@ struct BoardError {
   std::string message;
 };
 
-// The emulators a test put in `ctx` (Context::xarm_emulator, lsc6_emulator, xarm_clock).
-boards::Hooks hooks_of(const Context& ctx);
-
 // Why --port did not open. `subject` names the file the command was given ("walk.yaml"), for the
 // sentence that says which board it is for; "" when the command has no file.
 BoardError port_failure(const boards::PortFailure& failure, const boards::PortRequest& request,
@@ -44,7 +41,14 @@ ExitCode refuse_command(Context& ctx, const boards::Board& board, const std::str
 // "1 time", "3 times", or "looping until `seqc group stop`" for 0.
 std::string times_text(std::uint16_t times);
 
-// An upload that did not complete: Interrupted, Internal (a bad plan) or DeviceFailure.
+// An upload that did not complete: Interrupted, Internal (a bad plan), Usage (the board on the
+// port speaks the family's other dialect: the file is for another board) or DeviceFailure.
 ExitCode exit_code_for(upload::UploadStatus status);
+
+// UploadStatus::OtherDialect, for a file of `profile` meant for `board`: "this is an LSC-6
+// board; the file is for xarm: use a file with `robot: lsc-6` for this board, or give --port
+// the port the xArm / LSC-16 / LSC-32 is on". The board that answered is the other storing
+// board of `board`'s family.
+std::string other_dialect_text(const boards::Board& board, const std::string& profile);
 
 }  // namespace seqc::cli

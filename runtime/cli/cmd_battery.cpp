@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/device_command.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -28,7 +28,7 @@ void add_battery_command(CLI::App& app, Context& ctx, Outcome& result) {
       "battery", "Print the servo controller's supply voltage (GetBatteryVoltage)");
   add_device_options(*cmd, *device);
   cmd->callback([device, &ctx, &result] {
-    result.code = run_on_controller(ctx, *device, [&](ControllerSession& s) {
+    result.code = run_on_controller(ctx, *device, [&](boards::XarmSession& s) {
       auto v = s.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage");
       if (!v) return ExitCode::DeviceFailure;
       ctx.out << format_voltage(v->millivolts) << "\n";

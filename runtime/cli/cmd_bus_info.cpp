@@ -3,61 +3,26 @@
 //
 // BusServoInfoWrite is not addressed: every servo on the bus takes what it carries, at once
 // (docs/protocol/servo-controller.md). `write` therefore refuses to run unless the user states,
-// with
-// --i-have-one-servo-attached, that only the servo to configure is connected. Fields the user
-// does not give are read from that servo first, so a write changes only what was asked for.
+// with --i-have-one-servo-attached, that only the servo to configure is connected. Fields the
+// user does not give keep that servo's values (boards::write_bus_servo_info reads it first).
 #include <memory>
 #include <optional>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/cli/device_table.hpp"
 
 namespace seqc::cli {
 namespace {
 
 constexpr const char* kConfirmFlag = "--i-have-one-servo-attached";
-
-// The led_warning bits, in bit order (docs/protocol/servo-controller.md).
-const char* const kWarningNames[] = {"overheat", "overvoltage", "overposition"};
-
-std::string warning_text(std::uint8_t bits) {
-  std::string out;
-  for (int b = 0; b < 3; ++b) {
-    if ((bits >> b) & 1) out += (out.empty() ? "" : ",") + std::string(kWarningNames[b]);
-  }
-  if ((bits & ~0x07) != 0)
-    out += (out.empty() ? "" : ",") + std::string("bits ") + std::to_string(bits);
-  return out.empty() ? "none" : out;
-}
-
-Result<std::uint8_t> parse_warnings(const std::string& text) {
-  if (text == "none") return std::uint8_t{0};
-  std::uint8_t bits = 0;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    bool found = false;
-    for (int b = 0; b < 3; ++b) {
-      if (item == kWarningNames[b]) {
-        bits = static_cast<std::uint8_t>(bits | (1 << b));
-        found = true;
-      }
-    }
-    if (!found) {
-      return make_error("--led-warning: unknown warning '" + item +
-                        "'; use a comma list of overheat, overvoltage, overposition, or none");
-    }
-  }
-  return bits;
-}
 
 std::string limits_table(const lsc::BusServoLimits& l, std::vector<std::vector<std::string>> rows) {
   Table table({"field", "value"});
@@ -70,14 +35,14 @@ std::string limits_table(const lsc::BusServoLimits& l, std::vector<std::vector<s
   table.add({"led", l.led_status == 0   ? "on"
                     : l.led_status == 1 ? "off"
                                         : std::to_string(l.led_status)});
-  table.add({"led-warning", warning_text(l.led_warning)});
+  table.add({"led-warning", boards::led_warning_names(l.led_warning)});
   return table.render();
 }
 
 // ---- read ----------------------------------------------------------------------------------
 
 ExitCode read_info(Context& ctx, const DeviceOptions& device) {
-  return run_on_controller(ctx, device, [&](ControllerSession& s) {
+  return run_on_controller(ctx, device, [&](boards::XarmSession& s) {
     auto info = s.ask<lsc::BusServoInfo>(lsc::BusServoInfoRead{}, "the bus servo info");
     if (!info) return ExitCode::DeviceFailure;
     ctx.out << limits_table(info->limits, {{"id", std::to_string(info->id)}});
@@ -104,22 +69,11 @@ struct WriteOptions {
   std::optional<long long> temp_max;
   std::optional<std::string> led;
   std::optional<std::string> led_warning;
-
-  bool complete() const {
-    return servo && position_min && position_max && millivolts_min && millivolts_max && temp_max &&
-           led && led_warning;
-  }
 };
 
-// The fields the user gave, checked; `base` supplies the others.
-struct Changes {
-  std::optional<std::uint8_t> servo;
-  std::optional<std::uint16_t> position_min, position_max, millivolts_min, millivolts_max, temp_max;
-  std::optional<std::uint8_t> led_status, led_warning;
-};
-
-Result<Changes> check_changes(const WriteOptions& o) {
-  Changes c;
+// The fields the user gave, checked against their wire widths.
+Result<boards::BusServoChanges> check_changes(const WriteOptions& o) {
+  boards::BusServoChanges c;
   auto u16 = [](const std::optional<long long>& v, const char* field,
                 std::optional<std::uint16_t>& out) -> Status {
     if (!v) return Ok{};
@@ -142,34 +96,21 @@ Result<Changes> check_changes(const WriteOptions& o) {
   }
   if (o.led) c.led_status = *o.led == "on" ? 0 : 1;
   if (o.led_warning) {
-    auto w = parse_warnings(*o.led_warning);
-    if (!w) return w.error();
+    auto w = boards::parse_led_warnings(*o.led_warning);
+    if (!w) return make_error("--led-warning: " + w.error().message);
     c.led_warning = *w;
   }
   return c;
 }
 
-lsc::BusServoInfoWrite apply(const Changes& c, std::uint8_t id, lsc::BusServoLimits l) {
-  l.position_min = c.position_min.value_or(l.position_min);
-  l.position_max = c.position_max.value_or(l.position_max);
-  l.millivolts_min = c.millivolts_min.value_or(l.millivolts_min);
-  l.millivolts_max = c.millivolts_max.value_or(l.millivolts_max);
-  l.temp_max = c.temp_max.value_or(l.temp_max);
-  l.led_status = c.led_status.value_or(l.led_status);
-  l.led_warning = c.led_warning.value_or(l.led_warning);
-  return lsc::BusServoInfoWrite{c.servo.value_or(id), l};
-}
-
-std::optional<std::string> inconsistent(const lsc::BusServoLimits& l) {
-  if (l.position_min > l.position_max) {
+// "position-min 600 is above position-max 400".
+std::string conflict_text(const lsc::BusServoLimits& l) {
+  if (boards::conflict_in(l) == boards::LimitConflict::Position) {
     return "position-min " + std::to_string(l.position_min) + " is above position-max " +
            std::to_string(l.position_max);
   }
-  if (l.millivolts_min > l.millivolts_max) {
-    return "millivolts-min " + std::to_string(l.millivolts_min) + " is above millivolts-max " +
-           std::to_string(l.millivolts_max);
-  }
-  return std::nullopt;
+  return "millivolts-min " + std::to_string(l.millivolts_min) + " is above millivolts-max " +
+         std::to_string(l.millivolts_max);
 }
 
 ExitCode write_info(Context& ctx, const WriteOptions& o) {
@@ -182,26 +123,22 @@ ExitCode write_info(Context& ctx, const WriteOptions& o) {
   }
   auto changes = check_changes(o);
   if (!changes) return usage_error(ctx, changes.error().message);
-  if (o.complete()) {
-    auto whole = apply(*changes, 0, {});
-    if (auto bad = inconsistent(whole.limits)) return usage_error(ctx, *bad);
-  }
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    lsc::BusServoInfoWrite write = apply(*changes, 0, {});
-    if (!o.complete()) {
-      // Fields not given keep the servo's current values.
-      auto info = s.ask<lsc::BusServoInfo>(lsc::BusServoInfoRead{}, "the bus servo info");
-      if (!info) return ExitCode::DeviceFailure;
-      write = apply(*changes, info->id, info->limits);
-      if (auto bad = inconsistent(write.limits)) {
-        ctx.err << "seqc: error: " << *bad << " (after merging with the servo's current "
-                << "settings); nothing written\n";
-        return ExitCode::Usage;
-      }
+  if (changes->complete()) {
+    const lsc::BusServoLimits whole = changes->applied_to(0, {}).limits;
+    if (boards::conflict_in(whole) != boards::LimitConflict::None) {
+      return usage_error(ctx, conflict_text(whole));
     }
-    if (!s.tell(write)) return ExitCode::DeviceFailure;
+  }
+  return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
+    const boards::BusServoWrite w = boards::write_bus_servo_info(s, *changes);
+    if (w.conflict != boards::LimitConflict::None) {
+      ctx.err << "seqc: error: " << conflict_text(w.write.limits) << " (after merging with the "
+              << "servo's current settings); nothing written\n";
+      return ExitCode::Usage;
+    }
+    if (!w.written) return ExitCode::DeviceFailure;
     summarize(ctx, "written to every servo on the bus (kept over power-off):");
-    ctx.out << limits_table(write.limits, {{"id", std::to_string(write.servo)}});
+    ctx.out << limits_table(w.write.limits, {{"id", std::to_string(w.write.servo)}});
     return ExitCode::Ok;
   });
 }

@@ -6,6 +6,7 @@
 
 #include "compiler/backend/d6a.hpp"
 #include "compiler/lang/d6a_import.hpp"
+#include "runtime/boards/board.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -88,8 +89,8 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (c.code != ExitCode::Ok) return;
     const compiler::ServoProgram* program = c.output.servo_program();
     if (program == nullptr) {
-      ctx.err << "seqc: error: " << o->file
-              << ": a Raspblock program is a live stream; a .d6a file holds servo actions\n";
+      ctx.err << "seqc: error: " << o->file << ": a " << boards::board_for(c.output).name
+              << " program is a live stream; a .d6a file holds servo actions\n";
       result.code = ExitCode::InvalidInput;
       return;
     }

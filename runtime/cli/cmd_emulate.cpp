@@ -62,21 +62,27 @@ class Events final : public emu::ServeEvents {
   Context& ctx_;
 };
 
-// The option checks `board`'s emulator takes; an empty string when they pass.
+// Why `board`'s emulator refuses one of the options given (boards::refused_emulator_option);
+// an empty string when it takes them all.
 std::string refused_option(const EmulateOptions& o, const boards::Board& board) {
-  const unsigned takes = board.emulator_options;
-  if (!(takes & boards::kFaults) && (o.faults_opt->count() > 0 || o.seed_opt->count() > 0)) {
-    return "--faults and --seed apply to the xarm emulator only (" +
-           std::string(board.no_faults_reason) + ")";
+  unsigned given = 0;
+  if (o.faults_opt->count() > 0) given |= boards::kFaults;
+  if (o.seed_opt->count() > 0) given |= boards::kSeed;
+  if (o.dump_groups_opt->count() > 0) given |= boards::kDumpGroups;
+  if (!o.positions.empty()) given |= boards::kPositions;
+  const boards::RefusedOption r = boards::refused_emulator_option(board, given);
+  const std::string why = r.reason.empty() ? "" : " (" + std::string(r.reason) + ")";
+  switch (r.option) {
+    case 0:
+      return "";
+    case boards::kFaults:
+    case boards::kSeed:
+      return "--faults and --seed apply to the xarm emulator only" + why;
+    case boards::kDumpGroups:
+      return "--dump-groups applies to the xarm emulator only" + why;
+    default:
+      return "--positions applies to the xarm emulator only" + why;
   }
-  if (!(takes & boards::kDumpGroups) && o.dump_groups_opt->count() > 0) {
-    return "--dump-groups applies to the xarm emulator only (" +
-           std::string(board.no_groups_reason) + ")";
-  }
-  if (!(takes & boards::kPositions) && !o.positions.empty()) {
-    return "--positions applies to the xarm emulator only";
-  }
-  return "";
 }
 
 ExitCode write_output(Context& ctx, const char* option, const std::string& path,
@@ -150,13 +156,10 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   return code;
 }
 
-// What `seqc emulate` serves, in the table's order: each board's own emulator.
+// What `seqc emulate` serves (boards::served_emulators), as CLI11 checks it.
 std::vector<std::string> served_devices() {
-  std::vector<std::string> names;
-  for (const boards::Board* b : boards::all_boards()) {
-    if (b->serve != nullptr && !b->emulators.empty()) names.emplace_back(b->emulators.front());
-  }
-  return names;
+  const std::vector<std::string_view> names = boards::served_emulators();
+  return {names.begin(), names.end()};
 }
 
 }  // namespace
@@ -175,15 +178,7 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       cmd->add_option("--baud", opts->baud,
                       "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "
                       "9600)");
-  opts->faults_opt =
-      cmd->add_option("--faults", opts->faults,
-                      "xarm faults KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\n"
-                      "keys: drop, corrupt, late, dup, busy, reset (rates 0..1),\n"
-                      "late-by, busy-for, boot-time, silent-after, hangup-at,\n"
-                      "back-after (a hung-up device returns on a new terminal),\n"
-                      "reset-at, seed\n"
-                      "lsc6: drop, seed, no-run-reply, no-finish (firmware copies\n"
-                      "that never answer Run or never announce the end of a run)");
+  opts->faults_opt = cmd->add_option("--faults", opts->faults, emu::faults_help());
   opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
   opts->link_opt =
       cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");

@@ -8,10 +8,11 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/servo_args.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
@@ -28,7 +29,7 @@ struct GroupTarget {
 
 Result<GroupTarget> parse_group_target(const std::string& text) {
   if (text == kAllWord) return GroupTarget{lsc::kAllGroups, true};
-  auto g = parse_group(text);
+  auto g = boards::parse_group(text);
   if (!g) return g.error();
   return GroupTarget{*g, false};
 }
@@ -42,7 +43,7 @@ struct RunOptions {
 };
 
 ExitCode run_group(Context& ctx, const RunOptions& o) {
-  auto group = parse_group(o.group);
+  auto group = boards::parse_group(o.group);
   if (!group) return usage_error(ctx, group.error().message);
   if (o.forever && o.times_opt->count() > 0)
     return usage_error(ctx, "give --times or --forever, not both");
@@ -54,7 +55,7 @@ ExitCode run_group(Context& ctx, const RunOptions& o) {
     }
     times = static_cast<std::uint16_t>(o.times);
   }
-  const boards::Board& board = device_board(o.device);
+  const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.run_frame == nullptr) return refuse_command(ctx, board, o.device.command);
   return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
     const boards::RunOutcome r = boards::run_group(board, line, *group, times);
@@ -90,7 +91,7 @@ struct StopOptions {
 };
 
 ExitCode stop_group(Context& ctx, const StopOptions& o) {
-  const boards::Board& board = device_board(o.device);
+  const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.stop == nullptr) return refuse_command(ctx, board, o.device.command);
   return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
     const boards::StopOutcome r = board.stop(line);
@@ -116,7 +117,7 @@ ExitCode erase_group(Context& ctx, const EraseOptions& o) {
   auto target =
       o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true}) : parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
-  const boards::Board& board = device_board(o.device);
+  const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.erase == nullptr) return refuse_command(ctx, board, o.device.command);
   if (!target->all && !board.erases_one_group) {
     return usage_error(ctx, "the " + std::string(board.name) +

@@ -8,19 +8,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/servo_args.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
 namespace {
-
-// Reading of the document: ServoOffsetAdjust sends a (short) but ServoOffsetRead reports a
-// (sbyte), so only -128..127 can be set and read back; larger values are refused here rather
-// than sent and silently ignored or misreported.
-constexpr long long kOffsetMin = -128;
-constexpr long long kOffsetMax = 127;
 
 struct AdjustOptions {
   DeviceOptions device;
@@ -30,9 +25,9 @@ struct AdjustOptions {
 };
 
 ExitCode read_offsets(Context& ctx, const ServoListOptions& o) {
-  auto sel = select_servos(o.robot, o.servos);
+  auto sel = boards::select_servos(o.robot, o.servos);
   if (!sel) return usage_error(ctx, sel.error().message);
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+  return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
     auto reply = s.ask<lsc::ServoOffsets>(lsc::ServoOffsetRead{sel->ids}, "the offsets");
     if (!reply) return ExitCode::DeviceFailure;
     return print_servo_readings(ctx, sel->ids, sel->robot, "offset", reply->servos,
@@ -41,19 +36,12 @@ ExitCode read_offsets(Context& ctx, const ServoListOptions& o) {
 }
 
 ExitCode adjust_offset(Context& ctx, const AdjustOptions& o) {
-  auto robot = robot_for_profile(o.robot);
+  auto robot = boards::robot_for_profile(o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
-  auto id = parse_servo(o.servo, *robot);
+  auto id = boards::parse_servo(o.servo, *robot);
   if (!id) return usage_error(ctx, id.error().message);
-  auto number = parse_integer(o.offset, "offset");
-  if (!number) return usage_error(ctx, number.error().message);
-  auto offset = lsc::checked_i16(*number, "offset");
+  auto offset = boards::parse_offset(o.offset);
   if (!offset) return usage_error(ctx, offset.error().message);
-  if (*number < kOffsetMin || *number > kOffsetMax) {
-    return usage_error(ctx, "offset must be " + std::to_string(kOffsetMin) + ".." +
-                                std::to_string(kOffsetMax) + ", got " + std::to_string(*number) +
-                                " (ServoOffsetRead reports offsets as a signed byte)");
-  }
   return tell_on_controller(
       ctx, o.device, lsc::ServoOffsetAdjust{*id, *offset},
       servo_label(*id, *robot) + ": offset set to " + std::to_string(*offset) +
@@ -62,7 +50,7 @@ ExitCode adjust_offset(Context& ctx, const AdjustOptions& o) {
 }
 
 ExitCode write_offsets(Context& ctx, const ServoListOptions& o) {
-  auto sel = select_servos(o.robot, o.servos);
+  auto sel = boards::select_servos(o.robot, o.servos);
   if (!sel) return usage_error(ctx, sel.error().message);
   return tell_on_controller(
       ctx, o.device, lsc::ServoOffsetWrite{sel->ids},

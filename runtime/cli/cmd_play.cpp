@@ -10,6 +10,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/servo_play.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/realtime.hpp"
 
 namespace seqc::cli {
@@ -41,6 +42,10 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->add_flag("--allow-late", opts->allow_late,
                 "Servo controller: play a schedule the link cannot keep (moves leave late)");
+  add_trace_option(*cmd, opts->trace);
+  cmd->add_flag("--force", opts->force,
+                "Servo controller: start even when a servo's first move, from where it reports "
+                "it is, is faster than its max_speed");
   cmd->add_flag("--realtime", opts->realtime,
                 "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {

@@ -10,6 +10,8 @@
 #include "compiler/backend/svg_text.hpp"
 #include "compiler/lang/show.hpp"
 #include "compiler/source/units.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -27,14 +29,13 @@ std::optional<double> window_ms(Context& ctx, const std::string& option, const s
   return t->unit == compiler::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
 }
 
+// The title names the group a stored program is for, else the board that plays it.
 std::string plot_program(const compiler::CompileOutput& output, const std::string& name, int group,
                          backend::PlotOptions options) {
-  if (const compiler::ServoProgram* p = output.servo_program()) {
-    options.title = name + ", group " + std::to_string(group);
-    return backend::plot_servo_program(*p, options);
-  }
-  options.title = name + " (Raspblock)";
-  return backend::plot_car_program(*output.raspblock_program(), options);
+  const boards::Board& board = boards::board_for(output);
+  options.title = board.plan != nullptr ? name + ", group " + std::to_string(group)
+                                        : name + " (" + std::string(board.name) + ")";
+  return boards::plot(output, options);
 }
 
 // A show: every performer's picture on one time axis (the longest performer's), stacked as
@@ -46,8 +47,7 @@ ExitCode plot_show(Context& ctx, const std::string& path, const std::string& nam
   if (loaded != ExitCode::Ok) return loaded;
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
-    if (const auto* s = p.output.servo_program()) end = std::max(end, double(s->duration_ms()));
-    if (const auto* c = p.output.raspblock_program()) end = std::max(end, double(c->duration_ms));
+    end = std::max(end, double(boards::length_ms(p.output)));
   }
   if (!options.from_ms) options.from_ms = 0;
   if (!options.to_ms) options.to_ms = end;

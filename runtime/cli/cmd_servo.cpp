@@ -1,6 +1,7 @@
 // `seqc servo read|off|move|mode`: single servos on the servo controller (ServoPositionRead,
 // MultiServoOff, MultiServoMove, ServoSpeed). With --robot PROFILE, servos may be named
-// (claw=200) and positions are checked against the profile's range.
+// (claw=200) and positions are checked against the profile's range; without one against every
+// servo controller's (boards::position_range). A position outside it sends nothing (exit 1).
 #include <memory>
 #include <ostream>
 #include <string>
@@ -10,10 +11,12 @@
 
 #include "compiler/source/units.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/servo_args.hpp"
+#include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/cli/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
@@ -28,8 +31,10 @@ struct ReadOptions : ServoListOptions {
 };
 
 ExitCode read_positions(Context& ctx, const ReadOptions& o) {
-  // A pose needs servo names: yaml uses the xArm's when no --robot is given.
-  auto robot = robot_for_profile(o.robot.empty() && o.format == "yaml" ? "xarm" : o.robot);
+  // A pose needs servo names: yaml uses the board's pose profile when no --robot is given.
+  const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
+  const bool named = o.robot.empty() && o.format == "yaml";
+  auto robot = boards::robot_for_profile(named ? std::string(board.pose_profile) : o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
   std::vector<std::string> names = o.servos;
   if (names.empty()) {
@@ -38,19 +43,15 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
                          "name the servos to read, or give --robot to read all of a profile's");
     for (const auto& s : (*robot)->servos) names.push_back(std::to_string(s.id));
   }
-  auto ids = parse_servo_list(names, *robot);
+  auto ids = boards::parse_servo_list(names, *robot);
   if (!ids) return usage_error(ctx, ids.error().message);
-  return run_on_controller(ctx, o.device, [&](ControllerSession& s) {
-    auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{*ids}, "the positions");
-    if (!reply) return ExitCode::DeviceFailure;
+  return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
+    auto answered = boards::read_positions(s, *ids);
+    if (!answered) return ExitCode::DeviceFailure;
     if (o.format == "yaml") {
       // A line to paste under `poses:` (seqc teach adds them to a file itself).
       std::vector<std::pair<std::uint8_t, std::uint16_t>> positions;
-      for (std::uint8_t id : *ids) {
-        for (const lsc::ServoTarget& t : reply->servos) {
-          if (t.id == id) positions.emplace_back(id, t.position);
-        }
-      }
+      for (const lsc::ServoTarget& t : *answered) positions.emplace_back(t.id, t.position);
       ctx.out << "  " << pose_line(o.name, positions, **robot) << "\n";
       if (positions.size() != ids->size()) {
         ctx.err << "seqc: error: " << ids->size() - positions.size()
@@ -59,7 +60,7 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
       }
       return ExitCode::Ok;
     }
-    return print_servo_readings(ctx, *ids, *robot, "position", reply->servos,
+    return print_servo_readings(ctx, *ids, *robot, "position", *answered,
                                 &lsc::ServoTarget::position);
   });
 }
@@ -67,7 +68,7 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
 // ---- off -----------------------------------------------------------------------------------
 
 ExitCode servos_off(Context& ctx, const ServoListOptions& o) {
-  auto sel = select_servos(o.robot, o.servos);
+  auto sel = boards::select_servos(o.robot, o.servos);
   if (!sel) return usage_error(ctx, sel.error().message);
   return tell_on_controller(ctx, o.device, lsc::MultiServoOff{sel->ids},
                             servo_labels(sel->ids, sel->robot) + ": off (no torque)\n");
@@ -83,32 +84,28 @@ struct MoveOptions {
 };
 
 ExitCode move_servos(Context& ctx, const MoveOptions& o) {
-  auto robot = robot_for_profile(o.robot);
+  auto robot = boards::robot_for_profile(o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
-  auto ms = parse_milliseconds(o.time, "--time");
+  auto ms = boards::parse_milliseconds(o.time, "--time");
   if (!ms) return usage_error(ctx, ms.error().message);
-  if (o.targets.size() > 255) return usage_error(ctx, "at most 255 servos fit in one move");
-  lsc::MultiServoMove move;
-  move.time_ms = *ms;
+  auto requested = boards::parse_targets(o.targets, *robot);
+  if (!requested) return usage_error(ctx, requested.error().message);
+  // A position no servo there can reach is a bad value, not a bad command line.
+  auto targets = boards::checked_targets(*requested, *robot);
+  if (!targets) {
+    ctx.err << "seqc: error: " << targets.error().message << "; nothing was sent\n";
+    return ExitCode::InvalidInput;
+  }
   std::string summary;
-  for (const std::string& text : o.targets) {
-    auto t = parse_target(text, *robot);
-    if (!t) return usage_error(ctx, t.error().message);
-    for (const auto& e : move.servos) {
-      if (e.id == t->id)
-        return usage_error(ctx, "servo " + std::to_string(t->id) + " is named twice");
-    }
-    move.servos.push_back({t->id, t->position});
-    summary += (summary.empty() ? "" : ", ") + servo_label(t->id, *robot) + " to " +
-               std::to_string(t->position);
+  for (const lsc::ServoTarget& t : *targets) {
+    summary += (summary.empty() ? "" : ", ") + servo_label(t.id, *robot) + " to " +
+               std::to_string(t.position);
   }
   const std::string said = "moving " + summary + " over " + compiler::format_seconds(*ms);
-  const boards::Board& board = device_board(o.device);
+  const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.move == nullptr) return refuse_command(ctx, board, o.device.command);
-  std::vector<lsc::ServoTarget> targets;
-  for (const auto& e : move.servos) targets.push_back({e.id, *e.position});
   return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
-    const boards::Outcome r = board.move(line, targets, *ms);
+    const boards::Outcome r = board.move(line, *targets, *ms);
     if (!r.ok()) return report_outcome(ctx, r, line, port, board);
     summarize(ctx, board.confirms_moves
                        ? said
@@ -128,11 +125,11 @@ struct ModeOptions {
 };
 
 ExitCode set_mode(Context& ctx, const ModeOptions& o) {
-  auto robot = robot_for_profile(o.robot);
+  auto robot = boards::robot_for_profile(o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
-  auto id = parse_servo(o.servo, *robot);
+  auto id = boards::parse_servo(o.servo, *robot);
   if (!id) return usage_error(ctx, id.error().message);
-  auto ms = parse_milliseconds(o.time, "--time");
+  auto ms = boards::parse_milliseconds(o.time, "--time");
   if (!ms) return usage_error(ctx, ms.error().message);
   const lsc::ServoMode mode = o.mode == "motor" ? lsc::ServoMode::Motor : lsc::ServoMode::Servo;
   return tell_on_controller(

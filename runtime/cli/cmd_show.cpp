@@ -7,6 +7,7 @@
 // deadline its first frame went out) and, for a stored one, whether the board said it started;
 // the skew between performers; and the lateness of streamed frames.
 #include <algorithm>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
+#include "runtime/upload/trace_transport.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -30,24 +32,42 @@ constexpr io::Duration kReplyTimeout = std::chrono::seconds(1);
 struct Stage {  // one performer, opened
   const compiler::Performer* performer = nullptr;
   const boards::Board* board = nullptr;
+  std::ofstream trace_file;  // --trace: PREFIX-NAME.trace
   std::optional<boards::OpenedPort> port;
+  // With --trace, the port's own transport; port->transport is then the tracing one in front of
+  // it. Destroyed first: the tracing transport never touches it on its way out.
+  std::unique_ptr<io::Transport> untraced;
 };
 
-ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage) {
+ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
+                    const std::string& trace_prefix) {
   stage.performer = &p;
   if (p.port.empty()) {
     ctx.err << "seqc: error: performer '" << p.name << "' has no port in the show file\n";
     return ExitCode::Usage;
   }
+  if (!trace_prefix.empty()) {
+    const std::string path = trace_prefix + "-" + p.name + ".trace";
+    stage.trace_file.open(path, std::ios::out | std::ios::trunc);
+    if (!stage.trace_file) {
+      ctx.err << "seqc: error: --trace " << path << ": cannot write the file\n";
+      return ExitCode::FileError;
+    }
+  }
   stage.board = &boards::board_for(p.output);
   const boards::PortRequest request{p.port, stage.board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, p.file);
     ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";
     return e.code;
   }
   stage.port = std::move(opened.port);
+  if (stage.trace_file.is_open()) {
+    stage.untraced = std::move(stage.port->transport);
+    stage.port->transport = std::make_unique<upload::TraceTransport>(
+        *stage.untraced, *stage.port->clock, stage.trace_file, stage.board->name);
+  }
   return ExitCode::Ok;
 }
 
@@ -137,14 +157,18 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
   return code;
 }
 
-ExitCode run_show(Context& ctx, const std::string& path, bool strict) {
+ExitCode run_show(Context& ctx, const std::string& path, bool strict,
+                  const std::string& trace_prefix) {
   ExitCode loaded = ExitCode::Ok;
   compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
 
   std::vector<Stage> stages(show.performers.size());
   for (std::size_t i = 0; i < stages.size(); ++i) {
-    if (ExitCode c = open_stage(ctx, show.performers[i], stages[i]); c != ExitCode::Ok) return c;
+    if (ExitCode c = open_stage(ctx, show.performers[i], stages[i], trace_prefix);
+        c != ExitCode::Ok) {
+      return c;
+    }
   }
   for (Stage& s : stages) {
     if (s.board->plan != nullptr && !upload_stage(ctx, s)) {
@@ -173,13 +197,17 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
   struct Options {
     std::string file;
     bool strict = false;
+    std::string trace;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "show", "Perform a show: upload every stored performer, then start all at one instant");
   cmd->add_option("FILE", o->file, "Show file (.yaml: show, performers)")->required();
   cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
-  cmd->callback([&ctx, &result, o] { result.code = run_show(ctx, o->file, o->strict); });
+  cmd->add_option("--trace", o->trace,
+                  "Write every byte exchanged with each performer's board, with times, to "
+                  "PREFIX-NAME.trace (docs/trace.md; `seqc decode` reads each)");
+  cmd->callback([&ctx, &result, o] { result.code = run_show(ctx, o->file, o->strict, o->trace); });
 }
 
 }  // namespace seqc::cli

@@ -8,8 +8,9 @@
 #include <string>
 
 #include "compiler/lang/robot_section.hpp"
+#include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/cli/pose_text.hpp"
 #include "runtime/io/disk.hpp"
 
@@ -20,15 +21,6 @@ struct TeachOptions {
   std::string file;
   DeviceOptions device;
 };
-
-// The servos to read: those the file names in its robot section, else all of the profile's.
-std::vector<std::uint8_t> taught_ids(const compiler::RobotInfo& robot) {
-  std::vector<std::uint8_t> ids;
-  for (const compiler::ServoInfo& s : robot.servos) {
-    if (robot.highest_defined_id == 0 || s.id <= robot.highest_defined_id) ids.push_back(s.id);
-  }
-  return ids;
-}
 
 std::string next_default_name(const std::string& text) {
   const std::vector<std::string> taken = pose_names(text);
@@ -66,29 +58,25 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
     ctx.err << compiler::render_all(diags, sources, false, ctx.color);
     return ExitCode::InvalidInput;
   }
-  if (robot->servos.empty() || robot->servos.front().min != 0) {
+  const std::vector<std::uint8_t> ids = boards::readable_servos(*robot);
+  if (ids.empty()) {
     ctx.err << "seqc: error: " << o.file << ": robot '" << robot->profile
             << "' has PWM servos, which cannot report where they are; teach needs bus servos "
                "(xarm, bus)\n";
     return ExitCode::InvalidInput;
   }
-  const std::vector<std::uint8_t> ids = taught_ids(*robot);
   int added = 0;
-  const ExitCode code = run_on_controller(ctx, o.device, [&](ControllerSession& s) {
+  const ExitCode code = run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
     if (!s.tell(lsc::MultiServoOff{ids})) return ExitCode::DeviceFailure;
     ctx.err << "seqc: the servos are limp: pose the robot by hand.\n";
     for (;;) {
       ctx.err << "seqc: press Enter to record the pose, q to finish: " << std::flush;
       std::string line;
       if (!read_line(ctx, line) || line == "q" || line == "Q") break;
-      auto reply = s.ask<lsc::ServoPositions>(lsc::ServoPositionRead{ids}, "the positions");
-      if (!reply) return ExitCode::DeviceFailure;
+      auto answered = boards::read_positions(s, ids);
+      if (!answered) return ExitCode::DeviceFailure;
       std::vector<std::pair<std::uint8_t, std::uint16_t>> positions;
-      for (std::uint8_t id : ids) {
-        for (const lsc::ServoTarget& t : reply->servos) {
-          if (t.id == id) positions.emplace_back(id, t.position);
-        }
-      }
+      for (const lsc::ServoTarget& t : *answered) positions.emplace_back(t.id, t.position);
       if (positions.size() != ids.size()) {
         ctx.err << "seqc: warning: " << ids.size() - positions.size()
                 << " servo(s) did not answer; recording the others\n";

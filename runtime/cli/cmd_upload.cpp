@@ -38,8 +38,16 @@ std::string plural(std::size_t n, const char* word) {
 }
 
 // Why the upload failed, and what was done to leave the group in a known state.
-void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r) {
-  ctx.err << "seqc: error: " << r.message << "\n";
+void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r,
+                    const boards::Board& board, const compiler::CompileOutput& output) {
+  if (r.status == upload::UploadStatus::OtherDialect) {
+    const compiler::ServoProgram* program = output.servo_program();
+    ctx.err << "seqc: error: "
+            << other_dialect_text(board, program != nullptr ? program->robot.profile : "")
+            << "\nseqc: " << r.message << "\n";
+  } else {
+    ctx.err << "seqc: error: " << r.message << "\n";
+  }
   ctx.err << "seqc: "
           << upload::describe_group_state(r.group_state, static_cast<std::uint8_t>(a.group))
           << "\n";
@@ -96,7 +104,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   }
 
   const boards::PortRequest request{a.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, a.file);
     ctx.err << "seqc: error: " << e.message << "\n";
@@ -107,7 +115,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   std::unique_ptr<upload::TraceTransport> trace;
   io::Transport* transport = port.transport.get();
   if (trace_file.is_open()) {
-    trace = std::make_unique<upload::TraceTransport>(*transport, clock, trace_file);
+    trace = std::make_unique<upload::TraceTransport>(*transport, clock, trace_file, board.name);
     transport = trace.get();
   }
 
@@ -129,7 +137,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   progress.finish();
 
   if (!r.ok()) {
-    report_failure(ctx, a, r);
+    report_failure(ctx, a, r, board, c.output);
     return exit_code_for(r.status);
   }
   const double secs = std::chrono::duration<double>(r.elapsed).count();

@@ -45,7 +45,11 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_export_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_teach_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_plot_command(CLI::App& app, Context& ctx, Outcome& result);
+// An animated HTML page of a choreography or show (cmd_preview.cpp).
+void add_preview_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
+// A song's tempo map (cmd_beats.cpp).
+void add_beats_command(CLI::App& app, Context& ctx, Outcome& result);
 
 // For `seqc upload` (cmd_play.cpp): if `output` is for a board that stores nothing (the
 // Raspblock), explains on `err` that it has no storage and points to `seqc play`, and returns

@@ -1,18 +1,14 @@
 // Everything a subcommand may touch outside itself, passed in, so tests run subcommands
-// in-process with string streams, a manual clock and emulated boards. The emulator fields reach
-// the boards library as boards::Hooks (board_text.hpp, hooks_of).
+// in-process with string streams, a manual clock and emulated boards. The emulators reach the
+// boards library as its own boards::Hooks, so the CLI names none of them.
 #pragma once
 
 #include <atomic>
 #include <iosfwd>
 
 #include "compiler/source/source.hpp"
+#include "runtime/boards/hooks.hpp"
 #include "runtime/io/clock.hpp"
-
-namespace seqc::emu {
-class XArmEmulator;
-class Lsc6Emulator;
-}  // namespace seqc::emu
 
 namespace seqc::cli {
 
@@ -26,13 +22,10 @@ struct Context {
   const std::atomic<bool>* interrupted = nullptr;
   // Standard input, for commands that accept "-" as a file name (e.g. `seqc decode -`).
   std::istream* in = nullptr;
-  // `--port emu:xarm` talks to this emulated controller, when both are set, instead of a fresh
-  // one: tests prepare it (stored groups, faults) and read what it received afterwards, and
-  // several commands can share it. Its time is xarm_clock's.
-  emu::XArmEmulator* xarm_emulator = nullptr;
-  io::ManualClock* xarm_clock = nullptr;
-  // The same for emu:lsc6 (its time is also xarm_clock's).
-  emu::Lsc6Emulator* lsc6_emulator = nullptr;
+  // What `--port emu:NAME` reaches instead of a fresh emulator (runtime/boards/hooks.hpp): tests
+  // prepare it (stored groups, faults) and read what it received afterwards, and several
+  // commands can share it.
+  boards::Hooks hooks{};
   // From the environment, read once in main: NO_COLOR set and non-empty, and the terminal's
   // width in columns (0 when stderr is not a terminal).
   bool no_color_env = false;

@@ -1,150 +1,10 @@
 #include "runtime/cli/device_args.hpp"
 
-#include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <string>
-#include <utility>
 
-#include "compiler/lang/profiles.hpp"
 #include "compiler/source/units.hpp"
 
 namespace seqc::cli {
-namespace {
-
-std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
-
-std::string known_names(const compiler::RobotInfo& robot) {
-  std::string out;
-  for (const auto& s : robot.servos) {
-    if (!out.empty()) out += ", ";
-    out += s.name + "=" + std::to_string(s.id);
-  }
-  return out;
-}
-
-}  // namespace
-
-Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile) {
-  if (profile.empty()) return std::optional<compiler::RobotInfo>{};
-  const compiler::RobotProfile* p = compiler::find_profile(profile);
-  if (p == nullptr) {
-    std::string names;
-    for (const auto& n : compiler::profile_names()) names += (names.empty() ? "" : ", ") + n;
-    return make_error("--robot: unknown profile " + quoted(profile) + " (known: " + names + ")");
-  }
-  return std::optional<compiler::RobotInfo>{compiler::robot_from_profile(*p)};
-}
-
-Result<long long> parse_integer(std::string_view text, const char* field) {
-  long long value = 0;
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  if (!text.empty() && text[0] == '+') ++first;
-  const auto [end, ec] = std::from_chars(first, last, value);
-  if (text.empty() || ec == std::errc::invalid_argument || end != last) {
-    return make_error(std::string(field) + ": " + quoted(text) + " is not a whole number");
-  }
-  if (ec == std::errc::result_out_of_range) {
-    return make_error(std::string(field) + ": " + quoted(text) + " is far out of range");
-  }
-  return value;
-}
-
-Result<std::uint8_t> parse_servo(std::string_view text,
-                                 const std::optional<compiler::RobotInfo>& robot) {
-  const bool numeric =
-      !text.empty() && text.find_first_not_of("0123456789+-") == std::string_view::npos;
-  if (!numeric) {
-    if (!robot) {
-      return make_error("servo " + quoted(text) +
-                        " is not an id; servo names need a profile, e.g. --robot xarm");
-    }
-    if (const compiler::ServoInfo* s = robot->find_name(text)) return s->id;
-    return make_error("servo " + quoted(text) + " is not a servo of the " + robot->profile +
-                      " profile (" + known_names(*robot) + ")");
-  }
-  auto number = parse_integer(text, "servo");
-  if (!number) return number.error();
-  auto id = lsc::checked_u8(*number, "servo");
-  if (!id) return id.error();
-  if (robot && robot->find_id(*id) == nullptr) {
-    return make_error("servo " + std::to_string(*id) + " is not a servo of the " + robot->profile +
-                      " profile (ids " + std::to_string(robot->servos.front().id) + ".." +
-                      std::to_string(robot->servos.back().id) + ")");
-  }
-  return *id;
-}
-
-Result<std::vector<std::uint8_t>> parse_servo_list(
-    const std::vector<std::string>& texts, const std::optional<compiler::RobotInfo>& robot) {
-  if (texts.empty()) return make_error("name at least one servo");
-  if (texts.size() > 255) {
-    return make_error("at most 255 servos fit in one request, got " + std::to_string(texts.size()));
-  }
-  std::vector<std::uint8_t> ids;
-  for (const std::string& t : texts) {
-    auto id = parse_servo(t, robot);
-    if (!id) return id.error();
-    if (std::find(ids.begin(), ids.end(), *id) != ids.end()) {
-      return make_error("servo " + std::to_string(*id) + " is named twice");
-    }
-    ids.push_back(*id);
-  }
-  return ids;
-}
-
-Result<ServoSelection> select_servos(const std::string& profile,
-                                     const std::vector<std::string>& texts) {
-  auto robot = robot_for_profile(profile);
-  if (!robot) return robot.error();
-  auto ids = parse_servo_list(texts, *robot);
-  if (!ids) return ids.error();
-  return ServoSelection{std::move(*robot), std::move(*ids)};
-}
-
-Result<lsc::ServoTarget> parse_target(std::string_view text,
-                                      const std::optional<compiler::RobotInfo>& robot) {
-  const auto eq = text.find('=');
-  if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size()) {
-    return make_error("move target " + quoted(text) +
-                      " must look like SERVO=POSITION, e.g. 1=500 or claw=200");
-  }
-  auto id = parse_servo(text.substr(0, eq), robot);
-  if (!id) return id.error();
-  const std::string field = "position of servo " + std::to_string(*id);
-  auto number = parse_integer(text.substr(eq + 1), field.c_str());
-  if (!number) return number.error();
-  auto position = lsc::checked_u16(*number, field.c_str());
-  if (!position) return position.error();
-  if (*position == lsc::kNoMove) {
-    return make_error(field + ": 65280 (0xff00) is the protocol's \"do not move\" value");
-  }
-  if (robot) {
-    const compiler::ServoInfo* s = robot->find_id(*id);
-    if (*number < s->min || *number > s->max) {
-      return make_error(field + " must be " + std::to_string(s->min) + ".." +
-                        std::to_string(s->max) + " on " + robot->profile + ", got " +
-                        std::to_string(*number));
-    }
-  }
-  return lsc::ServoTarget{*id, *position};
-}
-
-Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field) {
-  auto time = compiler::parse_time(text);
-  if (!time) return make_error(std::string(field) + ": " + time.error().message);
-  if (time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
-    return make_error(std::string(field) + ": beats need a tempo; give ms or s");
-  }
-  const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
-  if (ms != std::floor(ms)) {
-    return make_error(std::string(field) + ": " + quoted(text) + " is not whole milliseconds");
-  }
-  const std::string range_field = std::string(field) + " (ms)";
-  return lsc::checked_u16(ms > 1e12 ? 1000000000000LL : static_cast<long long>(ms),
-                          range_field.c_str());
-}
 
 Result<io::Duration> parse_timeout(std::string_view text) {
   auto time = compiler::parse_time(text);
@@ -154,19 +14,10 @@ Result<io::Duration> parse_timeout(std::string_view text) {
   }
   const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   if (ms <= 0 || ms > 3600.0 * 1000) {
-    return make_error("--timeout must be more than 0 and at most 1 hour, got " + quoted(text));
+    return make_error("--timeout must be more than 0 and at most 1 hour, got '" +
+                      std::string(text) + "'");
   }
   return std::chrono::duration_cast<io::Duration>(std::chrono::duration<double, std::milli>(ms));
-}
-
-Result<std::uint8_t> parse_group(std::string_view text) {
-  auto number = parse_integer(text, "group");
-  if (!number) return number.error();
-  if (*number < 0 || *number >= lsc::kAllGroups) {
-    return make_error("group must be 0..254, got " + std::to_string(*number) +
-                      " (255 means every group on the wire; say `all` where a command allows it)");
-  }
-  return static_cast<std::uint8_t>(*number);
 }
 
 std::string servo_label(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot) {

@@ -1,7 +1,7 @@
-// The argument syntaxes shared by the commands that talk to the servo controller (group,
-// battery, servo, offset, bus-info): servo ids or profile names, ID=POSITION targets, times and
-// group numbers. Every parser returns the value or an error message that names the field and
-// its range, ready for "seqc: error: " and exit status 2 (usage). Nothing is clamped or wrapped.
+// The device commands' own option syntax and words: --timeout, and how a servo is named in a
+// sentence. What a servo controller accepts as servos, targets, times and groups is the boards
+// library's (runtime/boards/servo_args.hpp). Every parser returns the value or an error message
+// that names the option, ready for "seqc: error: " and exit status 2 (usage).
 #pragma once
 
 #include <cstdint>
@@ -12,48 +12,12 @@
 
 #include "compiler/compile.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
 #include "runtime/protocol/result.hpp"
 
 namespace seqc::cli {
 
-// The servos a `--robot PROFILE` names (xarm, lsc-16, lsc-32, lsc-6); nullopt for "" (no profile:
-// servos are plain ids 0..255 and positions plain 0..65535 values).
-Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile);
-
-// A whole number in decimal; the error names `field`.
-Result<long long> parse_integer(std::string_view text, const char* field);
-
-// One servo: an id, or with a profile one of its names ("claw"). With a profile, ids outside
-// the profile's servos are refused.
-Result<std::uint8_t> parse_servo(std::string_view text,
-                                 const std::optional<compiler::RobotInfo>& robot);
-
-// Several servos (at least one, none twice, at most 255 so the count fits its byte).
-Result<std::vector<std::uint8_t>> parse_servo_list(const std::vector<std::string>& texts,
-                                                   const std::optional<compiler::RobotInfo>& robot);
-
-// The servos a command names (as parse_servo_list), with the --robot profile that names them.
-struct ServoSelection {
-  std::optional<compiler::RobotInfo> robot;
-  std::vector<std::uint8_t> ids;
-};
-Result<ServoSelection> select_servos(const std::string& profile,
-                                     const std::vector<std::string>& texts);
-
-// "ID=POSITION" or "NAME=POSITION"; with a profile the position must lie within its range.
-Result<lsc::ServoTarget> parse_target(std::string_view text,
-                                      const std::optional<compiler::RobotInfo>& robot);
-
-// "500ms" or "1.5s" as whole milliseconds 0..65535 (the protocol's ushort milliseconds).
-Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field);
-
 // A --timeout: "500ms", "2s"; more than 0 and at most one hour.
 Result<io::Duration> parse_timeout(std::string_view text);
-
-// A group number for GroupRun/Erase/Speed: 0..254. 255 is the wire's "every group", which
-// is asked for with the word `all` where a command allows it, never with a number.
-Result<std::uint8_t> parse_group(std::string_view text);
 
 // "servo 1" or, with a profile, "servo 1 (claw)".
 std::string servo_label(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot);

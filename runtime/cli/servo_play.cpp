@@ -5,27 +5,33 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "compiler/source/units.hpp"
+#include "runtime/boards/first_move.hpp"
 #include "runtime/boards/live.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/cli/board_text.hpp"
+#include "runtime/cli/device_command.hpp"
 #include "runtime/cli/play_progress.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
 namespace {
 
-std::uint64_t duration_ms(const compiler::CompileOutput& compiled) {
-  if (const compiler::ServoProgram* p = compiled.servo_program()) return p->duration_ms();
-  if (const compiler::RaspblockProgram* p = compiled.raspblock_program()) return p->duration_ms;
-  return 0;
+// " (walk.yaml:7)": where the source writes the step a move comes from.
+std::string where(const compiler::CompileOutput& compiled, const boards::LiveReport& r,
+                  std::size_t move) {
+  if (move >= r.origins.size()) return "";
+  const compiler::Location& at = r.origins[move].source;
+  if (at.file == compiler::kNoFile || at.file >= compiled.sources.file_count()) return "";
+  return " (" + compiled.sources.path(at.file) + ":" + std::to_string(at.line) + ")";
 }
 
-std::string where(const compiler::CompileOutput& compiled, const compiler::Keyframe& k) {
-  if (k.source.file == compiler::kNoFile || k.source.file >= compiled.sources.file_count()) {
-    return "";
-  }
-  return " (" + compiled.sources.path(k.source.file) + ":" + std::to_string(k.source.line) + ")";
+// "0.5 s": when the step a move comes from starts.
+std::string start_of(const boards::LiveReport& r, std::size_t move) {
+  return move < r.origins.size() ? compiler::format_seconds(r.origins[move].start_ms) : "?";
 }
 
 std::string link_text(const io::Transport& t) {
@@ -40,13 +46,12 @@ std::string late_text(const compiler::CompileOutput& compiled, const boards::Liv
                       const io::Transport& t) {
   const player::ScheduleCheck& c = r.check;
   const std::size_t i = *c.first_late;
-  const compiler::Keyframe& k = compiled.servo_program()->keyframes[i];
   const std::string n = std::to_string(r.frames.size());
-  return "move " + std::to_string(i + 1) + " of " + n + " at " +
-         compiler::format_seconds(k.start_ms) + where(compiled, k) + " would leave " +
-         io::ms_text(c.late_by, 1) + " late: " + link_text(t) + " the move before it takes " +
-         io::ms_text(c.wire_time, 1) + " on the wire (" + std::to_string(c.late_frames) + " of " +
-         n + " moves late, the worst by " + io::ms_text(c.worst, 1) + ")";
+  return "move " + std::to_string(i + 1) + " of " + n + " at " + start_of(r, i) +
+         where(compiled, r, i) + " would leave " + io::ms_text(c.late_by, 1) +
+         " late: " + link_text(t) + " the move before it takes " + io::ms_text(c.wire_time, 1) +
+         " on the wire (" + std::to_string(c.late_frames) + " of " + n +
+         " moves late, the worst by " + io::ms_text(c.worst, 1) + ")";
 }
 
 // A servo board's report: moves, measured once each had left.
@@ -59,9 +64,8 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
   const std::size_t sent = r.play.sent;
   const auto last_step = [&] {
     if (sent == 0) return std::string("before the first step");
-    const compiler::Keyframe& k = compiled.servo_program()->keyframes[sent - 1];
     return "after step " + std::to_string(sent) + " of " + std::to_string(r.frames.size()) +
-           " at " + compiler::format_seconds(k.start_ms) + where(compiled, k);
+           " at " + start_of(r, sent - 1) + where(compiled, r, sent - 1);
   };
   switch (r.status) {
     case boards::LiveStatus::BadProgram:
@@ -84,8 +88,7 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
     case boards::LiveStatus::Played: {
       if (ctx.verbosity < 0) return ExitCode::Ok;
       const player::LatenessSummary late = player::summarize(r.play.left_lateness);
-      ctx.err << "seqc: played " << sent << " moves, "
-              << compiler::format_seconds(duration_ms(compiled))
+      ctx.err << "seqc: played " << sent << " moves, " << compiler::format_seconds(r.length_ms)
               << "; moves left the port late by p50 " << io::ms_text(late.p50, 1) << ", p99 "
               << io::ms_text(late.p99, 1) << ", max " << io::ms_text(late.max, 1)
               << " (measured once each had left)\n";
@@ -107,8 +110,7 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
 }
 
 // A car's report: frames, their lateness, and the stop after an early end.
-ExitCode word_stream(Context& ctx, const compiler::CompileOutput& compiled,
-                     const boards::LiveReport& r) {
+ExitCode word_stream(Context& ctx, const boards::LiveReport& r) {
   const player::PlayReport& p = r.play;
   const std::string stop_text =
       p.stop_sent ? "sent the stop (all speeds 0)"
@@ -118,10 +120,9 @@ ExitCode word_stream(Context& ctx, const compiler::CompileOutput& compiled,
     case boards::LiveStatus::InterruptedAtEnd: {
       if (ctx.verbosity < 0) return ExitCode::Ok;
       const player::LatenessSummary late = player::summarize(p.lateness);
-      ctx.err << "seqc: played " << p.sent << " frames in "
-              << compiler::format_seconds(duration_ms(compiled)) << "; lateness p50 "
-              << io::ms_text(late.p50, 2) << ", p99 " << io::ms_text(late.p99, 2) << ", max "
-              << io::ms_text(late.max, 2) << "\n";
+      ctx.err << "seqc: played " << p.sent << " frames in " << compiler::format_seconds(r.length_ms)
+              << "; lateness p50 " << io::ms_text(late.p50, 2) << ", p99 "
+              << io::ms_text(late.p99, 2) << ", max " << io::ms_text(late.max, 2) << "\n";
       return ExitCode::Ok;
     }
     case boards::LiveStatus::Interrupted:
@@ -157,7 +158,7 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
     if (ctx.verbosity >= 0 && !board.unprobed_note.empty()) {
       ctx.err << "seqc: note: " << board.unprobed_note << "\n";
     }
-    const std::string length = compiler::format_seconds(duration_ms(compiled));
+    const std::string length = compiler::format_seconds(r.length_ms);
     if (ctx.verbosity >= 0 && moves) {
       ctx.err << "seqc: playing " << r.frames.size() << " moves (" << length << ") live on "
               << t.describe() << "; Ctrl-C stops\n";
@@ -167,12 +168,21 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
     }
     ctx.err.flush();
     progress.emplace(ctx.err, ctx.err_is_terminal && ctx.verbosity >= 0, ctx.terminal_columns,
-                     std::chrono::milliseconds(duration_ms(compiled)), r.frames.size());
+                     std::chrono::milliseconds(r.length_ms), r.frames.size());
   };
   hooks.sent = [&](std::size_t i, io::Duration at) { progress->on_sent(i, at); };
   const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);
   if (progress) progress->finish();
-  return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, compiled, r);
+  return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, r);
+}
+
+// "'base' is at 120; reaching 880 in 0.5 s is 1520 units/s, above its max_speed 800/s; slow the
+// first move or pass --force"
+std::string first_move_text(const boards::FirstMoveTooFast& f) {
+  return fmt::format(
+      "'{}' is at {}; reaching {} in {} is {:.0f} units/s, above its max_speed {:.0f}/s; slow the "
+      "first move or pass --force",
+      f.name, f.from, f.to, compiler::format_seconds(f.time_ms), f.speed, f.max_speed);
 }
 
 }  // namespace
@@ -180,28 +190,34 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
                        const PlayArgs& args) {
   const boards::Board& board = boards::board_for(compiled);
+  Trace trace;
+  if (const ExitCode c = trace.open(ctx, args.trace); c != ExitCode::Ok) return c;
   const boards::PortRequest request{args.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, args.file);
     ctx.err << "seqc: error: " << e.message << "\n";
     return e.code;
   }
   boards::OpenedPort& port = *opened.port;
-  const boards::Line line{*port.transport, *port.clock, ctx.interrupted};
+  const boards::Line line{trace.wrap(*port.transport, *port.clock, board), *port.clock,
+                          ctx.interrupted};
+  if (const compiler::ServoProgram* program = compiled.servo_program(); program && !args.force) {
+    if (const auto fast = boards::first_move_too_fast(board, line, *program)) {
+      ctx.err << "seqc: error: " << first_move_text(*fast) << "\n";
+      return ExitCode::InvalidInput;
+    }
+  }
   const ExitCode code = play_and_word(ctx, compiled, board, line, args);
-  if (port.raspblock && ctx.verbosity >= 0) {
-    ctx.err << "seqc: " << port.transport->describe() << " received "
-            << port.raspblock->packets().size() << " packets, "
-            << port.raspblock->rejections().size() << " rejected\n";
+  if (const auto got = boards::received(port); got && ctx.verbosity >= 0) {
+    ctx.err << "seqc: " << port.transport->describe() << " received " << got->packets
+            << " packets, " << got->rejected << " rejected\n";
   }
   return code;
 }
 
-ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
-                              ControllerSession& session, const PlayArgs& args) {
-  const boards::Line line{session.link().transport(), session.link().clock(), ctx.interrupted,
-                          session.timeout()};
+ExitCode play_on_line(Context& ctx, const compiler::CompileOutput& compiled,
+                      const boards::Line& line, const PlayArgs& args) {
   return play_and_word(ctx, compiled, boards::board_for(compiled), line, args);
 }
 

@@ -13,7 +13,6 @@
 #include "compiler/compile.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/cli/context.hpp"
-#include "runtime/cli/controller_session.hpp"
 #include "runtime/cli/exit_codes.hpp"
 
 namespace seqc::cli {
@@ -25,15 +24,18 @@ struct PlayArgs {
   bool strict = false;
   bool realtime = false;
   bool allow_late = false;  // play a schedule the link cannot keep, with a warning
+  std::string trace;        // --trace FILE ("" = none)
+  bool force = false;       // start even when a servo's first move is too fast from where it is
 };
 
 // Opens the port `args` names for the board `compiled` is for, plays it live and says how it
-// went.
+// went. Where the servos report their positions, they are read first and a first move faster
+// than a servo's max_speed from there is refused (InvalidInput, nothing moves) unless
+// args.force (boards/first_move.hpp).
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled, const PlayArgs& args);
 
-// The same over a servo controller session that is already open (tests drive it over their own
-// transport). `compiled` must hold a ServoProgram.
-ExitCode stream_servo_program(Context& ctx, const compiler::CompileOutput& compiled,
-                              ControllerSession& session, const PlayArgs& args = {});
+// The same over a line that is already open (tests drive it over their own transport).
+ExitCode play_on_line(Context& ctx, const compiler::CompileOutput& compiled,
+                      const boards::Line& line, const PlayArgs& args = {});
 
 }  // namespace seqc::cli

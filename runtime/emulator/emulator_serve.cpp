@@ -13,6 +13,7 @@
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/received_record.hpp"
+#include "runtime/emulator/xarm_config.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/protocol/raspblock.hpp"
 
@@ -175,6 +176,23 @@ ServeResult serve_raspblock(const ServeOptions& options, io::Clock& clock,
                     std::to_string(board.bad_checksums()) + " bad checksums)";
   if (options.record) result.record = timeline_csv(board.timeline());
   return result;
+}
+
+std::string faults_help() {
+  std::string out = "Faults, KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\nxarm:";
+  for (const FaultKey& k : fault_keys()) {
+    const char* value = k.value == FaultValue::Rate       ? "=P"
+                        : k.value == FaultValue::Duration ? "=TIME"
+                                                          : "=N";
+    out += "\n  " + std::string(k.key) + value + ": " + std::string(k.does);
+  }
+  out += "\nlsc6:";
+  for (const Lsc6OptionKey& k : lsc6_option_keys()) {
+    if (!k.fault) continue;
+    out += "\n  " + std::string(k.key) + (k.value.empty() ? "" : "=") + std::string(k.value) +
+           ": " + std::string(k.does);
+  }
+  return out + "\n(P: a rate 0..1 per frame; TIME: ms, s, us or ns)";
 }
 
 }  // namespace seqc::emu

@@ -68,4 +68,9 @@ ServeResult serve_lsc6(const ServeOptions& options, io::Clock& clock, const std:
 ServeResult serve_raspblock(const ServeOptions& options, io::Clock& clock,
                             const std::atomic<bool>& stop, ServeEvents& events);
 
+// `seqc emulate --faults`' help: every key of the xarm emulator's faults (fault_keys) and of the
+// LSC-6's (lsc6_option_keys), one a line, from the very tables their parsers check keys
+// against, so the help cannot miss a key either takes.
+std::string faults_help();
+
 }  // namespace seqc::emu

@@ -23,7 +23,17 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+constexpr Lsc6OptionKey kOptionKeys[] = {
+    {"drop", "P", "a completed frame is lost"},
+    {"no-run-reply", "", "Run is never answered (some firmware copies)"},
+    {"no-finish", "", "the end of a counted run is never announced (some firmware copies)"},
+    {"seed", "N", "seed of drop (1)"},
+    {"baud", "N", "the line's rate", false},
+};
+
 }  // namespace
+
+std::span<const Lsc6OptionKey> lsc6_option_keys() { return kOptionKeys; }
 
 Status apply_lsc6_options(std::string_view spec, Lsc6Config& config) {
   while (!spec.empty()) {
@@ -37,6 +47,9 @@ Status apply_lsc6_options(std::string_view spec, Lsc6Config& config) {
     auto bad = [&](const std::string& why) {
       return make_error("emu:lsc6 option '" + std::string(item) + "': " + why);
     };
+    const bool known = std::any_of(std::begin(kOptionKeys), std::end(kOptionKeys),
+                                   [&](const Lsc6OptionKey& k) { return k.key == key; });
+    if (!known) return bad("unknown; expected drop=P, seed=N, baud=N, no-run-reply or no-finish");
     if (key == "no-run-reply" && eq == std::string_view::npos) {
       config.run_reply = false;
     } else if (key == "no-finish" && eq == std::string_view::npos) {

@@ -35,6 +35,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,17 @@ struct Lsc6Config {
   double drop = 0.0;                                           // fraction of completed frames lost
   std::uint64_t seed = 1;
 };
+
+// Every item apply_lsc6_options takes, in the order `seqc emulate --help` lists them: it refuses
+// an item not here, and the help is made from this table, so the two cannot drift. `fault`:
+// a fault (`seqc emulate lsc6 --faults`), not the line's rate (`--baud`).
+struct Lsc6OptionKey {
+  std::string_view key;
+  std::string_view value;  // "P" (a fraction 0..1), "N" (a whole number), "" (a flag)
+  std::string_view does;
+  bool fault = true;
+};
+std::span<const Lsc6OptionKey> lsc6_option_keys();
 
 // "drop=0.05,seed=7,no-run-reply,no-finish" (any subset; "" = defaults). Error names the item.
 Status apply_lsc6_options(std::string_view spec, Lsc6Config& config);

@@ -13,19 +13,42 @@
 namespace seqc::emu {
 namespace {
 
-constexpr std::array<std::string_view, 16> kKeys = {
-    "seed",         "drop",      "corrupt",    "late",  "late-by",  "dup",
-    "silent-after", "hangup-at", "back-after", "reset", "reset-at", "boot-time",
-    "busy",         "busy-for",  "frame-gap",  "split"};
+// In the order the "known:" list of an unknown key has always named them.
+constexpr FaultKey kKeys[] = {
+    {"seed", FaultValue::Seed, "seed of the faults (1)"},
+    {"drop", FaultValue::Rate, "an incoming frame is lost"},
+    {"corrupt", FaultValue::Rate, "a byte of a reply or of a request's framing is flipped"},
+    {"late", FaultValue::Rate, "a reply comes late-by later"},
+    {"late-by", FaultValue::Duration, "how much later a late reply comes (400ms)"},
+    {"dup", FaultValue::Rate, "a reply is sent twice"},
+    {"silent-after", FaultValue::Count, "no answer after N frames"},
+    {"hangup-at", FaultValue::Count, "the link closes when frame N arrives"},
+    {"back-after", FaultValue::Duration, "a hung-up device returns, on a new terminal"},
+    {"reset", FaultValue::Rate,
+     "a power dip: the controller forgets a download and is deaf for boot-time"},
+    {"reset-at", FaultValue::Count, "a power dip when frame N arrives"},
+    {"boot-time", FaultValue::Duration, "how long a reset keeps it deaf (300ms)"},
+    {"busy", FaultValue::Rate,
+     "a frame keeps the controller busy-for longer (frames meanwhile are dropped)"},
+    {"busy-for", FaultValue::Duration, "how long a busy frame keeps it (400ms)"},
+    {"frame-gap", FaultValue::Duration,
+     "a partial request is dropped when the next byte comes later than this (not the "
+     "firmware's behaviour)"},
+    {"split", FaultValue::Rate,
+     "a reply reaches the host in two pieces (a USB-serial adapter's latency timer)"},
+};
 
 std::string unknown_key_message(std::string_view key) {
   std::string msg = "unknown fault '" + std::string(key) + "'";
-  const std::string best =
-      compiler::did_you_mean(key, std::vector<std::string>(kKeys.begin(), kKeys.end()));
+  const std::string best = compiler::did_you_mean(key, [] {
+    std::vector<std::string> keys;
+    for (const FaultKey& k : kKeys) keys.emplace_back(k.key);
+    return keys;
+  }());
   if (!best.empty()) msg += "; did you mean '" + best + "'?";
   msg += " (known:";
-  for (std::size_t i = 0; i < kKeys.size(); ++i) {
-    msg += std::string(i == 0 ? " " : ", ") + std::string(kKeys[i]);
+  for (std::size_t i = 0; i < std::size(kKeys); ++i) {
+    msg += std::string(i == 0 ? " " : ", ") + std::string(kKeys[i].key);
   }
   msg += ")";
   return msg;
@@ -98,6 +121,8 @@ std::string format_rate(double v) {
 
 }  // namespace
 
+std::span<const FaultKey> fault_keys() { return kKeys; }
+
 bool XArmFaults::any() const {
   return drop > 0 || corrupt > 0 || late_ack > 0 || duplicate_ack > 0 || silent_after ||
          hangup_at || reset > 0 || reset_at || busy > 0 || frame_gap.count() > 0 || split > 0;
@@ -121,6 +146,11 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
     }
     std::string_view key = item.substr(0, eq);
     std::string_view value = item.substr(eq + 1);
+    // The table decides which keys exist (fault_keys); the branches below give each its value.
+    if (std::none_of(std::begin(kKeys), std::end(kKeys),
+                     [&](const FaultKey& k) { return k.key == key; })) {
+      return make_error(unknown_key_message(key));
+    }
     if (key == "seed") {
       auto v = parse_unsigned(key, value);
       if (!v) return v.error();

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -52,6 +53,17 @@ struct XArmFaults {
 
   bool any() const;
 };
+
+// Every key parse_faults takes, with its kind of value and what it does, in the order `seqc
+// emulate --help` lists them. parse_faults refuses a key that is not here, and the help is made
+// from this table, so neither can name a fault the other does not know.
+enum class FaultValue { Rate, Duration, Count, Seed };
+struct FaultKey {
+  std::string_view key;
+  FaultValue value;
+  std::string_view does;  // "an incoming frame is lost"
+};
+std::span<const FaultKey> fault_keys();
 
 // Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
 // hangup-at=500,back-after=2s,reset=0.001,reset-at=300,boot-time=300ms,busy=0.01,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "runtime/protocol/lsc_messages.hpp"
+
 namespace seqc::upload {
 namespace {
 
@@ -39,6 +41,8 @@ std::optional<lsc6::Reply> Lsc6Link::next_answer() {
     ++stats_.frames_received;
     auto reply = lsc6::decode_reply(*frame);
     if (!reply) {
+      auto other = lsc::decode_reply(*frame);
+      if (other && std::holds_alternative<lsc::BatteryVoltage>(*other)) ++other_dialect_;
       ++skipped_;  // not an answer this firmware sends
       continue;
     }

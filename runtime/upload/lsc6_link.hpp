@@ -52,6 +52,9 @@ class Lsc6Link {
   LinkStats stats() const;
   std::size_t finished_notices() const { return finished_; }
   std::size_t skipped() const { return skipped_; }
+  // Replies of the xArm dialect to GetBatteryVoltage (55 55 04 0f lo hi) among the frames read:
+  // a board of that dialect is on the line.
+  std::size_t other_dialect_replies() const { return other_dialect_; }
 
  private:
   std::optional<lsc6::Reply> next_answer();
@@ -64,6 +67,7 @@ class Lsc6Link {
   LinkStats stats_;
   std::size_t finished_ = 0;
   std::size_t skipped_ = 0;
+  std::size_t other_dialect_ = 0;
 };
 
 }  // namespace seqc::upload

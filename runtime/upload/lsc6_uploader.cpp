@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "runtime/io/time_text.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
 
 namespace seqc::upload {
 namespace {
@@ -50,6 +51,9 @@ class Lsc6Run {
     return Flow::Fatal;
   }
   Flow wait_failure(const Lsc6Wait& w, const std::string& doing);
+  // GetBatteryVoltage (the xArm dialect's), waiting one short deadline; returns that wait, which
+  // takes a late ActionStored too.
+  Lsc6Wait ask_battery();
   io::Duration timeout(std::size_t i) const;
   void note(const std::string& text) {
     if (observer_ != nullptr) observer_->on_note(text);
@@ -108,6 +112,16 @@ Lsc6Run::Flow Lsc6Run::wait_failure(const Lsc6Wait& w, const std::string& doing)
   }
 }
 
+Lsc6Wait Lsc6Run::ask_battery() {
+  const Bytes request = lsc::encode_serial(lsc::Request{lsc::GetBatteryVoltage{}}).value();
+  if (!link_.send_bytes(request)) return Lsc6Wait{};
+  // The request and a voltage reply (55 55 04 0f lo hi) on the wire, plus the margin.
+  const double wire = static_cast<double>(request.size() + 6) * link_.seconds_per_byte();
+  return link_.wait_for(is_stored, link_.clock().now() +
+                                       io::Duration(static_cast<long long>(std::ceil(wire * 1e9))) +
+                                       opt_.reply_margin);
+}
+
 void Lsc6Run::progress() {
   if (observer_ == nullptr) return;
   UploadProgress p;
@@ -150,7 +164,19 @@ Lsc6Run::Flow Lsc6Run::exchange(std::size_t i) {
     ++sends;
     if (i == 0) first_sent_ = true;
     if (i + 1 == plan_.size()) last_sent_ = true;
-    const Lsc6Wait w = link_.wait_for(is_stored, sent_at + limit);
+    Lsc6Wait w = link_.wait_for(is_stored, sent_at + limit);
+    if (w.status == WaitStatus::Timeout && i == 0 && sends == 1 && result_.restarts == 0) {
+      w = ask_battery();
+      if (link_.other_dialect_replies() > 0) {
+        // That dialect has no command 25: nothing was stored or erased.
+        first_sent_ = false;
+        last_sent_ = false;
+        return fatal(UploadStatus::OtherDialect,
+                     "the board on " + link_.transport().describe() +
+                         " does not answer a DownloadAction but answers GetBatteryVoltage with "
+                         "its voltage: it speaks the xArm / LSC-16 / LSC-32 dialect");
+      }
+    }
     if (w.ok()) break;
     if (w.status != WaitStatus::Timeout) return wait_failure(w, "waiting for " + what(i));
     if (sends > opt_.retries) {

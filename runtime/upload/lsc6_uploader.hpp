@@ -14,7 +14,10 @@
 //      ends the upload Interrupted and sends Stop: the group is stored, the robot must not move.
 // The board has no battery or any other command with an answer that could serve as a probe or
 // a barrier, so the first frame is the probe: no answer to it after every re-send means no
-// board (NoAnswer).
+// board (NoAnswer). When index 0's first sending goes unanswered, GetBatteryVoltage follows
+// once: the LSC-6 ignores it, while a controller of the xArm dialect (which has no command 25)
+// answers with its voltage, and the upload ends at once (OtherDialect, group unchanged) rather
+// than re-sending for every attempt.
 //
 // Pairing. An answer names no index. Every frame carries its own group, total and index, so
 // sending one again is harmless (the same bytes land in the same flash slot; index 0 erases the

@@ -5,9 +5,11 @@
 
 namespace seqc::upload {
 
-TraceTransport::TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out)
+TraceTransport::TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out,
+                               std::string_view dialect)
     : inner_(inner), clock_(clock), out_(out), start_(clock.now()) {
   out_ << "# seqc trace of " << inner_.describe() << "; t in seconds, > to the device, < from it\n";
+  if (!dialect.empty()) out_ << "# dialect: " << dialect << "\n";
   out_.flush();
 }
 
@@ -43,6 +45,12 @@ io::ReadResult TraceTransport::read(std::span<std::uint8_t> buffer, io::TimePoin
       break;
   }
   return r;
+}
+
+bool TraceTransport::reopen(io::TimePoint deadline) {
+  const bool back = inner_.reopen(deadline);
+  line('#', back ? "reopened the device" : "the device did not come back");
+  return back;
 }
 
 void TraceTransport::discard_input() {

@@ -13,6 +13,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <string_view>
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
@@ -22,14 +23,23 @@ namespace seqc::upload {
 class TraceTransport final : public io::Transport {
  public:
   // `inner`, `clock` and `out` must outlive the decorator. Writes a header line naming the
-  // device first.
-  TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out);
+  // device first and, when `dialect` is given, a line naming the board's dialect ("# dialect:
+  // LSC-6"), from which `seqc decode` reads the frames (an LSC-6 session without a download looks
+  // like the xArm dialect's frames, and the Raspblock's packets are no frames at all).
+  TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out,
+                 std::string_view dialect = {});
 
   Status write(ByteView bytes) override;
   io::ReadResult read(std::span<std::uint8_t> buffer, io::TimePoint deadline) override;
   void discard_input() override;
   std::string describe() const override { return inner_.describe(); }
   double seconds_per_byte() const override { return inner_.seconds_per_byte(); }
+  // The rest of the device's behaviour passes through unchanged, so a traced command paces,
+  // drains and reconnects exactly as an untraced one.
+  io::Duration frame_interval() const override { return inner_.frame_interval(); }
+  std::size_t max_frame_bytes() const override { return inner_.max_frame_bytes(); }
+  Status drain() override { return inner_.drain(); }
+  bool reopen(io::TimePoint deadline) override;
 
  private:
   void line(char direction, const std::string& text);

@@ -1,5 +1,6 @@
 #include "runtime/upload/uploader.hpp"
 
+#include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/uploader_run.hpp"
 
 namespace seqc::upload {
@@ -24,6 +25,8 @@ const char* to_string(UploadStatus status) {
       return "interrupted";
     case UploadStatus::LinkError:
       return "link error";
+    case UploadStatus::OtherDialect:
+      return "another dialect";
   }
   return "?";
 }
@@ -223,12 +226,35 @@ auto Uploader::Run::probe() -> Flow {
       return wait_failure(w, "asking the controller for its battery voltage");
     }
   }
+  if (answers_as_lsc6()) {
+    return fatal(UploadStatus::OtherDialect,
+                 "the board on " + link().transport().describe() +
+                     " ignores GetBatteryVoltage and answers a DownloadAction with 55 55 02 19: "
+                     "it speaks the LSC-6 dialect");
+  }
   return fatal(UploadStatus::NoAnswer,
                "no reply from a controller on " + link().transport().describe() + " (asked " +
                    std::to_string(max_attempts()) + " times for its battery voltage, waiting " +
                    seconds_text(timeout) +
                    " each time); check the port, the cable and that the controller is "
                    "switched on");
+}
+
+bool Uploader::Run::answers_as_lsc6() {
+  // Over USB HID only the xArm family's controllers are reached.
+  if (link().interrupted() || link().transport().max_frame_bytes() != 0) return false;
+  // 55 55 LEN 19 G TOTAL IDX N tLo tHi: group G, total 1, index 255, no servos, 0 ms (the
+  // LSC-6 question in uploader.hpp). lsc6::encode refuses an index not below the total, which is
+  // the point here, so the frame is put together from its fields.
+  const lsc::Frame frame{static_cast<std::uint8_t>(lsc6::Command::DownloadAction),
+                         Bytes{opt().group, 1, 255, 0, 0, 0}};
+  const Bytes request = lsc::encode_serial(frame).value();
+  if (!link().send_bytes(request)) return false;
+  Lsc6Link lsc6(link().transport(), clock(), nullptr);
+  const Lsc6Wait w = lsc6.wait_for(
+      [](const lsc6::Reply& r) { return std::holds_alternative<lsc6::ActionStored>(r); },
+      clock().now() + up_.reply_timeout(request.size(), 4, false));
+  return w.ok();
 }
 
 // GroupRun, then a barrier so a refusal to start or a notification can be seen.

@@ -2,7 +2,9 @@
 // when asked, starts the group with GroupRun.
 //
 // Sequence
-//   1. probe: GetBatteryVoltage until it is answered (retried); nothing answers -> NoAnswer.
+//   1. probe: GetBatteryVoltage until it is answered (retried). Nothing answers: one LSC-6
+//      DownloadAction into slot 255 with a total of 1 (below), and its answer 55 55 02 19 ->
+//      OtherDialect (an LSC-6 board, which ignores GetBatteryVoltage); else NoAnswer.
 //   2. GroupStop (no reply), then a barrier, so a running group is stopped before flash is
 //      erased and the controller has finished with the stop before step 1 arrives.
 //   3. steps 1-5, stop-and-wait: one frame, its acknowledgement, then the next. Each wait has
@@ -88,6 +90,13 @@
 // unchanged (or, if step 1 was sent, possibly erased); after it, the group is empty: the
 // controller only makes it valid at step 5.
 //
+// The LSC-6 question. The LSC-6 answers nothing but Run, EraseAll and DownloadAction; the first
+// two would start or wipe groups. A DownloadAction with index 255 and total 1 writes slot 255
+// of the group about to be replaced, which no group plays (a group holds at most 255 actions,
+// indices 0-254), neither erases the group (index 0 does) nor writes its action count (the last
+// index does), and the xArm dialect has no command 25 (docs/protocol/lsc-6.md). It is sent only
+// after the battery question went unanswered every time, so a working xArm never sees it.
+//
 // The uploader never sleeps or reads the wall clock: time comes from the link's Clock.
 #pragma once
 
@@ -134,6 +143,9 @@ enum class UploadStatus {
   HangUp,        // the device went away
   Interrupted,   // Ctrl-C
   LinkError,     // a write or read failed
+  // The board answered in the family's other storing dialect (an LSC-6 to the xArm uploader,
+  // an xArm-family controller to the LSC-6 uploader); nothing was stored.
+  OtherDialect,
 };
 const char* to_string(UploadStatus status);
 

@@ -100,6 +100,8 @@ class Uploader::Run final : public LinkObserver {
   void announce_restart(const std::string& reason);
 
   Flow probe();
+  // After the probe went unanswered: does an LSC-6 answer the LSC-6 question (uploader.hpp)?
+  bool answers_as_lsc6();
 
   enum class Barrier {
     Sync,         // acks before the reply are stale; nothing is concluded from them

@@ -81,11 +81,15 @@ definitions = {
                         "number is an error)"),
     "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bar)$",
                    "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
-    "carTime": string("Time", "`500ms`, `1.5s` or `2b` (beats at `tempo`).", f"^{NUM}(ms|s|b)$",
-                      "a time with its unit: 500ms, 1.5s or 2b (a bare number is an error)"),
+    "carTime": string("Time", "`500ms`, `1.5s`, `2b` (beats at `tempo`) or `2bar` (bars; needs "
+                      "`meter`).", f"^{NUM}(ms|s|b|bar)$",
+                      "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "at": string("Start at", "Start this step exactly this long after the start of the list "
-                 "that holds it (`at: 4bar`); the gap before it is a hold.",
-                 f"^{NUM}(ms|s|b|bar)$", "a time with its unit: 500ms, 1.5s, 2b or 1bar"),
+                 "that holds it (`at: 4bar`), or at a bar of the sequence counted from 1 "
+                 "(`at: bar 9`, `at: bar 9 beat 2.5`); the gap before it is a hold.",
+                 rf"^(?:{NUM}(ms|s|b|bar)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
+                 "a time with its unit (500ms, 1.5s, 2b or 1bar) or a position (bar 9, "
+                 "bar 9 beat 3)"),
     "position": doc("Position", "Device units (`500`), degrees (`90deg`), relative to where the "
                     "servo is (`+50`, `-10deg`), or `home`.", type=["integer", "string"],
                     pattern=r"^(?:[+-]?[0-9]+(?:\.[0-9]+)?deg|[+-]?[0-9]+|home)$",
@@ -106,6 +110,10 @@ definitions = {
                  "written in beats.", type=["number", "string"], minimum=1, maximum=1000,
                  pattern=r"^0*(?:[1-9][0-9]{0,2}(?:\.[0-9]+)?|1000(?:\.0+)?)(bpm)?$",
                  patternErrorMessage="beats per minute between 1 and 1000: 120 or 120bpm"),
+    "meter": doc("Meter", "Beats per bar over the beat's note value (`3/4`, `6/8`): enables the "
+                 "unit `bar`; as a step it changes the meter from there (on a bar line).",
+                 type="string", pattern=r"^0*[1-9][0-9]*/(1|2|4|8|16|32|64)$",
+                 patternErrorMessage="beats per bar over a note value: 3/4, 4/4 or 6/8"),
     "ease": doc("Easing", "The shape of the move: `linear`; `in`, `out`, `in-out` (quadratic; "
                 "also `ease-in`, `ease-out`, `ease-in-out`); `quad`, `cubic`, `quart`, `quint`, "
                 "`sine`, `expo`, `circ`, `back`, `elastic` or `bounce` with `-in`, `-out` or "
@@ -161,6 +169,30 @@ robot_object = doc(
         "mirror": doc("Mirror table", "Left/right pairs (`left_arm: right_arm`); a servo paired "
                       "with itself is reflected in place.", type="object",
                       propertyNames=ref("servoName"), additionalProperties=ref("servoName")),
+        "arm": doc("Arm geometry", "Link lengths in mm and the servo of each joint, over the "
+                   "profile's built-in geometry (the xArm has one), for `seqc preview` and "
+                   "`seqc simulate`'s tip columns.", type="object", additionalProperties=False,
+                   properties=dict(
+                       {k: doc(k, f"`{k}` in mm: `97` or `97mm`.", type=["number", "string"],
+                               exclusiveMinimum=0, pattern=r"^[0-9]+(\.[0-9]+)?(mm)?$",
+                               patternErrorMessage="a length in mm: 97 or 97mm")
+                        for k in ["base_height", "upper_arm", "forearm", "hand"]},
+                       joints=doc("Joints", "Per joint its servo, the position where its angle "
+                                  "is 0 and the direction it turns.", type="object",
+                                  additionalProperties=False,
+                                  properties={j: doc(
+                                      f"{j} joint", f"The {j} joint: `{{servo, zero, sign}}`.",
+                                      type="object", additionalProperties=False,
+                                      properties={
+                                          "servo": ref("servoName"),
+                                          "zero": doc("Zero", "The position at which the "
+                                                      "joint's angle is 0 (default: home).",
+                                                      type="integer", minimum=0),
+                                          "sign": doc("Sign", "1: a larger position turns the "
+                                                      "joint the positive way; -1: the other.",
+                                                      enum=[1, -1])})
+                                      for j in ["base", "shoulder", "elbow", "wrist"]}),
+                       claw=ref("servoName"))),
     },
     allOf=[{"if": {"properties": {"profile": {"const": p}}},
             "then": {"properties": {"servos": {"additionalProperties": ref("servo_" + p)}}}}
@@ -180,10 +212,11 @@ SERVO_VERBS = {
     "through": ["through", "tolerance", "at"],
     "together": ["together", "at"],
     "repeat": ["repeat", "do", "at"],
-    "section": ["section", "at"],
+    "section": ["section", "with", "at"],
     "include": ["include", "at"],
     "mirror": ["mirror", "at"],
     "tempo": ["tempo"],
+    "meter": ["meter"],
     "tolerance": ["tolerance"],
 }
 STEP_KEYS = {
@@ -216,11 +249,16 @@ STEP_KEYS = {
     "do": doc("Do", "The steps to repeat.", **{"$ref": "#/definitions/servoSteps"}),
     "section": doc("Section", "Perform a section of this file (or of a file that includes it) "
                    "here.", type="string", minLength=1),
+    "with": doc("With", "Values for the section's parameters (`with: {amount: 80}`); the others "
+                "keep their defaults.", type="object", propertyNames=ref("servoName"),
+                additionalProperties=doc("Parameter value", "What `$name` stands for in the "
+                                         "section's steps.", type=["string", "number"])),
     "include": doc("Include", "Perform another file's `sequence` here (a path relative to this "
                    "file).", type="string", minLength=1),
     "mirror": doc("Mirror", "Perform these steps with left and right swapped (the robot's mirror "
                   "table).", **{"$ref": "#/definitions/servoSteps"}),
     "tempo": ref("tempo"),
+    "meter": ref("meter"),
 }
 
 
@@ -254,6 +292,34 @@ def step_schema(keys, verbs, title, extra_rules=()):
 definitions["servoStep"] = step_schema(STEP_KEYS, SERVO_VERBS, "Step")
 definitions["servoSteps"] = doc("Steps", "A list of steps, each starting with `- `.",
                                 type=["array", "null"], items=ref("servoStep"))
+# A section's steps may say `$name` wherever a value, a servo name or a pose name goes: what
+# that becomes is known only where the section is performed, so those steps are left to seqc.
+section_with_params = doc(
+    "Section with parameters", "`params` (names and default values) and the `steps`, which say "
+    "`$name` where a parameter's value goes.", type="object", required=["steps"],
+    additionalProperties=False,
+    properties={
+        "params": doc("Parameters", "Each parameter's name and default value "
+                      "(`params: {amount: 40, joint: wrist_pitch}`).", type=["object", "null"],
+                      propertyNames=ref("servoName"),
+                      additionalProperties=doc("Default", "The value `$name` stands for unless "
+                                               "the performance gives one.",
+                                               type=["string", "number"])),
+        "steps": doc("Steps", "The section's steps; `$name` (or `${name}`) stands for a "
+                     "parameter's value.", type=["array", "null"],
+                     items=doc("Step", "A step, checked by seqc where the section is performed.",
+                               type="object")),
+    })
+definitions["section"] = doc(
+    "Section", "A list of steps, or `{params, steps}` for a section with parameters.",
+    type=["array", "null", "object"],
+    allOf=[{"if": {"type": "array"}, "then": ref("servoSteps")},
+           {"if": {"type": "object"}, "then": section_with_params}])
+definitions["carSection"] = doc(
+    "Section", "A list of steps, or `{params, steps}` for a section with parameters.",
+    type=["array", "null", "object"],
+    allOf=[{"if": {"type": "array"}, "then": ref("carSteps")},
+           {"if": {"type": "object"}, "then": section_with_params}])
 
 CAR_OUTPUTS = ["pan", "tilt", "servo1", "servo2", "servo3", "servo4"]
 car_positions = doc("Pose or positions", "A pose name (`home`: the gimbal to 1500/1500) or "
@@ -282,10 +348,22 @@ CAR_KEYS = {
     "repeat": STEP_KEYS["repeat"],
     "do": doc("Do", "The steps to repeat.", **{"$ref": "#/definitions/carSteps"}),
     "include": STEP_KEYS["include"],
+    "at": ref("at"),
+    "section": STEP_KEYS["section"],
+    "with": STEP_KEYS["with"],
+    "together": doc("Together", "Named tracks of steps that run side by side from the same "
+                    "instant; the drive, the gimbal (pan and tilt) and each servo belong to one "
+                    "track only.", type="object", minProperties=1,
+                    additionalProperties=ref("carSteps")),
+    "tempo": ref("tempo"),
+    "meter": ref("meter"),
 }
-CAR_VERBS = {"drive": ["drive", "move", "time", "ease", "steps"],
-             "move": ["drive", "move", "time", "ease", "steps"],
-             "wait": ["wait"], "repeat": ["repeat", "do"], "include": ["include"]}
+# drive and move first: their rules are given `time` below by position.
+CAR_VERBS = {"drive": ["drive", "move", "time", "ease", "steps", "at"],
+             "move": ["drive", "move", "time", "ease", "steps", "at"],
+             "wait": ["wait", "at"], "repeat": ["repeat", "do", "at"],
+             "include": ["include", "at"], "section": ["section", "with", "at"],
+             "together": ["together", "at"], "tempo": ["tempo"], "meter": ["meter"]}
 car_step = step_schema(CAR_KEYS, CAR_VERBS, "Step")
 car_step["allOf"][0]["then"]["required"] = ["time"]
 car_step["allOf"][1]["then"]["required"] = ["time"]
@@ -319,9 +397,7 @@ TOP = {
                 type=["string", "number", "boolean", "null"]),
     "description": doc("Description", "Free text.", type=["string", "number", "boolean", "null"]),
     "tempo": ref("tempo"),
-    "meter": doc("Meter", "Beats per bar over the beat's note value (`3/4`, `6/8`): enables the "
-                 "unit `bar`.", type="string", pattern=r"^0*[1-9][0-9]*/(1|2|4|8|16|32|64)$",
-                 patternErrorMessage="beats per bar over a note value: 3/4, 4/4 or 6/8"),
+    "meter": ref("meter"),
     "tolerance": ref("tolerance"),
     "resolution": doc("Resolution", "Servo controllers: the older uniform expansion (an eased "
                       "move without `steps` becomes `time / resolution` equal actions; at least "
@@ -331,8 +407,8 @@ TOP = {
                  "`home` is built in.", type=["object", "null"],
                  additionalProperties=doc("Pose", "`servo: position, ...`", type=["object", "null"],
                                           additionalProperties=ref("position"))),
-    "sections": doc("Sections", "Named step lists, performed with `- section: name`.",
-                    type="object", additionalProperties=ref("servoSteps")),
+    "sections": doc("Sections", "Named step lists, performed with `- section: name`; a section "
+                    "with parameters is `{params, steps}`.", type="object"),
     "sequence": doc("Sequence", "The steps the robot performs, in order.",
                     type=["array", "null"]),
     "pid": pid,
@@ -348,11 +424,13 @@ servo_file = {
         "sequence": {"type": "array", "minItems": 1, "items": ref("servoStep")},
         "resolution": ref("servoTime"),
         "poses": {"additionalProperties": {"propertyNames": ref("servoName")}},
+        "sections": {"additionalProperties": ref("section")},
     }}
 car_file = {
     "properties": {
-        "meter": False, "tolerance": False, "sections": False,
+        "tolerance": False,
         "sequence": ref("carSteps"),
+        "sections": {"additionalProperties": ref("carSection")},
         "resolution": ref("carTime"),
         "poses": {"additionalProperties": {"propertyNames": {"enum": CAR_OUTPUTS}}},
     }}

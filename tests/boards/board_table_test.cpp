@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "compiler/lang/profiles.hpp"
 #include "runtime/boards/board.hpp"
@@ -136,6 +137,49 @@ TEST(BoardTable, RunAndStopFrames) {
   // docs/protocol/lsc-6.md: Run 55 55 05 06 G cntLo cntHi, Stop 55 55 02 07.
   EXPECT_EQ(to_hex(find_board("lsc6")->run_frame(3, 0x0102)), "55 55 05 06 03 02 01");
   EXPECT_EQ(to_hex(find_board("lsc6")->stop_frame()), "55 55 02 07");
+}
+
+TEST(BoardTable, DeviceCommandsReachAServoControllerAndNothingElse) {
+  // A profile or emulator of the servo-controller family is taken as given ...
+  EXPECT_EQ(board_for_command("lsc-6", "").key, "lsc6");
+  EXPECT_EQ(board_for_command("", "emu:lsc6").key, "lsc6");
+  EXPECT_EQ(board_for_command("xarm", "emu:lsc6?seed=3").key, "lsc6");
+  EXPECT_EQ(board_for_command("lsc-6", "emu:xarm").key, "xarm");
+  // ... one of another family is not: the command talks to the board discovery finds.
+  EXPECT_EQ(board_for_command("raspblock", "").key, "xarm");
+  EXPECT_EQ(board_for_command("", "emu:raspblock").key, "xarm");
+  EXPECT_EQ(board_for_command("", "").key, "xarm");
+}
+
+TEST(BoardTable, EmulatorsRefuseTheOptionsTheirBoardsCannotUse) {
+  const Board& xarm = *find_board("xarm");
+  const Board& lsc6 = *find_board("lsc6");
+  const Board& car = *find_board("raspblock");
+  const unsigned all = kFaults | kSeed | kDumpGroups | kPositions;
+  EXPECT_EQ(refused_emulator_option(xarm, all).option, 0u);
+  EXPECT_EQ(refused_emulator_option(lsc6, kFaults | kSeed | kDumpGroups).option, 0u);
+  EXPECT_EQ(refused_emulator_option(lsc6, kPositions).option, kPositions);
+  EXPECT_EQ(refused_emulator_option(lsc6, kPositions).reason, "");
+  // Faults come first, and the seed goes with them.
+  EXPECT_EQ(refused_emulator_option(car, all).option, kFaults);
+  EXPECT_EQ(refused_emulator_option(car, kSeed).option, kSeed);
+  EXPECT_EQ(refused_emulator_option(car, kSeed).reason, "the Raspblock board never replies");
+  EXPECT_EQ(refused_emulator_option(car, kDumpGroups | kPositions).option, kDumpGroups);
+  EXPECT_EQ(refused_emulator_option(car, kDumpGroups).reason,
+            "the Raspblock board stores no groups");
+  EXPECT_EQ(refused_emulator_option(car, 0).option, 0u);
+}
+
+TEST(BoardTable, EmulatorListsFollowTheTable) {
+  EXPECT_EQ(served_emulators(), (std::vector<std::string_view>{"xarm", "lsc6", "raspblock"}));
+  EXPECT_EQ(family_emulators(*find_board("lsc6")), (std::vector<std::string_view>{"xarm", "lsc6"}));
+  EXPECT_EQ(family_emulators(*find_board("raspblock")),
+            (std::vector<std::string_view>{"raspblock"}));
+}
+
+TEST(BoardTable, PosesReadBackAreNamedByTheBoardsOwnProfile) {
+  EXPECT_EQ(find_board("xarm")->pose_profile, "xarm");
+  EXPECT_EQ(find_board("lsc6")->pose_profile, "lsc-6");
 }
 
 }  // namespace

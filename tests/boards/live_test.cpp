@@ -47,6 +47,8 @@ TEST(BoardsPlayLive, TheCarGetsItsStream) {
   EXPECT_EQ(events, (std::vector<std::string>{"checked", "starting"}));
   // No wait for the end: the last frame is the stop, sent at its time.
   EXPECT_EQ(host.now(), r.play.started + r.frames.back().at);
+  EXPECT_EQ(r.length_ms, car.raspblock_program()->duration_ms);
+  EXPECT_TRUE(r.origins.empty());  // a stream has no moves to name
 }
 
 TEST(BoardsPlayLive, AnXarmIsAskedForItsBatteryFirstAndPlayedToTheEnd) {
@@ -65,6 +67,15 @@ TEST(BoardsPlayLive, AnXarmIsAskedForItsBatteryFirstAndPlayedToTheEnd) {
   EXPECT_EQ(to_hex(controller.received_bytes()).substr(0, 11), "55 55 02 0f");
   // Returned once the last move had ended.
   EXPECT_GE(emulated.now(), r.play.started + milliseconds(walk.servo_program()->duration_ms()));
+  // The length reported is the program's: its last move's end, not when that move was sent.
+  EXPECT_EQ(r.length_ms, walk.servo_program()->duration_ms());
+  // One origin per move: each move is sent when its step starts, and names where it is written.
+  ASSERT_EQ(r.origins.size(), r.frames.size());
+  EXPECT_EQ(r.origins[0].start_ms, 0u);
+  for (std::size_t i = 0; i < r.frames.size(); ++i) {
+    EXPECT_EQ(milliseconds(r.origins[i].start_ms), r.frames[i].at) << i;
+    EXPECT_GT(r.origins[i].source.line, 0u) << i;
+  }
 }
 
 TEST(BoardsPlayLive, TheLsc6GetsItsMovesWithoutAProbe) {

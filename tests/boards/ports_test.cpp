@@ -109,6 +109,22 @@ TEST(BoardsOpenPort, EmuRaspblockStampsWithTheCallersClock) {
   EXPECT_EQ(r.port->raspblock->packets().size(), 1u);
 }
 
+TEST(BoardsOpenPort, WhatTheCarsEmulatorReceivedIsCounted) {
+  io::ManualClock host;
+  OpenResult r = open_port({"emu:raspblock", &board("raspblock")}, host);
+  ASSERT_TRUE(r.port.has_value());
+  ASSERT_TRUE(received(*r.port).has_value());
+  EXPECT_EQ(received(*r.port)->packets, 0u);
+  ASSERT_TRUE(r.port->transport->write(board("raspblock").safe_stop()));
+  ASSERT_TRUE(r.port->transport->write(board("raspblock").safe_stop()));
+  EXPECT_EQ(received(*r.port)->packets, 2u);
+  EXPECT_EQ(received(*r.port)->rejected, 0u);
+  // Other emulators count nothing this way.
+  OpenResult x = open_port({"emu:xarm", &board("xarm")}, host);
+  ASSERT_TRUE(x.port.has_value());
+  EXPECT_FALSE(received(*x.port).has_value());
+}
+
 TEST(BoardsOpenPort, EmuXarmHidKeepsItsBackendAndCarriesOneReportAFrame) {
   io::ManualClock host;
   OpenResult r = open_port({"emu:xarm-hid", &board("xarm")}, host);

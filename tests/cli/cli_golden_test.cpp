@@ -134,6 +134,27 @@ TEST(Compile, JsonGolden) {
   expect_golden(kCliGolden / "walk-group3.json", r.out);
 }
 
+TEST(Compile, AShowFileSaysItIsAShowAndHowToRunIt) {
+  // compile takes one robot's choreography; a show file gets a located error and a note.
+  SeqcRun r = seqc(kSource, "compile examples/duet.yaml");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "");
+  expect_golden(kCliGolden / "compile-show-file.stderr", r.err);
+}
+
+TEST(Check, ABinaryFileIsOneErrorAndItsBytesAreNotPrinted) {
+  // tests/golden/bad-not-a-text-file.yaml holds NUL, 0x01, an escape sequence and 0xFF on its
+  // third line: none of them may reach the terminal.
+  SeqcRun r = seqc(kSource, "check tests/golden/bad-not-a-text-file.yaml");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "tests/golden/bad-not-a-text-file.yaml:3:22: error: not a text file (byte 0x00 at "
+            "offset 43)\n");
+  for (const char c : r.out + r.err) {
+    EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7F)) << static_cast<int>(c);
+  }
+}
+
 TEST(Compile, WritesOutputOnlyOnSuccess) {
   const fs::path out = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp/compile-out.hex";
   fs::create_directories(out.parent_path());
@@ -189,6 +210,35 @@ TEST(Simulate, CarStateOverTime) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.rfind("seqc: examples/car-dance.yaml: ", 0), 0u) << r.err;
   expect_golden(kCliGolden / "simulate-car-dance.csv", r.out);
+}
+
+// A show: one CSV per performer, each exactly what simulating that performer's file alone gives
+// (the car's is the golden above), after a "# performer NAME (FILE)" line on stdout, or in
+// OUT-NAME.csv with -o OUT.csv.
+TEST(Simulate, AShowGivesOneCsvPerPerformer) {
+  const SeqcRun walk = seqc(kSource, "simulate --step 250 examples/walk.yaml");
+  ASSERT_EQ(walk.status, 0) << walk.err;
+  const std::string car = slurp(kCliGolden / "simulate-car-dance.csv");
+  SeqcRun r = seqc(kSource, "simulate --step 250 examples/duet.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "# performer arm (examples/walk.yaml)\n" + walk.out +
+                       "# performer car (examples/car-dance.yaml)\n" + car);
+  EXPECT_EQ(r.err.rfind("seqc: examples/walk.yaml (arm): 29 actions, 8 s\n"
+                        "seqc: examples/car-dance.yaml (car): ",
+                        0),
+            0u)
+      << r.err;
+
+  const fs::path dir = fs::temp_directory_path() / "seqc-simulate-show";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  SeqcRun files =
+      seqc(kSource, "simulate --step 250 examples/duet.yaml -o " + (dir / "duet.csv").string());
+  EXPECT_EQ(files.status, 0) << files.err;
+  EXPECT_EQ(files.out, "");
+  EXPECT_EQ(slurp(dir / "duet-arm.csv"), walk.out);
+  EXPECT_EQ(slurp(dir / "duet-car.csv"), car);
+  EXPECT_FALSE(fs::exists(dir / "duet.csv"));
 }
 
 }  // namespace

@@ -95,15 +95,12 @@ TEST(DeviceServo, MoveRangeErrorsNameTheFieldAndSendNothing) {
     std::vector<std::string> args;
     std::string err;
   } cases[] = {
-      {{"1=70000"}, "position of servo 1 must be 0..65535, got 70000"},
-      {{"1=65280"}, "position of servo 1: 65280 (0xff00) is the protocol's \"do not move\" value"},
       {{"300=5"}, "servo must be 0..255, got 300"},
-      {{"1=-5"}, "position of servo 1 must be 0..65535, got -5"},
-      {{"1=1200", "--robot", "xarm"}, "position of servo 1 must be 0..1000 on xarm, got 1200"},
       {{"7=100", "--robot", "xarm"}, "servo 7 is not a servo of the xarm profile (ids 1..6)"},
       {{"1=500", "--time", "70s"}, "--time (ms) must be 0..65535, got 70000"},
       {{"1=500", "--time", "1.5ms"}, "--time: '1.5ms' is not whole milliseconds"},
       {{"1:500"}, "move target '1:500' must look like SERVO=POSITION, e.g. 1=500 or claw=200"},
+      {{"1=5x"}, "position of servo 1: '5x' is not a whole number"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args{"servo", "move"};
@@ -114,6 +111,55 @@ TEST(DeviceServo, MoveRangeErrorsNameTheFieldAndSendNothing) {
     EXPECT_EQ(r.err, "seqc: error: " + c.err + "\n");
   }
   EXPECT_EQ(h.received(), "");
+}
+
+// A position outside the servo's range is invalid input (exit 1), and the emulated controller
+// receives no byte at all: not the move, not a battery check.
+TEST(DeviceServo, MoveOutsideTheRangeSendsNothing) {
+  const std::string no_profile = " on a servo controller (give --robot for a profile's own range)";
+  struct Case {
+    std::vector<std::string> args;
+    std::string err;
+  } cases[] = {
+      // Without --robot: 0..2500, every servo controller profile's range together.
+      {{"1=5000"}, "position of servo 1 must be 0..2500" + no_profile + ", got 5000"},
+      {{"1=500", "2=2501"}, "position of servo 2 must be 0..2500" + no_profile + ", got 2501"},
+      {{"1=-5"}, "position of servo 1 must be 0..2500" + no_profile + ", got -5"},
+      {{"1=70000"}, "position of servo 1 must be 0..2500" + no_profile + ", got 70000"},
+      {{"1=65280"}, "position of servo 1 must be 0..2500" + no_profile + ", got 65280"},
+      // With --robot: the profile's own range.
+      {{"1=1200", "--robot", "xarm"}, "position of servo 1 must be 0..1000 on xarm, got 1200"},
+      {{"base=1001", "--robot", "xarm"}, "position of servo 6 must be 0..1000 on xarm, got 1001"},
+      {{"ch3=400", "--robot", "lsc-16"},
+       "position of servo 3 must be 500..2500 on lsc-16, got 400"},
+  };
+  for (const Case& c : cases) {
+    DeviceHarness h;
+    std::vector<std::string> args{"servo", "move"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    args.insert(args.end(), {"--port", "emu:xarm"});
+    RunResult r = h.run(args);
+    EXPECT_EQ(r.code, 1) << c.args[0];
+    EXPECT_EQ(r.err, "seqc: error: " + c.err + "; nothing was sent\n");
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(h.emu.received_bytes().empty()) << c.args[0];
+  }
+  // The ends of each range are sent.
+  DeviceHarness h;
+  RunResult r = h.run({"servo", "move", "1=2500", "2=0", "--port", "emu:xarm"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  // 2500 = c4 09; 1000 ms = e8 03.
+  EXPECT_EQ(h.received(), hex("55 55 0b 03 02 e8 03 01 c4 09 02 00 00  55 55 02 0f"));
+}
+
+// `seqc move` on the LSC-6 (which confirms nothing) refuses the same way: no Move frame.
+TEST(DeviceServo, MoveOutsideTheLsc6RangeSendsNothing) {
+  DeviceHarness h;
+  RunResult r = h.run({"servo", "move", "1=2600", "--robot", "lsc-6", "--port", "emu:lsc6"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(r.err,
+            "seqc: error: position of servo 1 must be 500..2500 on lsc-6, got 2600; nothing was "
+            "sent\n");
 }
 
 TEST(DeviceServo, OffSendsMultiServoOff) {

@@ -1,5 +1,5 @@
 // Runs seqc subcommands in-process, the way main() does, against one emulated servo
-// controller (`--port emu:xarm` bound to it through Context::xarm_emulator) on a ManualClock,
+// controller (`--port emu:xarm` bound to it through Context::hooks) on a ManualClock,
 // with string streams for stdout and stderr. Expected request bytes in these tests are written
 // by hand from docs/protocol/servo-controller.md, never produced by the project's encoder.
 #pragma once
@@ -51,8 +51,8 @@ class DeviceHarness {
     std::ostringstream err;
     Context ctx{out, err, clock, files};
     ctx.interrupted = &interrupted;
-    ctx.xarm_emulator = &emu;
-    ctx.xarm_clock = &clock;
+    ctx.hooks.xarm = &emu;
+    ctx.hooks.emulated_clock = &clock;
     ctx.in = in;
     RunResult r;
     r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);

@@ -2,7 +2,7 @@
 // byte: the hex of `seqc compile --dry-run FILE` (and of `seqc upload --dry-run --run FILE`) is
 // compared with everything a fault-free emulated board received from `seqc upload FILE` (and
 // `seqc upload --run FILE`), for an xArm file and an LSC-6 file. Each run is in-process, on a
-// manual clock, against emulators the test owns (Context::xarm_emulator, lsc6_emulator).
+// manual clock, against emulators the test owns (Context::hooks).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -45,9 +45,9 @@ struct Bench {
     std::ostringstream err;
     Context ctx{out, err, clock, files};
     ctx.interrupted = &interrupted;
-    ctx.xarm_emulator = &xarm;
-    ctx.lsc6_emulator = &lsc6;
-    ctx.xarm_clock = &clock;
+    ctx.hooks.xarm = &xarm;
+    ctx.hooks.lsc6 = &lsc6;
+    ctx.hooks.emulated_clock = &clock;
     Ran r;
     r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
     r.out = out.str();

@@ -163,7 +163,7 @@ INSTANTIATE_TEST_SUITE_P(
         StatusCase{"play_ok", "play " + valid + " --port emu:xarm --allow-late", 0},
         StatusCase{"play_invalid", "play " + invalid + " --port emu:xarm", 1},
         // A schedule the 9600-baud link cannot keep is refused (docs/commands.md, Live play).
-        StatusCase{"play_too_late", "play tests/cli/data/too-fast.yaml --port emu:xarm", 1},
+        StatusCase{"play_too_late", "play tests/cli/data/too-dense.yaml --port emu:xarm", 1},
         StatusCase{"play_unreadable", "play " + missing + " --port emu:xarm", 5},
         StatusCase{"play_no_port", "play " + valid + " --port " + no_port, 3},
         StatusCase{"play_no_answer", "play " + valid + " --port " + silent + " --allow-late", 4},
@@ -175,7 +175,7 @@ INSTANTIATE_TEST_SUITE_P(
         StatusCase{"upload_no_port", "upload " + valid + " --port " + no_port, 3},
         StatusCase{"upload_no_answer", "upload " + valid + " --port " + silent, 4},
         StatusCase{"upload_usage", "upload " + valid + " --group 255 --port emu:xarm", 2},
-        // The servo controller commands (docs/commands.md): 0, 2 (nothing is sent), 3, 4.
+        // The servo controller commands (docs/commands.md): 0, 1 and 2 (nothing is sent), 3, 4.
         StatusCase{"group_ok", "group run 3 --port emu:xarm", 0},
         StatusCase{"group_usage", "group run 300 --port emu:xarm", 2},
         StatusCase{"group_no_port", "group stop --port " + no_port, 3},
@@ -185,7 +185,9 @@ INSTANTIATE_TEST_SUITE_P(
         StatusCase{"battery_no_port", "battery --port " + no_port, 3},
         StatusCase{"battery_no_answer", "battery --port " + silent, 4},
         StatusCase{"servo_ok", "servo read 1 --port emu:xarm", 0},
-        StatusCase{"servo_usage", "servo move 1=70000 --port emu:xarm", 2},
+        StatusCase{"servo_usage", "servo move 1:500 --port emu:xarm", 2},
+        // A position outside every servo controller's range (0..2500) is invalid input.
+        StatusCase{"servo_out_of_range", "servo move 1=5000 --port emu:xarm", 1},
         StatusCase{"servo_no_port", "servo read 1 --port " + no_port, 3},
         StatusCase{"servo_no_answer", "servo read 1 --port " + silent, 4},
         StatusCase{"offset_ok", "offset read 1 --port emu:xarm", 0},

@@ -153,14 +153,17 @@ sequence:
   Simulation sim = simulate(program_of(out), 100);
   EXPECT_EQ(sim.duration_ms, 600u);
   EXPECT_EQ(to_csv(sim),
-            "time_ms,claw,base\n"
-            "0,500,500\n"
-            "100,600,500\n"
-            "200,700,500\n"
-            "300,600,525\n"
-            "400,500,550\n"
-            "500,400,575\n"
-            "600,300,600\n");
+            // The xArm has a geometry, so its tip ends each row: the arm stands straight up
+            // (shoulder, elbow, wrist at their zero, 500), 72+97+96+150 mm over the base axis,
+            // wherever the base turns.
+            "time_ms,claw,base,tip_x,tip_y,tip_z\n"
+            "0,500,500,0.00,0.00,415.00\n"
+            "100,600,500,0.00,0.00,415.00\n"
+            "200,700,500,0.00,0.00,415.00\n"
+            "300,600,525,0.00,0.00,415.00\n"
+            "400,500,550,0.00,0.00,415.00\n"
+            "500,400,575,0.00,0.00,415.00\n"
+            "600,300,600,0.00,0.00,415.00\n");
   Simulation odd = simulate(program_of(out), 250);
   ASSERT_EQ(odd.samples.size(), 4u);  // 0, 250, 500 and the end
   EXPECT_EQ(odd.samples.back().time_ms, 600u);

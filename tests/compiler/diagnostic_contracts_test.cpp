@@ -62,7 +62,9 @@ TEST(DiagnosticContracts, EveryMistakeOfAStepIsReportedInOneRun) {
       "main.yaml:6:11: error: time 10ms is below the controller's minimum of 20ms per action\n"
       "    6 |     time: 10ms\n"
       "      |           ^\n",
-      "main.yaml:7:11: error: unknown easing 'in-ot'; did you mean 'in-out'?\n"
+      "main.yaml:7:11: error: unknown easing 'in-ot'; did you mean 'in-out'? (easings: linear, in, "
+      "out, in-out; back, bounce, circ, cubic, elastic, expo, quad, quart, quint, sine, each with "
+      "-in, -out or -in-out; cubic-bezier(x1, y1, x2, y2))\n"
       "    7 |     ease: in-ot\n"
       "      |           ^\n",
       "main.yaml:8:16: error: 'tolerance' must be a positive distance in device units or "

@@ -1,5 +1,6 @@
 // Reference easing curves for the tests, written from the textbook formulas (the ones published
-// at easings.net and used by CSS and the animation libraries), each family and mode in its own
+// at easings.net and used by CSS and the animation libraries; expo and elastic rescaled to
+// start at exactly 0, as docs/language.md gives them), each family and mode in its own
 // closed form, so that a test comparing compiler/timeline/easing.cpp with these shares no code
 // or structure with it. cubic-bezier is solved by plain bisection on x(s) = t.
 //
@@ -53,12 +54,12 @@ inline double sine_in(double t) { return 1 - std::cos(t * kPi / 2); }
 inline double sine_out(double t) { return std::sin(t * kPi / 2); }
 inline double sine_in_out(double t) { return -(std::cos(kPi * t) - 1) / 2; }
 
-inline double expo_in(double t) { return t == 0 ? 0 : std::pow(2, 10 * t - 10); }
-inline double expo_out(double t) { return t == 1 ? 1 : 1 - std::pow(2, -10 * t); }
+// expo, exactly 0 and 1 at its ends: the textbook 2^(10t - 10) starts at 2^-10, so it is
+// rescaled, (2^(10t - 10) - 2^-10) / (1 - 2^-10), which is (2^(10t) - 1) / 1023.
+inline double expo_in(double t) { return (std::pow(2, 10 * t) - 1) / 1023; }
+inline double expo_out(double t) { return (1024 - std::pow(2, 10 - 10 * t)) / 1023; }
 inline double expo_in_out(double t) {
-  if (t == 0) return 0;
-  if (t == 1) return 1;
-  return t < 0.5 ? std::pow(2, 20 * t - 10) / 2 : (2 - std::pow(2, -20 * t + 10)) / 2;
+  return t < 0.5 ? (std::pow(2, 20 * t) - 1) / 2046 : 1 - (std::pow(2, 20 - 20 * t) - 1) / 2046;
 }
 
 inline double circ_in(double t) { return 1 - std::sqrt(1 - t * t); }
@@ -75,21 +76,26 @@ inline double back_in_out(double t) {
                  : (std::pow(2 * t - 2, 2) * ((kC2 + 1) * (t * 2 - 2) + kC2) + 2) / 2;
 }
 
+// elastic, rescaled like expo: the textbook -in curve starts at -2^-10 sin(-10.75 * 2pi/3) =
+// -2^-11 and ends at 1, so -in is (textbook + 2^-11) / (1 + 2^-11) and -out, its mirror,
+// (textbook-out + 0) / (1 + 2^-11). The textbook in-out starts at h0 = 2^-11 sin(pi/18)
+// (-(2^-10 sin(-11.125 * 2pi/4.5)) / 2, and -11.125/4.5 turns is 190 degrees) and is 1/2 at
+// t = 1/2, so each half is (textbook - h0) / (1 - 2 h0).
+inline constexpr double kElasticStart = 1.0 / 2048;  // 2^-11
+inline const double kElasticInOutStart = std::sin(kPi / 18) / 2048;
 inline double elastic_in(double t) {
-  if (t == 0) return 0;
-  if (t == 1) return 1;
-  return -std::pow(2, 10 * t - 10) * std::sin((t * 10 - 10.75) * kC4);
+  return (-std::pow(2, 10 * t - 10) * std::sin((t * 10 - 10.75) * kC4) + kElasticStart) /
+         (1 + kElasticStart);
 }
 inline double elastic_out(double t) {
-  if (t == 0) return 0;
-  if (t == 1) return 1;
-  return std::pow(2, -10 * t) * std::sin((t * 10 - 0.75) * kC4) + 1;
+  return (std::pow(2, -10 * t) * std::sin((t * 10 - 0.75) * kC4) + 1) / (1 + kElasticStart);
 }
 inline double elastic_in_out(double t) {
-  if (t == 0) return 0;
-  if (t == 1) return 1;
-  return t < 0.5 ? -(std::pow(2, 20 * t - 10) * std::sin((20 * t - 11.125) * kC5)) / 2
-                 : (std::pow(2, -20 * t + 10) * std::sin((20 * t - 11.125) * kC5)) / 2 + 1;
+  const double h0 = kElasticInOutStart;
+  const double textbook =
+      t < 0.5 ? -(std::pow(2, 20 * t - 10) * std::sin((20 * t - 11.125) * kC5)) / 2
+              : (std::pow(2, -20 * t + 10) * std::sin((20 * t - 11.125) * kC5)) / 2 + 1;
+  return (textbook - h0) / (1 - 2 * h0);
 }
 
 // Four parabolic arcs meeting at the bounces 1/d1, 2/d1 and 2.5/d1.

@@ -37,6 +37,46 @@ TEST(EasingReference, EveryNameMatchesItsTextbookFormula) {
   }
 }
 
+TEST(EasingReference, EverySlopeIsTheReferenceCurvesDerivative) {
+  // A central difference of the reference, h = 1e-6, at points inside (0, 1) away from the
+  // bounces' landings (where the slope jumps); at the ends, one-sided differences that stay
+  // inside [0, 1].
+  constexpr double h = 1e-6;
+  for (const auto& [name, formula] : ref::by_name()) {
+    const Easing e = parsed(name);
+    for (double t : kPoints) {
+      double expected = 0;
+      if (t == 0) {
+        expected = (formula(h) - formula(0)) / h;
+      } else if (t == 1) {
+        expected = (formula(1) - formula(1 - h)) / h;
+      } else {
+        expected = (formula(t + h) - formula(t - h)) / (2 * h);
+      }
+      if (name.rfind("circ", 0) == 0 && std::isinf(e.slope(t))) {
+        // circ is vertical where its -in half ends: the difference there only grows with 1/h.
+        EXPECT_GT(expected, 100) << name << " at t = " << t;
+        continue;
+      }
+      EXPECT_NEAR(e.slope(t), expected, 1e-4 * std::max(1.0, std::abs(expected)))
+          << name << " at t = " << t;
+    }
+  }
+}
+
+TEST(EasingReference, EveryCurveStartsAndEndsWithoutAJump) {
+  // The values next to the ends are as close to 0 and 1 as the slope there allows: a curve
+  // snapped to 0 at t = 0 (the textbook expo-in starts at 2^-10) fails this.
+  for (const std::string& name : easing_names()) {
+    const Easing e = parsed(name);
+    const double near0 = e.at(1e-9), near1 = e.at(1 - 1e-9);
+    EXPECT_LT(std::abs(near0), 1e-9 * (std::abs(e.slope(0)) + 1)) << name;
+    if (!std::isinf(e.slope(1))) {
+      EXPECT_LT(std::abs(1 - near1), 1e-9 * (std::abs(e.slope(1)) + 1)) << name;
+    }
+  }
+}
+
 TEST(EasingReference, TheNameListIsTheDocumentedOne) {
   // linear, the three quadratic shorthands and ten families in three modes.
   const std::vector<std::string>& names = easing_names();
@@ -60,17 +100,20 @@ TEST(EasingReference, InOutConstantsAtHandPickedPoints) {
   EXPECT_NEAR(parsed("back-in-out").at(0.25), 0.25 * (0.5 * (c2 + 1) - c2) / 2, 1e-12);
   // ... and at 0.75 by the curve's point symmetry about (0.5, 0.5).
   EXPECT_NEAR(parsed("back-in-out").at(0.75), 1 - 0.25 * (0.5 * (c2 + 1) - c2) / 2, 1e-12);
-  // elastic-in-out at 0.25: -(2^-5 * sin((5 - 11.125) * 2pi/4.5)) / 2.
+  // elastic-in-out at 0.25: -(2^-5 * sin((5 - 11.125) * 2pi/4.5)) / 2, rescaled by its start
+  // h0 = 2^-11 sin(pi/18) to (v - h0) / (1 - 2 h0).
   const double c5 = 2 * std::numbers::pi / 4.5;
-  EXPECT_NEAR(parsed("elastic-in-out").at(0.25), -(std::pow(2, -5) * std::sin(-6.125 * c5)) / 2,
-              1e-12);
-  EXPECT_NEAR(parsed("elastic-in-out").at(0.75), std::pow(2, -5) * std::sin(3.875 * c5) / 2 + 1,
-              1e-12);
+  const double h0 = std::sin(std::numbers::pi / 18) / 2048;
+  EXPECT_NEAR(parsed("elastic-in-out").at(0.25),
+              (-(std::pow(2, -5) * std::sin(-6.125 * c5)) / 2 - h0) / (1 - 2 * h0), 1e-12);
+  EXPECT_NEAR(parsed("elastic-in-out").at(0.75),
+              (std::pow(2, -5) * std::sin(3.875 * c5) / 2 + 1 - h0) / (1 - 2 * h0), 1e-12);
   // bounce-out at 0.5 lies on the second arc: 7.5625 * (0.5 - 1.5/2.75)^2 + 0.75.
   EXPECT_NEAR(parsed("bounce-out").at(0.5), 7.5625 * std::pow(0.5 - 1.5 / 2.75, 2) + 0.75, 1e-12);
-  // Exact values: quad-in-out at 0.25 is 2/16; expo-in at 0.5 is 2^-5; sine-in-out at 1/2.
+  // Exact values: quad-in-out at 0.25 is 2/16; expo-in at 0.5 is (2^5 - 1) / 1023 = 31/1023;
+  // sine-in-out at 1/2.
   EXPECT_DOUBLE_EQ(parsed("in-out").at(0.25), 0.125);
-  EXPECT_DOUBLE_EQ(parsed("expo-in").at(0.5), 1.0 / 32);
+  EXPECT_NEAR(parsed("expo-in").at(0.5), 31.0 / 1023, 1e-15);
   EXPECT_NEAR(parsed("sine-in-out").at(0.5), 0.5, 1e-15);
   EXPECT_NEAR(parsed("circ-in").at(0.6), 0.2, 1e-15);  // 1 - sqrt(1 - 0.36)
 }

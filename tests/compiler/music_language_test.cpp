@@ -198,7 +198,10 @@ sequence:
   EXPECT_EQ(messages(out),
             (std::vector<std::string>{
                 "5:12 error: unknown servo 'elbw' in this move; did you mean 'elbow'?",
-                "7:11 error: unknown easing 'wobbly'",
+                "7:11 error: unknown easing 'wobbly'"
+                " (easings: linear, in, out, in-out; back, bounce, circ, cubic, elastic, expo, "
+                "quad, quart, quint, "
+                "sine, each with -in, -out or -in-out; cubic-bezier(x1, y1, x2, y2))",
                 "5:29 error: 'base' would move to 5000, above its max 1000",
                 "6:11 error: time 5ms is below the controller's minimum of 20ms per action"}));
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/backend/plot_svg.hpp"
 #include "compiler/backend/raspblock_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
@@ -111,6 +112,78 @@ TEST(RaspblockStream, RepeatWithBeatsAndAWait) {
                                 "2000: " + spin, "2500: " + kStop, "3500: " + kStop}));
 }
 
+// A beat at 128 bpm is 60000/128 = 468.75 ms. Each send time is the exact beat rounded once
+// (halves away from zero), never a sum of rounded steps: 468.75 -> 469, 937.5 -> 938,
+// 1406.25 -> 1406 (not 469 + 938 = 1407), 1875, 2343.75 -> 2344, and the stop at 6 beats,
+// 2812.5 -> 2813.
+TEST(RaspblockStream, BeatsAtAnyTempoAreRoundedOnlyOnTheAbsoluteTimeline) {
+  const std::string right = "ff fe 03 08 01 00 19 00 00 00 00 01 26";  // x=25
+  const std::string left = "ff fe 03 08 01 00 19 00 00 00 00 05 2a";   // x=-25
+  EXPECT_EQ(
+      frames_of("robot: raspblock\n"
+                "tempo: 128\n"
+                "sequence:\n"
+                "  - repeat: 3\n"
+                "    do:\n"
+                "      - drive: {x: 25}\n"
+                "        time: 1b\n"
+                "      - drive: {x: -25}\n"
+                "        time: 1b\n"),
+      (std::vector<std::string>{"0: " + right, "469: " + left, "938: " + right, "1406: " + left,
+                                "1875: " + right, "2344: " + left, "2813: " + kStop}));
+}
+
+// 440 beats at 110 bpm are 440 x 60000 / 110 = 240,000 ms exactly; a beat is 6000/11 =
+// 545.45 ms, so rounding each step would end at 440 x 545 = 239,800 ms.
+TEST(RaspblockStream, AFourMinuteDanceEndsOnItsLastBeat) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "tempo: 110\n"
+      "sequence:\n"
+      "  - repeat: 220\n"
+      "    do:\n"
+      "      - drive: {x: 25}\n"
+      "        time: 1b\n"
+      "      - drive: {x: -25}\n"
+      "        time: 1b\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  EXPECT_EQ(p->duration_ms, 240000u);
+  ASSERT_EQ(p->packets.size(), 441u);         // a drive per beat, then the stop
+  EXPECT_EQ(p->packets[1].at_ms, 545u);       // 545.45
+  EXPECT_EQ(p->packets[6].at_ms, 3273u);      // 6 x 6000/11 = 3272.73
+  EXPECT_EQ(p->packets[11].at_ms, 6000u);     // 11 beats = 6 s exactly
+  EXPECT_EQ(p->packets[439].at_ms, 239455u);  // 439 x 6000/11 = 239454.55
+  EXPECT_EQ(p->packets[440].at_ms, 240000u);  // the stop
+}
+
+// A move over a beat at 128 bpm split into 4 packets: they leave at k/4 of 468.75 ms after
+// the start at 468.75 ms, each rounded once: 468.75 -> 469, 585.94 -> 586, 703.13 -> 703,
+// 820.31 -> 820; servo1 1000 -> 1400 linear puts 1100, 1200, 1300, 1400 in them.
+TEST(RaspblockStream, MovePacketsAtFractionalTimesRoundOnce) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "tempo: 128\n"
+      "sequence:\n"
+      "  - move: {servo1: 1000}\n"
+      "    time: 1b\n"
+      "  - move: {servo1: 1400}\n"
+      "    time: 1b\n"
+      "    steps: 4\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  std::vector<std::pair<std::uint32_t, int>> got;
+  for (const auto& tp : p->packets) {
+    if (const auto* s = std::get_if<raspblock::SingleServo>(&tp.packet)) {
+      got.emplace_back(tp.at_ms, static_cast<int>(s->position));
+    }
+  }
+  const std::vector<std::pair<std::uint32_t, int>> want = {
+      {0, 1000}, {469, 1100}, {586, 1200}, {703, 1300}, {820, 1400}};
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(p->duration_ms, 938u);  // 937.5 rounds away from zero
+}
+
 TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
   auto out = compile_text(
       "robot: raspblock\n"
@@ -171,6 +244,36 @@ TEST(RaspblockStream, GimbalMovesFollowTheSameCurvesAsTheArm) {
   const std::vector<std::pair<std::uint32_t, int>> want = {
       {0, 1000}, {100, 1146}, {150, 1500}, {200, 1854}, {250, 2000}};
   EXPECT_EQ(got, want);
+}
+
+// The car's plot reads like the arm's: values on each lane, seconds on the time axis, and a
+// scale on the path. Lanes span 400-2600 us over 70 px from y = 74 (pan), 154 (tilt), 234
+// (servo1), so 1500 us sits 35 px up from a lane's bottom: y = 74 + 70 - 35 = 109 for pan
+// (its label 3 px lower, at 112), 189 for tilt, 269 for servo1; labels right-aligned at x = 144.
+// Driving y = 10 for 2 s goes 20 nominal cm forward: the path panel's 320 px span 20 cm, and
+// the scale bar is a quarter of that, 5 cm = 80 px.
+TEST(RaspblockPlot, LanesHaveValuesAndThePathHasAScale) {
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - move: {pan: 1500, tilt: 1500, servo1: 900}\n"
+      "    time: 100ms\n"
+      "  - drive: {y: 10}\n"
+      "    time: 2s\n");
+  ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
+  const std::string svg = backend::plot_car_program(*out.raspblock_program(), {});
+  for (
+      const char* label :
+      {"<text x=\"144\" y=\"112\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       "<text x=\"144\" y=\"192\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       "<text x=\"144\" y=\"272\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
+       ">2500</text>", ">500</text>", ">1 s</text>", ">2 s</text>",
+       "<title>scale: 5 cm (nominal)</title>", ">5 cm</text>"}) {
+    EXPECT_NE(svg.find(label), std::string::npos) << label;
+  }
+  // The bar itself: from the panel's left edge (x = 150) 80 px long.
+  EXPECT_NE(svg.find("x1=\"150\""), std::string::npos);
+  EXPECT_NE(svg.find("x2=\"230\""), std::string::npos);
 }
 
 TEST(RaspblockStream, HexListsSendTimesRightAligned) {

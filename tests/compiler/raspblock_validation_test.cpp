@@ -123,7 +123,9 @@ TEST(RaspblockValidation, UnknownRobotSuggestsRaspblock) {
   auto out = compile_text("robot: raspblok\nsequence:\n  - wait: 1s\n");
   EXPECT_EQ(
       messages(out),
-      (std::vector<std::string>{"1:8 error: unknown robot 'raspblok'; did you mean 'raspblock'?"}));
+      (std::vector<std::string>{
+          "1:8 error: unknown robot 'raspblok'; did you mean 'raspblock'? (robots: xarm, bus, "
+          "lsc-16, lsc-32, lsc-6, raspblock)"}));
 }
 
 TEST(RaspblockValidation, AStreamBeyondTheLinkIsAnErrorSayingWhereAndHowMuch) {

@@ -59,15 +59,16 @@ TEST(Easing, TextbookValues) {
   EXPECT_DOUBLE_EQ(ease("quint-in-out").at(0.25), 16 * std::pow(0.25, 5));
   EXPECT_NEAR(ease("sine-in").at(0.5), 1 - std::cos(M_PI / 4), 1e-12);
   EXPECT_NEAR(ease("sine-in-out").at(0.5), 0.5, 1e-12);
-  EXPECT_NEAR(ease("expo-in").at(0.5), std::pow(2, -5), 1e-12);
-  EXPECT_NEAR(ease("circ-in").at(0.6), 0.2, 1e-12);  // 1 - sqrt(1 - 0.36)
+  EXPECT_NEAR(ease("expo-in").at(0.5), 31.0 / 1023, 1e-12);  // (2^5 - 1) / (2^10 - 1)
+  EXPECT_NEAR(ease("circ-in").at(0.6), 0.2, 1e-12);          // 1 - sqrt(1 - 0.36)
   // back-in dips below 0 before rising: (c+1)t^3 - c t^2 with c = 1.70158.
   EXPECT_NEAR(ease("back-in").at(0.5), 2.70158 * 0.125 - 1.70158 * 0.25, 1e-12);
   EXPECT_LT(ease("back-in").at(0.3), 0);
   EXPECT_GT(ease("back-out").at(0.7), 1);
   EXPECT_NEAR(ease("bounce-out").at(1 / 2.75), 1, 1e-12);  // the first landing
-  EXPECT_NEAR(ease("elastic-out").at(0.1), std::pow(2, -1) * std::sin(0.25 * 2 * M_PI / 3) + 1,
-              1e-12);
+  // The textbook elastic-out, over 1 + 2^-11 so that the curve starts at exactly 0.
+  EXPECT_NEAR(ease("elastic-out").at(0.1),
+              (std::pow(2, -1) * std::sin(0.25 * 2 * M_PI / 3) + 1) / (1 + 1.0 / 2048), 1e-12);
 }
 
 TEST(Easing, CubicBezierFollowsCss) {

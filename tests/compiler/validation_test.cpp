@@ -112,7 +112,7 @@ TEST(Validation, SpeedIsAWarningUnlessStrict) {
     arm: {id: 0, max_speed: 1000/s}
 sequence:
   - move: {arm: 1000}
-    time: 1s
+    time: 1.5s
   - move: {arm: 2000}
     time: 500ms
 )";

@@ -48,9 +48,39 @@ std::string first_line(const std::string& s) { return s.substr(0, s.find('\n') +
 TEST(YamlHostile, NulByte) {
   const auto r = load_hostile("nul_byte.yaml");
   EXPECT_FALSE(r.ok);
-  EXPECT_EQ(first_line(r.rendered),
-            "nul_byte.yaml:2:10: error: file contains a NUL byte (is it a binary or UTF-16 "
-            "file?)\n");
+  // "name: walk\n" is 11 bytes and "steps: [a" 9 more: the NUL is byte 20, line 2 column 10.
+  // The line holding it is not quoted, so the file's bytes never reach a terminal.
+  EXPECT_EQ(r.rendered, "nul_byte.yaml:2:10: error: not a text file (byte 0x00 at offset 20)\n");
+}
+
+TEST(YamlHostile, ABinaryFileIsOneErrorWhateverComesBeforeItsFirstNul) {
+  // A PNG's signature: 0x89 (invalid UTF-8), "\r\n", 0x1A and "\n" come before the first NUL
+  // at offset 8 (line 3, column 1); the file is named for what it is, not its first odd byte.
+  const std::string png("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+  const auto r = load("logo.png", png);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.rendered, "logo.png:3:1: error: not a text file (byte 0x00 at offset 8)\n");
+}
+
+TEST(YamlHostile, ALineThatIsNotTextIsNeverQuoted) {
+  // An escape sequence (ESC [ 2 J clears a terminal) and invalid UTF-8 are reported with their
+  // place, but their lines are left out; a line of plain UTF-8 text is still quoted.
+  EXPECT_EQ(load("esc.yaml", "name: x\x1b[2J\n").rendered,
+            "esc.yaml:1:8: error: control character U+001B is not allowed in YAML\n");
+  EXPECT_EQ(load("latin1.yaml", "name: caf\xe9\n").rendered,
+            "latin1.yaml:1:10: error: invalid UTF-8 (byte 0xE9)\n");
+  SourceManager sources;
+  const auto file = sources.add("utf8.yaml", "name: caf\xc3\xa9 \t!\n");
+  EXPECT_EQ(render(Diagnostic{Severity::Error, Location{file, 1, 7}, "m"}, sources),
+            "utf8.yaml:1:7: error: m\n"
+            "    1 | name: caf\xc3\xa9 \t!\n"
+            "      |       ^\n");
+  // ... and the same file with a C1 control character (U+009B, a terminal's CSI) is not.
+  const auto c1 = sources.add("c1.yaml",
+                              "name: \xc2\x9b"
+                              "2J\n");
+  EXPECT_EQ(render(Diagnostic{Severity::Error, Location{c1, 1, 7}, "m"}, sources),
+            "c1.yaml:1:7: error: m\n");
 }
 
 TEST(YamlHostile, InvalidUtf8ReportsTheFirstBadByte) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compiler/backend/decode_formats.hpp"
+#include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/received_record.hpp"
 #include "tests/emulator/emu_test_util.hpp"
 
@@ -117,6 +118,49 @@ TEST(ReceivedRecord, DecodeStillFlagsTheOlderStatuses) {
   const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
   EXPECT_EQ(d.issues, (std::vector<std::string>{"line 3: dropped by the emulator (busy)",
                                                 "line 4: dropped by the emulator (fault)"}));
+}
+
+// The car emulator's record is its state, change by change; `seqc decode` reads it back as a
+// table and finds nothing wrong in what the emulator wrote.
+TEST(ReceivedRecord, TheCarRecordDecodesBack) {
+  RaspblockEmulator board;
+  board.receive(hex("ff fe 02 04 05 dc 03 e8 d2"), at_ms(0));               // gimbal 1500, 1000
+  board.receive(hex("ff fe 03 08 01 00 0a 00 00 00 00 05 1b"), at_ms(20));  // X=-10
+  board.receive(hex("ff fe 02 04 06 40 03 e8 37"), at_ms(60));              // pan 1600
+  const std::string csv = timeline_csv(board.timeline());
+  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  EXPECT_TRUE(d.issues.empty());
+  EXPECT_EQ(d.table,
+            "# Raspblock emulator record: each change of the board's state\n"
+            "0.000000 gimbal.horizontal  = 1500\n"
+            "0.000000 gimbal.vertical    = 1000\n"
+            "0.020000 rocker.x           = -10\n"
+            "0.020000 rocker.y           = 0\n"
+            "0.020000 rocker.z           = 0\n"
+            "0.060000 gimbal.horizontal  1500 -> 1600\n"
+            "# 6 change(s), 0 issue(s)\n");
+}
+
+// A record cut or edited by hand no longer adds up: each line whose previous value is not the
+// field's last one, time running backwards, and a line that is not a record line.
+TEST(ReceivedRecord, AnEditedCarRecordShowsWhereItStopsAddingUp) {
+  const std::string csv =
+      "time_s,field,previous,value\n"
+      "0.000000,servo.1,,1500\n"
+      "0.100000,servo.1,1400,1600\n"  // servo.1 was 1500
+      "0.050000,servo.2,,900\n"       // before the line above
+      "0.200000,servo.3,700,800\n"    // servo.3 had no value
+      "0.300000,servo.1,,1700\n"      // servo.1 was 1600
+      "0.4,servo.1\n";
+  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  EXPECT_EQ(d.issues, (std::vector<std::string>{
+                          "line 3: servo.1 was 1500, not 1400",
+                          "line 4: time runs backwards (0.050000 after 0.100000)",
+                          "line 5: servo.3 had no value before, yet the record says it was 700",
+                          "line 6: servo.1 was 1600, yet the record gives no previous value",
+                          "line 7: not a record line (time_s,field,previous,value)",
+                      }));
+  EXPECT_EQ(backend::detect_format(csv), backend::DecodeFormat::Record);
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ version=$(dpkg-deb -f "$deb" Version)
 
 # Depends comes from the libraries the binary links, not from a hand-kept list.
 depends=$(dpkg-deb -f "$deb" Depends)
-for lib in libyaml-cpp0.7 libfmt9 libhidapi-hidraw0 libsqlite3-0 libc6 libstdc++6; do
+for lib in libyaml-cpp0.7 libfmt9 libhidapi-hidraw0 libsqlite3-0 libsndfile1 libc6 libstdc++6; do
   [[ $depends == *"$lib"* ]] || fail "Depends lacks $lib: $depends"
 done
 

@@ -1,4 +1,5 @@
-// ControllerSession (runtime/cli/controller_session.hpp) over a scripted link: the
+// The device commands' session (boards::XarmSession, runtime/boards/xarm_session.hpp) over a
+// scripted link, and the words the CLI gives its failures (runtime/cli/board_text.hpp): the
 // confirmation after unanswered commands, stale replies, notifications and failures.
 // Reply bytes are written by hand from docs/protocol/servo-controller.md.
 #include <gtest/gtest.h>
@@ -6,7 +7,8 @@
 #include <deque>
 #include <map>
 
-#include "runtime/cli/controller_session.hpp"
+#include "runtime/boards/xarm_session.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/bytes.hpp"
 #include "runtime/upload/controller_link.hpp"
@@ -54,8 +56,14 @@ struct Fixture {
   io::ManualClock clock;
   ScriptedPort port{clock};
   upload::ControllerLink link{port, clock};
-  ControllerSession session{link, milliseconds(200), "scripted"};
+  boards::XarmSession session{link, milliseconds(200)};
 };
+
+// The session's first failure as the device commands say it.
+std::optional<BoardError> error(const boards::XarmSession& s) {
+  if (!s.failure()) return std::nullopt;
+  return outcome_text(*s.failure(), "scripted", s.timeout(), "the controller");
+}
 
 TEST(DeviceSession, TellConfirmsWithABatteryCheck) {
   Fixture f;
@@ -64,7 +72,7 @@ TEST(DeviceSession, TellConfirmsWithABatteryCheck) {
   ASSERT_EQ(f.port.written.size(), 2u);
   EXPECT_EQ(to_hex(f.port.written[0]), "55 55 02 07");
   EXPECT_EQ(to_hex(f.port.written[1]), "55 55 02 0f");
-  EXPECT_FALSE(f.session.error());
+  EXPECT_FALSE(error(f.session));
 }
 
 TEST(DeviceSession, ASecondCheckIsSentWhenTheFirstGoesUnanswered) {
@@ -96,9 +104,9 @@ TEST(DeviceSession, NoReplyFailsAndLaterCallsDoNothing) {
   Fixture f;
   auto v = f.session.ask<lsc::ServoPositions>(lsc::ServoPositionRead{{1}}, "the positions");
   EXPECT_FALSE(v);
-  ASSERT_TRUE(f.session.error());
-  EXPECT_EQ(f.session.error()->code, ExitCode::DeviceFailure);
-  EXPECT_EQ(f.session.error()->message,
+  ASSERT_TRUE(error(f.session));
+  EXPECT_EQ(error(f.session)->code, ExitCode::DeviceFailure);
+  EXPECT_EQ(error(f.session)->message,
             "no reply from the controller on scripted within 200 ms (waiting for the "
             "positions); check that the controller is powered and connected, and --port");
   EXPECT_FALSE(f.session.tell(lsc::GroupStop{}));
@@ -110,10 +118,10 @@ TEST(DeviceSession, InterruptIsItsOwnFailure) {
   ScriptedPort port{clock};
   std::atomic<bool> interrupted{true};
   upload::ControllerLink link{port, clock, &interrupted};
-  ControllerSession session{link, milliseconds(200), "scripted"};
+  boards::XarmSession session{link, milliseconds(200)};
   EXPECT_FALSE(session.tell(lsc::GroupStop{}));
-  ASSERT_TRUE(session.error());
-  EXPECT_EQ(session.error()->code, ExitCode::Interrupted);
+  ASSERT_TRUE(error(session));
+  EXPECT_EQ(error(session)->code, ExitCode::Interrupted);
   EXPECT_TRUE(port.written.empty());
 }
 

@@ -114,6 +114,9 @@ TEST_F(Lsc6Upload, NoBoardIsNoAnswer) {
   EXPECT_EQ(r.group_state, GroupState::OldCount) << "index 0 went out: it may have erased";
 }
 
+// An xArm-family controller ignores command 25 but answers the GetBatteryVoltage that follows
+// the first unanswered index 0: the upload ends there, saying which dialect answered, with
+// nothing stored.
 TEST_F(Lsc6Upload, AnXArmControllerDoesNotAnswerTheDialect) {
   emu::XArmEmulator xarm;
   emu::EmulatorTransport transport(xarm, clock_);
@@ -122,7 +125,10 @@ TEST_F(Lsc6Upload, AnXArmControllerDoesNotAnswerTheDialect) {
   options.group = 2;
   options.retries = 0;
   options.restarts = 0;
-  EXPECT_EQ(upload_lsc6(link, three_actions(), options).status, UploadStatus::NoAnswer);
+  const UploadResult r = upload_lsc6(link, three_actions(), options);
+  EXPECT_EQ(r.status, UploadStatus::OtherDialect);
+  EXPECT_EQ(r.group_state, GroupState::Unchanged);
+  EXPECT_EQ(link.other_dialect_replies(), 1u);
 }
 
 TEST_F(Lsc6Upload, RunIsConfirmedOrReportedUnconfirmed) {

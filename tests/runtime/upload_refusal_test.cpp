@@ -59,7 +59,10 @@ TEST(Uploader, SilenceFromTheStartIsNoAnswer) {
   Outcome o = run_upload(s);
   EXPECT_EQ(o.result.status, UploadStatus::NoAnswer);
   EXPECT_EQ(o.result.group_state, GroupState::Unchanged);
-  EXPECT_EQ(o.received.size(), 5u);  // 1 + 4 re-sends of the probe, nothing else
+  // 1 + 4 re-sends of the probe, then the LSC-6 question (uploader.hpp): a DownloadAction (19)
+  // into group 0, total 1, index 255, no servos, 0 ms; nothing else.
+  ASSERT_EQ(o.received.size(), 6u);
+  EXPECT_EQ(o.received[5], (lsc::Frame{0x19, Bytes{0x00, 0x01, 0xff, 0x00, 0x00, 0x00}}));
   EXPECT_NE(o.result.message.find("no reply from a controller on fake controller"),
             std::string::npos);
 }

@@ -44,12 +44,24 @@ ALLOWED = {
     "tests/golden/bad-mirror-without-table.yaml": "mirror used without a table in robot",
     "tests/golden/bad-duplicate-servo-id.yaml": "two servos with one id",
     "tests/golden/bad-servo-in-two-tracks.yaml": "a servo moved in two tracks",
+    "tests/golden/bad-servo-in-nested-tracks.yaml": "a servo moved in two tracks, one nested",
+    "tests/golden/bad-car-output-in-two-tracks.yaml": "a car output or the drive in two tracks",
+    "tests/golden/bad-tempo-in-together.yaml": "a tempo step inside a track, at any depth",
+    # Section parameters: what `$name` becomes is known only where the section is performed.
+    "tests/golden/bad-section-unknown-param.yaml": "'with' names a parameter not declared",
+    "tests/golden/bad-section-undefined-param.yaml": "'$name' of a parameter not declared",
+    "tests/golden/bad-car-section-unknown-param.yaml": "a car section's parameters, by name",
+    "tests/golden/bad-section-param-does-not-fit.yaml": "a value that fits no position",
     "tests/golden/bad-home-outside-limits.yaml": "limits that exclude the profile's home",
     # Time: beats at the tempo in force, sums and positions in time.
     "tests/golden/bad-at-in-the-past.yaml": "an 'at' earlier than the steps before it end",
     "tests/golden/bad-beats-without-tempo.yaml": "beats need a tempo set elsewhere",
     "tests/golden/bad-ease-steps-too-short.yaml": "time / steps below 20ms",
     "tests/golden/bad-wait-first.yaml": "a wait before any servo has a position",
+    "tests/golden/bad-together-nothing-at-start.yaml": "tracks that all start later, nothing "
+                                                       "moved before",
+    "tests/golden/bad-at-bar-in-the-past.yaml": "a bar position the steps before it passed",
+    "tests/golden/bad-meter-off-bar-line.yaml": "a meter change off a bar line",
     "tests/golden/bad-too-many-actions.yaml": "the action budget (1,020 per group)",
     # Include targets: a schema sees one file at a time.
     "tests/golden/bad-error-in-include.yaml": "the mistake is in the included file",

@@ -1,4 +1,4 @@
-#include "runtime/cli/controller_session.hpp"
+#include "runtime/cli/device_command.hpp"
 
 #include <ostream>
 #include <utility>
@@ -8,6 +8,7 @@
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
+#include "runtime/cli/trace_option.hpp"
 
 namespace seqc::cli {
 
@@ -31,6 +32,7 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
   cmd.add_option("--port", options.port, "Port, as for `seqc upload` (default: the connected one)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
       ->capture_default_str();
+  add_trace_option(cmd, options.trace);
 }
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
@@ -50,55 +52,36 @@ ExitCode usage_error(Context& ctx, const std::string& message) {
   return ExitCode::Usage;
 }
 
-ControllerSession::ControllerSession(upload::ControllerLink& link, io::Duration timeout,
-                                     std::string port_name)
-    : session_(link, timeout), port_name_(std::move(port_name)) {}
-
-const std::optional<DeviceError>& ControllerSession::error() const {
-  if (!error_ && session_.failure()) {
-    const BoardError e = outcome_text(*session_.failure(), port_name_, timeout(), "the controller");
-    error_ = DeviceError{e.code, e.message};
-  }
-  return error_;
-}
-
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body) {
   // Everything that reaches here asks something only a board with queries answers.
-  const boards::Board& board = device_board(options);
+  const boards::Board& board = boards::board_for_command(options.profile(), options.port);
   if (!board.queries) return refuse_command(ctx, board, options.command);
   return run_on_board(ctx, options, board, [&](const boards::Line& line, const std::string& port) {
     upload::ControllerLink link(line.transport, line.clock, ctx.interrupted);
-    ControllerSession session(link, line.timeout, port);
+    boards::XarmSession session(link, line.timeout);
     const ExitCode code = body(session);
-    if (session.error()) {
-      ctx.err << "seqc: error: " << session.error()->message << "\n";
-      return session.error()->code;
-    }
+    if (session.failure()) return report_outcome(ctx, *session.failure(), line, port, board);
     return code;
   });
-}
-
-const boards::Board& device_board(const DeviceOptions& options) {
-  // The device commands are the servo controllers' (the family discovery finds).
-  const boards::Board& reached = boards::board_for_device(options.profile(), options.port);
-  const boards::Board& servo = boards::board_for_device("", "");
-  return boards::same_family(reached, servo) ? reached : servo;
 }
 
 ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::Board& board,
                       const LineBody& body) {
   auto timeout = parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
+  Trace trace;
+  if (const ExitCode c = trace.open(ctx, options.trace); c != ExitCode::Ok) return c;
   const boards::PortRequest request{options.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, hooks_of(ctx));
+  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
     const BoardError e = port_failure(opened.failure, request, "");
     ctx.err << "seqc: error: " << e.message << "\n";
     return e.code;
   }
   boards::OpenedPort& port = *opened.port;
-  const boards::Line line{*port.transport, *port.clock, ctx.interrupted, *timeout};
-  return body(line, port.transport->describe());
+  io::Transport& transport = trace.wrap(*port.transport, *port.clock, board);
+  const boards::Line line{transport, *port.clock, ctx.interrupted, *timeout};
+  return body(line, transport.describe());
 }
 
 ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,
@@ -110,7 +93,7 @@ ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boar
 
 ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const lsc::Request& request,
                             const std::string& done) {
-  return run_on_controller(ctx, options, [&](ControllerSession& s) {
+  return run_on_controller(ctx, options, [&](boards::XarmSession& s) {
     if (!s.tell(request)) return ExitCode::DeviceFailure;
     // `done` ends with a newline, as the callers write it.
     summarize(ctx, done.substr(0, done.size() - (done.ends_with('\n') ? 1 : 0)));

@@ -1,13 +1,13 @@
-// What the device commands (group, battery, servo, offset, bus-info, play) share: the
-// --port/--timeout options, opening the controller, and one request at a time with its reply.
+// What the device commands (group, battery, servo, offset, bus-info, teach) share: the
+// --port/--timeout/--robot options, opening the board's port, and the words for how it went.
 //
 // The exchange itself is boards::XarmSession (runtime/boards/xarm_session.hpp): requests the
 // controller answers wait for that reply; requests it does not answer are followed by a
 // GetBatteryVoltage confirmation, sent at most twice; group notifications that arrive meanwhile
-// are kept. ControllerSession adds the words: the session's first failure becomes a message for
-// "seqc: error: " and an exit status (no reply or a hang-up -> DeviceFailure, Ctrl-C ->
-// Interrupted). Nothing here sleeps or reads the wall clock; all waiting is the link's, on the
-// injected clock.
+// are kept. This file adds the words: the session's first failure becomes a message for
+// "seqc: error: " and an exit status (board_text.hpp: no reply or a hang-up -> DeviceFailure,
+// Ctrl-C -> Interrupted). Which board a command reaches is boards::board_for_command's choice.
+// Nothing here sleeps or reads the wall clock; all waiting is the link's, on the injected clock.
 #pragma once
 
 #include <functional>
@@ -33,6 +33,7 @@ struct DeviceOptions {
   std::string robot;                          // --robot, when the command has no other use for it
   const CLI::Option* robot_option = nullptr;  // the command's own --robot, when it has one
   std::string command;                        // "group speed", "battery": for messages
+  std::string trace;                          // --trace FILE ("" = none)
 
   // The --robot profile given ("" if none): `lsc-6` selects that board's dialect.
   std::string profile() const;
@@ -52,57 +53,16 @@ void add_servo_list_options(CLI::App& cmd, ServoListOptions& options);
 // Prints "seqc: error: MESSAGE" and returns ExitCode::Usage.
 ExitCode usage_error(Context& ctx, const std::string& message);
 
-struct DeviceError {
-  ExitCode code = ExitCode::DeviceFailure;
-  std::string message;
-};
-
-class ControllerSession final {
- public:
-  // `port_name` is what messages call the device ("emu:xarm", "/dev/ttyUSB0 at 9600 baud").
-  // Becomes the link's observer, to keep the notifications it skips.
-  ControllerSession(upload::ControllerLink& link, io::Duration timeout, std::string port_name);
-  ControllerSession(const ControllerSession&) = delete;
-  ControllerSession& operator=(const ControllerSession&) = delete;
-
-  // Sends `request` and returns the first reply of type R; nullopt on failure (see error()).
-  // `what` names the awaited reply for the message, e.g. "the battery voltage".
-  template <class R>
-  std::optional<R> ask(const lsc::Request& request, const std::string& what) {
-    return session_.ask<R>(request, what);
-  }
-
-  // Sends a request the controller does not answer and confirms it arrived (see above).
-  bool tell(const lsc::Request& request) { return session_.tell(request); }
-
-  // Group notifications received so far, in order.
-  const std::vector<lsc::Reply>& notifications() const { return session_.notifications(); }
-  // The session's first failure, worded.
-  const std::optional<DeviceError>& error() const;
-  upload::ControllerLink& link() { return session_.link(); }
-  io::Duration timeout() const { return session_.timeout(); }
-  const std::string& port_name() const { return port_name_; }
-  boards::XarmSession& session() { return session_; }
-
- private:
-  boards::XarmSession session_;
-  std::string port_name_;
-  mutable std::optional<DeviceError> error_;  // worded from session_.failure() when first asked
-};
-
-// Opens the controller `options` names, runs `body`, and prints a failure as
-// "seqc: error: ..." on ctx.err. Returns body's status, or the failure's.
-// The --timeout text is checked first (usage error).
-using SessionBody = std::function<ExitCode(ControllerSession&)>;
+// Opens the controller `options` names, runs `body` on a session with it, and prints the
+// session's first failure as "seqc: error: ..." on ctx.err. Returns body's status, or the
+// failure's. The --timeout text is checked first (usage error); a board without queries is
+// refused (refuse_command).
+using SessionBody = std::function<ExitCode(boards::XarmSession&)>;
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body);
-// The board a device command talks to: the one --port's emulator stands in for, else the --robot
-// profile's, else the first one discovery finds. A board of another family than the one
-// discovery finds does not count: an emulator of it is refused when it is opened
-// (boards::PortProblem::WrongEmulator), a --robot profile of it is ignored.
-const boards::Board& device_board(const DeviceOptions& options);
 // Opens the port `options` names for `board` and runs `body` with the line to it and the port's
 // description for messages. The --timeout text is checked first (usage error); a port that does
-// not open is said on ctx.err. Returns body's status, or the failure's.
+// not open is said on ctx.err. With --trace the line's transport writes every byte to that file
+// (trace_option.hpp), which is opened first. Returns body's status, or the failure's.
 using LineBody = std::function<ExitCode(const boards::Line& line, const std::string& port)>;
 ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::Board& board,
                       const LineBody& body);

@@ -1,0 +1,39 @@
+// A song's beats and tempo map from its samples (mono, any sample rate): onset envelope ->
+// tempo -> beat tracking -> each beat placed on its onset to about half a millisecond ->
+// meter and downbeat -> stretches of steady tempo -> a least-squares line per stretch. Pure: no
+// files, no clocks. `seqc beats` prints the result (docs/music.md).
+//
+// Confidence (0-1): the fraction of the map's beats, between the first and the last beat that
+// has an onset, that have an onset within a tenth of a beat of where the map puts them. A
+// drum-led song scores above 0.9; below 0.5 the map is refused as "no steady beat".
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "compiler/music/tempo_map.hpp"
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::music {
+
+struct BeatOptions {
+  std::optional<Meter> meter;        // given: no meter detection
+  std::optional<double> tempo_hint;  // BPM: picks between half, detected and double tempo
+};
+
+struct BeatAnalysis {
+  TempoMap map;
+  double confidence = 0;
+  // The tracked beats from the first onset to the last, each on its onset where it has one.
+  std::vector<double> beats_s;
+  bool meter_detected = false;  // false when BeatOptions::meter gave it
+};
+
+// The analysis, or an Error whose message says why no tempo map can be given (too short, no
+// steady beat), worded for "seqc: error: SONG: <message>".
+Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample_rate,
+                                   const BeatOptions& options);
+
+}  // namespace seqc::music

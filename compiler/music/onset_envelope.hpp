@@ -1,0 +1,41 @@
+// What the beat analysis reads from the samples: the onset-strength envelope (spectral flux of
+// log magnitudes, all bands and the low band apart) on a frame grid, and a fine amplitude
+// envelope for placing onsets to a fraction of a millisecond. Pure functions of the samples.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace seqc::music {
+
+// The samples the analysis works on: the input reduced to about 11 kHz (an integer factor, each
+// output sample the mean of `factor` input samples), enough for every onset a beat is made of.
+struct AnalysisSignal {
+  std::vector<double> samples;
+  double sample_rate = 0;  // of `samples`
+};
+AnalysisSignal reduce_for_analysis(std::span<const float> samples, double sample_rate);
+
+// Frame f is centred on sample f * hop of the analysis signal (frames reach past the ends with
+// zeros). flux[f] >= 0 rises where energy appears; low[f] is the same below 200 Hz, where kicks
+// and bass notes (which mark bar lines in most music) live.
+struct OnsetEnvelope {
+  std::vector<double> flux;  // high-passed (local mean removed), half-wave rectified, unit std
+  std::vector<double> low;   // low-band flux, not normalised
+  std::size_t hop = 0;       // analysis samples per frame
+  std::size_t window = 0;    // analysis samples per FFT
+  double frame_rate = 0;     // frames per second
+};
+OnsetEnvelope onset_envelope(const AnalysisSignal& signal);
+
+// RMS amplitude of the first difference of the analysis samples, in consecutive blocks of
+// `block` samples (about 0.5 ms each).
+struct FineEnvelope {
+  std::vector<double> amplitude;
+  std::size_t block = 0;
+  double block_rate = 0;  // blocks per second
+};
+FineEnvelope fine_envelope(const AnalysisSignal& signal);
+
+}  // namespace seqc::music

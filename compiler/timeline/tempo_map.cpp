@@ -1,0 +1,122 @@
+#include "compiler/timeline/tempo_map.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+ExactMs ms_per_beat(double bpm) {
+  return bpm > 0 ? ExactMs(60000) / ExactMs::from_double(bpm) : ExactMs(0);
+}
+
+}  // namespace
+
+TempoMap::TempoMap(double bpm, int beats_per_bar) {
+  Change start;
+  start.bpm = bpm;
+  start.ms_per_beat = ms_per_beat(bpm);
+  start.beats_per_bar = beats_per_bar;
+  changes_.push_back(start);
+}
+
+const TempoMap::Change& TempoMap::in_force(ExactMs t) const {
+  for (auto it = changes_.rbegin(); it != changes_.rend(); ++it) {
+    if (it->at <= t) return *it;
+  }
+  return changes_.front();
+}
+
+TempoMap::Change& TempoMap::change_at(ExactMs at) {
+  if (at <= changes_.back().at) return changes_.back();
+  Change next = changes_.back();
+  next.beat = beat_at(at);
+  next.bar = bar_of_beat(next.beat);
+  next.at = at;
+  changes_.push_back(next);
+  return changes_.back();
+}
+
+void TempoMap::set_tempo(ExactMs at, double bpm) {
+  if (bpm_at(at) == bpm) return;
+  Change& c = change_at(at);
+  c.bpm = bpm;
+  c.ms_per_beat = ms_per_beat(bpm);
+}
+
+void TempoMap::set_meter(ExactMs at, int beats_per_bar) {
+  if (meter_at(at) == beats_per_bar) return;
+  change_at(at).beats_per_bar = beats_per_bar;
+}
+
+ExactMs TempoMap::beat_at(ExactMs t) const {
+  const Change& c = in_force(t);
+  if (c.bpm <= 0) return c.beat;
+  return c.beat + (t - c.at) / c.ms_per_beat;
+}
+
+ExactMs TempoMap::bar_of_beat(ExactMs beat) const {
+  for (auto it = changes_.rbegin(); it != changes_.rend(); ++it) {
+    if (it->beat > beat) continue;
+    if (it->beats_per_bar <= 0) return it->bar;
+    return it->bar + (beat - it->beat) / ExactMs(it->beats_per_bar);
+  }
+  return ExactMs(0);
+}
+
+std::optional<ExactMs> TempoMap::time_of_beat(ExactMs beat) const {
+  for (auto it = changes_.rbegin(); it != changes_.rend(); ++it) {
+    if (it->beat > beat) continue;
+    if (it->bpm > 0) return it->at + (beat - it->beat) * it->ms_per_beat;
+    if (it->beat == beat) return it->at;
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::optional<ExactMs> TempoMap::beat_of_bar(ExactMs bar) const {
+  for (auto it = changes_.rbegin(); it != changes_.rend(); ++it) {
+    if (it->bar > bar) continue;
+    if (it->beats_per_bar > 0) return it->beat + (bar - it->bar) * ExactMs(it->beats_per_bar);
+    if (it->bar == bar) return it->beat;
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::optional<ExactMs> TempoMap::after_beats(ExactMs t, ExactMs beats) const {
+  if (beats == ExactMs(0)) return t;
+  std::size_t i = changes_.size() - 1;
+  while (i > 0 && changes_[i].at > t) --i;
+  ExactMs now = t;
+  ExactMs left = beats;
+  for (; i < changes_.size(); ++i) {
+    const Change& c = changes_[i];
+    if (c.bpm <= 0) return std::nullopt;
+    const ExactMs end = now + left * c.ms_per_beat;
+    if (i + 1 == changes_.size() || end <= changes_[i + 1].at) return end;
+    left = left - (changes_[i + 1].at - now) / c.ms_per_beat;
+    now = changes_[i + 1].at;
+  }
+  return std::nullopt;
+}
+
+std::optional<ExactMs> TempoMap::after_bars(ExactMs t, ExactMs bars) const {
+  std::size_t i = changes_.size() - 1;
+  while (i > 0 && changes_[i].at > t) --i;
+  const ExactMs from = beat_at(t);
+  ExactMs beat = from;
+  ExactMs left = bars;
+  for (; i < changes_.size(); ++i) {
+    const Change& c = changes_[i];
+    if (c.beats_per_bar <= 0) return std::nullopt;
+    const ExactMs per_bar(c.beats_per_bar);
+    const ExactMs end = beat + left * per_bar;
+    if (i + 1 == changes_.size() || end <= changes_[i + 1].beat) {
+      beat = end;
+      break;
+    }
+    left = left - (changes_[i + 1].beat - beat) / per_bar;
+    beat = changes_[i + 1].beat;
+  }
+  return after_beats(t, beat - from);
+}
+
+}  // namespace seqc::compiler

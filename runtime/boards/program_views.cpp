@@ -1,0 +1,55 @@
+#include "runtime/boards/program_views.hpp"
+
+#include "compiler/backend/raspblock_simulate.hpp"
+
+namespace seqc::boards {
+
+std::uint64_t length_ms(const compiler::CompileOutput& output) {
+  if (const compiler::ServoProgram* p = output.servo_program()) return p->duration_ms();
+  if (const compiler::RaspblockProgram* p = output.raspblock_program()) return p->duration_ms;
+  return 0;
+}
+
+std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options) {
+  if (const compiler::ServoProgram* p = output.servo_program()) {
+    return backend::plot_servo_program(*p, options);
+  }
+  if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
+    return backend::plot_car_program(*p, options);
+  }
+  return "";
+}
+
+std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+                                                 const std::string& title, double end_ms) {
+  if (const compiler::ServoProgram* p = output.servo_program()) {
+    return backend::preview_servo_part(*p, title, end_ms);
+  }
+  if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
+    return backend::preview_car_part(*p, title, end_ms);
+  }
+  return std::nullopt;
+}
+
+Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare) {
+  Simulated out;
+  if (const compiler::ServoProgram* program = output.servo_program()) {
+    const backend::Simulation sim = backend::simulate(*program, step_ms, compare);
+    if (compare) out.differences = backend::compare_with_intent(*program);
+    out.csv = backend::to_csv(sim);
+    out.duration_ms = sim.duration_ms;
+    out.steps = program->keyframes.size();
+    out.steps_are = "actions";
+    out.ok = true;
+  } else if (const compiler::RaspblockProgram* car = output.raspblock_program()) {
+    const backend::CarSimulation sim = backend::simulate_car(*car, step_ms);
+    out.csv = backend::to_csv(sim);
+    out.duration_ms = sim.duration_ms;
+    out.steps = car->packets.size();
+    out.steps_are = "packets";
+    out.ok = true;
+  }
+  return out;
+}
+
+}  // namespace seqc::boards

@@ -1,0 +1,45 @@
+// `seqc plot` and `seqc simulate` for whichever kind of program a file compiles to: a servo
+// controller's keyframes or the car's packet stream, as an SVG picture or as positions over
+// time (CSV). This is the one place that tells the two kinds apart for them, as a board's
+// `render` does for `seqc compile --emit`. No I/O and no words: the CLI writes the result and
+// says the summary.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/backend/plot_svg.hpp"
+#include "compiler/backend/preview_html.hpp"
+#include "compiler/backend/simulate.hpp"
+#include "compiler/compile.hpp"
+
+namespace seqc::boards {
+
+// How long the program runs: when its last move (or packet's effect) ends; 0 without a program.
+std::uint64_t length_ms(const compiler::CompileOutput& output);
+
+// The program as a picture (backend/plot_svg); "" without a program.
+std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options);
+
+// The program as one performer of `seqc preview`'s page (backend/preview_html), on a time axis
+// of `end_ms`; nullopt without a program.
+std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+                                                 const std::string& title, double end_ms);
+
+struct Simulated {
+  bool ok = false;  // false: no program of a kind that can be simulated
+  std::string csv;  // a sample every step_ms from 0, and the final instant
+  std::uint64_t duration_ms = 0;
+  std::size_t steps = 0;       // what the program is made of, counted ...
+  std::string_view steps_are;  // ... and named: "actions", "packets"
+  // With `compare` (servo programs): each servo's largest difference between the compiled
+  // motion and the intended curve, and when.
+  std::vector<backend::Difference> differences;
+};
+Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare);
+
+}  // namespace seqc::boards

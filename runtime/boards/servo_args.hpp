@@ -1,0 +1,90 @@
+// What a servo controller accepts as the servos, targets, times, groups and offsets a device
+// command names: ids in 0..255 (a byte on the wire) or, with a robot profile, that profile's
+// servos and names; positions within the profile's range, or without a profile within the range
+// every servo controller profile shares (0..2500), so a position no servo can reach is never
+// sent; whole milliseconds in a ushort; groups 0..254 (255 is the wire's "every group"); offsets
+// as ServoOffsetRead can report them (a signed byte). Every parser returns the value or an error
+// message that names the field and its range, ready for "seqc: error: "; nothing is clamped or
+// wrapped. The CLI adds the exit status: usage for text that does not parse, invalid input for a
+// position outside the range (checked_targets).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::boards {
+
+// The servos a `--robot PROFILE` names (xarm, lsc-16, lsc-32, lsc-6); nullopt for "" (no profile:
+// servos are plain ids 0..255 and positions plain 0..65535 values).
+Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile);
+
+// A whole number in decimal; the error names `field`.
+Result<long long> parse_integer(std::string_view text, const char* field);
+
+// One servo: an id, or with a profile one of its names ("claw"). With a profile, ids outside
+// the profile's servos are refused.
+Result<std::uint8_t> parse_servo(std::string_view text,
+                                 const std::optional<compiler::RobotInfo>& robot);
+
+// Several servos (at least one, none twice, at most 255 so the count fits its byte).
+Result<std::vector<std::uint8_t>> parse_servo_list(const std::vector<std::string>& texts,
+                                                   const std::optional<compiler::RobotInfo>& robot);
+
+// The servos a command names (as parse_servo_list), with the --robot profile that names them.
+struct ServoSelection {
+  std::optional<compiler::RobotInfo> robot;
+  std::vector<std::uint8_t> ids;
+};
+Result<ServoSelection> select_servos(const std::string& profile,
+                                     const std::vector<std::string>& texts);
+
+// A move target as written: the servo parsed, the position a whole number not yet checked
+// against any range (checked_targets does that).
+struct RequestedTarget {
+  std::uint8_t id = 0;
+  long long position = 0;
+  friend bool operator==(const RequestedTarget&, const RequestedTarget&) = default;
+};
+
+// "ID=POSITION" or "NAME=POSITION": the servo as parse_servo, the position a whole number.
+Result<RequestedTarget> parse_target(std::string_view text,
+                                     const std::optional<compiler::RobotInfo>& robot);
+
+// The targets of one move, each as parse_target: at most 255 (the count is a byte), no servo
+// twice.
+Result<std::vector<RequestedTarget>> parse_targets(const std::vector<std::string>& texts,
+                                                   const std::optional<compiler::RobotInfo>& robot);
+
+// The positions a servo may be sent: its profile's range, or without a profile the range of
+// every servo controller profile together (0..2500).
+struct PositionRange {
+  long long min = 0;
+  long long max = 0;
+};
+PositionRange position_range(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot);
+
+// The targets as the wire carries them, or an error naming the first servo whose position lies
+// outside position_range (its value and the range).
+Result<std::vector<lsc::ServoTarget>> checked_targets(
+    const std::vector<RequestedTarget>& targets, const std::optional<compiler::RobotInfo>& robot);
+
+// "500ms" or "1.5s" as whole milliseconds 0..65535 (the protocol's ushort milliseconds).
+Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field);
+
+// A group number for GroupRun/Erase/Speed: 0..254. 255 is the wire's "every group", which
+// is asked for with the word `all` where a command allows it, never with a number.
+Result<std::uint8_t> parse_group(std::string_view text);
+
+// A servo offset for ServoOffsetAdjust: -128..127. The request carries a short, but
+// ServoOffsetRead reports a signed byte, so only that range can be set and read back; larger
+// values are refused rather than sent and silently ignored or misreported.
+Result<std::int16_t> parse_offset(std::string_view text);
+
+}  // namespace seqc::boards

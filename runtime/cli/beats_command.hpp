@@ -1,0 +1,30 @@
+// `seqc beats SONG`: the song's tempo map as a `music:` block (docs/music.md), from the audio
+// interfaces it is given, so tests run it on samples without files.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "compiler/music/tempo_map.hpp"
+#include "runtime/audio/audio_files.hpp"
+#include "runtime/cli/context.hpp"
+#include "runtime/cli/exit_codes.hpp"
+
+namespace seqc::cli {
+
+struct BeatsRequest {
+  std::string song;                   // as given: printed in the block's `file:`
+  std::optional<music::Meter> meter;  // --meter
+  std::optional<double> tempo_hint;   // --tempo-hint, BPM
+  std::optional<std::string> click;   // --click OUT.wav
+};
+
+// The block on ctx.out, the confidence on ctx.err; FileError when the song cannot be read or the
+// click track written, InvalidInput when the song has no steady beat.
+ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
+                   audio::AudioWriter& writer);
+
+// "3/4" -> {3, 4}: 1-16 beats of a whole, half, quarter, eighth or sixteenth note.
+std::optional<music::Meter> parse_meter(const std::string& text);
+
+}  // namespace seqc::cli

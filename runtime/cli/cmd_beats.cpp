@@ -1,0 +1,95 @@
+// seqc beats SONG [--meter N/D] [--tempo-hint BPM] [--click OUT.wav]: the song's beats as a
+// `music:` block (compiler/music), decoded by libsndfile (runtime/audio).
+#include <cstdio>
+#include <memory>
+
+#include "compiler/music/beat_analysis.hpp"
+#include "compiler/music/click_track.hpp"
+#include "runtime/audio/sndfile_audio.hpp"
+#include "runtime/cli/beats_command.hpp"
+#include "runtime/cli/commands.hpp"
+
+namespace seqc::cli {
+
+std::optional<music::Meter> parse_meter(const std::string& text) {
+  int beats = 0, unit = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &beats, &unit, &tail) != 2) return std::nullopt;
+  if (beats < 1 || beats > 16) return std::nullopt;
+  if (unit != 1 && unit != 2 && unit != 4 && unit != 8 && unit != 16) return std::nullopt;
+  return music::Meter{beats, unit};
+}
+
+ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
+                   audio::AudioWriter& writer) {
+  auto song = reader.read(request.song);
+  if (!song) {
+    ctx.err << "seqc: error: " << song.error().message << "\n";
+    return ExitCode::FileError;
+  }
+  music::BeatOptions options;
+  options.meter = request.meter;
+  options.tempo_hint = request.tempo_hint;
+  auto analysis = music::analyze_beats(song->samples, song->sample_rate, options);
+  if (!analysis) {
+    ctx.err << "seqc: error: " << request.song << ": " << analysis.error().message << "\n";
+    return ExitCode::InvalidInput;
+  }
+  ctx.out << music::music_block(request.song, analysis->map);
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "%s: %zu beats, confidence %.2f (the share of the map's beats with an onset "
+                "within a tenth of a beat)",
+                request.song.c_str(), analysis->beats_s.size(), analysis->confidence);
+  summarize(ctx, line);
+  if (request.click) {
+    audio::MonoAudio mixed{music::mix_click_track(song->samples, song->sample_rate, analysis->map),
+                           song->sample_rate};
+    if (Status written = writer.write_wav(*request.click, mixed); !written) {
+      ctx.err << "seqc: error: " << written.error().message << "\n";
+      return ExitCode::FileError;
+    }
+    summarize(ctx, "wrote " + *request.click +
+                       " (the song with a click on every beat, higher on "
+                       "each bar's first)");
+  }
+  return ExitCode::Ok;
+}
+
+void add_beats_command(CLI::App& app, Context& ctx, Outcome& result) {
+  auto request = std::make_shared<BeatsRequest>();
+  auto meter = std::make_shared<std::string>();
+  auto hint = std::make_shared<double>(0.0);
+  auto click = std::make_shared<std::string>();
+  CLI::App* cmd =
+      app.add_subcommand("beats", "Find a song's beats and print its tempo map as a music: block");
+  cmd->add_option("SONG", request->song, "The audio file (WAV, FLAC, Ogg Vorbis, Opus, MP3)")
+      ->required();
+  cmd->add_option("--meter", *meter,
+                  "Beats per bar and beat unit, e.g. 3/4 (default: detected,\n"
+                  "4/4 or 3/4)");
+  cmd->add_option("--tempo-hint", *hint,
+                  "About how fast, in BPM: picks between half, the detected and double tempo")
+      ->check(CLI::Range(20.0, 400.0));
+  cmd->add_option("--click", *click, "Also write OUT.wav: the song with a click on every beat");
+  cmd->callback([&ctx, &result, request, meter, hint, click] {
+    BeatsRequest r = *request;
+    if (!meter->empty()) {
+      r.meter = parse_meter(*meter);
+      if (!r.meter) {
+        ctx.err << "seqc: error: --meter " << *meter
+                << ": give beats per bar and a beat unit, e.g. 4/4, 3/4 or 6/8\n";
+        result.code = ExitCode::Usage;
+        return;
+      }
+    }
+    if (*hint > 0) r.tempo_hint = *hint;
+    if (!click->empty()) r.click = *click;
+    // The real decoder and encoder; tests call run_beats with their own.
+    audio::SndfileAudioReader reader;
+    audio::SndfileAudioWriter writer;
+    result.code = run_beats(ctx, r, reader, writer);
+  });
+}
+
+}  // namespace seqc::cli

@@ -1,0 +1,93 @@
+// seqc preview FILE [-o dance.html] [--group N] [--strict]: the choreography (or a show's
+// performers, on one clock) as one self-contained, animated HTML page
+// (compiler/backend/preview_html.hpp). Without -o the page goes to stdout.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "compiler/backend/preview_html.hpp"
+#include "compiler/lang/show.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/boards/program_views.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
+
+namespace seqc::cli {
+namespace {
+
+// As `seqc plot` titles a picture: the group a stored program is for, else the board.
+std::string part_title(const compiler::CompileOutput& output, const std::string& name, int group) {
+  const boards::Board& board = boards::board_for(output);
+  return board.plan != nullptr ? name + ", group " + std::to_string(group)
+                               : name + " (" + std::string(board.name) + ")";
+}
+
+ExitCode preview_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
+                      std::string& html) {
+  ExitCode loaded = ExitCode::Ok;
+  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
+  if (loaded != ExitCode::Ok) return loaded;
+  double end = 0;
+  for (const compiler::Performer& p : show.performers) {
+    end = std::max(end, static_cast<double>(boards::length_ms(p.output)));
+  }
+  std::vector<std::string> names;
+  std::vector<backend::PreviewPart> parts;
+  for (const compiler::Performer& p : show.performers) {
+    auto part = boards::preview_part(
+        p.output, part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group),
+        end);
+    if (!part) continue;
+    names.push_back(p.name);
+    parts.push_back(std::move(*part));
+  }
+  html = backend::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
+                                   " performers, one clock), " + name,
+                               names, parts, end);
+  return ExitCode::Ok;
+}
+
+}  // namespace
+
+void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
+  struct Options {
+    std::string file;
+    std::string output = "-";
+    int group = 0;
+    bool strict = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "preview", "Write a choreography or show as one animated, self-contained HTML page");
+  cmd->add_option("FILE", o->file, "Choreography or show file (.yaml); - for stdin")->required();
+  cmd->add_option("-o,--output", o->output, "Write the HTML here (default: stdout)");
+  cmd->add_option("--group", o->group, "The action group it is for (0-254), shown in the title")
+      ->check(CLI::Range(0, 254));
+  cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
+  cmd->callback([&ctx, &result, o] {
+    const std::string name = o->file == "-" ? std::string(kStdinName)
+                                            : std::filesystem::path(o->file).filename().string();
+    std::string html;
+    if (o->file != "-" && compiler::is_show_file(ctx.files, o->file)) {
+      result.code = preview_show(ctx, o->file, name, o->strict, html);
+    } else {
+      Compiled c = compile_and_report(ctx, o->file, o->strict);
+      result.code = c.code;
+      if (c.code == ExitCode::Ok) {
+        const double end = static_cast<double>(boards::length_ms(c.output));
+        const std::string title = part_title(c.output, name, o->group);
+        if (auto part = boards::preview_part(c.output, title, end)) {
+          html = backend::preview_page(title, {""}, {std::move(*part)}, end);
+        }
+      }
+    }
+    if (result.code != ExitCode::Ok) return;
+    result.code = write_output(ctx, o->output, html);
+    if (result.code == ExitCode::Ok && o->output != "-") {
+      summarize(ctx, o->output + ": " + std::to_string(html.size()) + " bytes");
+    }
+  });
+}
+
+}  // namespace seqc::cli

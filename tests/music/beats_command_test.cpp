@@ -1,0 +1,141 @@
+// `seqc beats` in-process on fake audio (no files): what it prints for a song whose tempo map is
+// known from how it was made, and the exit status and wording of each failure.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "runtime/cli/beats_command.hpp"
+#include "runtime/io/clock.hpp"
+#include "tests/music/song_generator.hpp"
+
+namespace seqc::cli {
+namespace {
+
+class NoFiles final : public compiler::FileReader {
+ public:
+  Result<std::string> read(const std::string& path) override {
+    return make_error(path + ": not here");
+  }
+};
+
+class FakeReader final : public audio::AudioReader {
+ public:
+  explicit FakeReader(Result<audio::MonoAudio> song) : song_(std::move(song)) {}
+  Result<audio::MonoAudio> read(const std::string& path) override {
+    paths.push_back(path);
+    return song_;
+  }
+  std::vector<std::string> paths;
+
+ private:
+  Result<audio::MonoAudio> song_;
+};
+
+class FakeWriter final : public audio::AudioWriter {
+ public:
+  Status write_wav(const std::string& path, const audio::MonoAudio& audio) override {
+    written_path = path;
+    written = audio;
+    if (fail) return make_error(path + ": cannot write: disk full");
+    return Ok{};
+  }
+  std::string written_path;
+  audio::MonoAudio written;
+  bool fail = false;
+};
+
+struct CommandRun {
+  std::ostringstream out, err;
+  io::ManualClock clock;
+  NoFiles files;
+  Context ctx{out, err, clock, files};
+};
+
+audio::MonoAudio clicks(double tempo, double lead_in_s) {
+  const testing::Song song = testing::make_clicks(tempo, 4, lead_in_s, 20, 16000);
+  return {song.samples, song.sample_rate};
+}
+
+TEST(BeatsCommand, PrintsTheMusicBlockAndWritesTheClickTrack) {
+  // 120 BPM clicks from 0.5 s, every 4th accented: exact, so the fit is to the thousandth and
+  // 120.000 prints as 120.
+  FakeReader reader(clicks(120, 0.5));
+  FakeWriter writer;
+  CommandRun run;
+  BeatsRequest request{"songs/clicks.ogg", std::nullopt, std::nullopt, "out.wav"};
+  EXPECT_EQ(run_beats(run.ctx, request, reader, writer), ExitCode::Ok);
+  EXPECT_EQ(reader.paths, std::vector<std::string>{"songs/clicks.ogg"});
+  EXPECT_EQ(run.out.str(),
+            "music:\n"
+            "  file: songs/clicks.ogg\n"
+            "  downbeat: 0.500s\n"
+            "  tempo: 120\n"
+            "  meter: 4/4\n");
+  EXPECT_NE(run.err.str().find("seqc: songs/clicks.ogg: "), std::string::npos) << run.err.str();
+  EXPECT_NE(run.err.str().find("confidence 1.00"), std::string::npos) << run.err.str();
+  EXPECT_EQ(writer.written_path, "out.wav");
+  EXPECT_EQ(writer.written.sample_rate, 16000);
+  EXPECT_EQ(writer.written.samples.size(), std::size_t{20 * 16000});
+}
+
+TEST(BeatsCommand, QuietPrintsOnlyTheBlock) {
+  FakeReader reader(clicks(100, 1.0));
+  FakeWriter writer;
+  CommandRun run;
+  run.ctx.verbosity = -1;
+  EXPECT_EQ(run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, std::nullopt}, reader, writer),
+            ExitCode::Ok);
+  EXPECT_EQ(run.err.str(), "");
+  EXPECT_EQ(writer.written_path, "");  // no --click, nothing written
+}
+
+TEST(BeatsCommand, UnreadableSongIsAFileError) {
+  FakeReader reader(make_error("gone.flac: no such file"));
+  FakeWriter writer;
+  CommandRun run;
+  EXPECT_EQ(
+      run_beats(run.ctx, {"gone.flac", std::nullopt, std::nullopt, std::nullopt}, reader, writer),
+      ExitCode::FileError);
+  EXPECT_EQ(run.out.str(), "");
+  EXPECT_EQ(run.err.str(), "seqc: error: gone.flac: no such file\n");
+}
+
+TEST(BeatsCommand, NoSteadyBeatIsInvalidInputAndPrintsNoGuess) {
+  const testing::Song noise = testing::make_noise(12, 0.1, 16000, 3);
+  FakeReader reader(audio::MonoAudio{noise.samples, noise.sample_rate});
+  FakeWriter writer;
+  CommandRun run;
+  EXPECT_EQ(run_beats(run.ctx, {"rain.wav", std::nullopt, std::nullopt, "c.wav"}, reader, writer),
+            ExitCode::InvalidInput);
+  EXPECT_EQ(run.out.str(), "");
+  EXPECT_EQ(run.err.str().rfind("seqc: error: rain.wav: no steady beat found (", 0), 0u)
+      << run.err.str();
+  EXPECT_EQ(writer.written_path, "");
+}
+
+TEST(BeatsCommand, FailedClickWriteIsAFileError) {
+  FakeReader reader(clicks(120, 0.5));
+  FakeWriter writer;
+  writer.fail = true;
+  CommandRun run;
+  EXPECT_EQ(
+      run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, "/full/out.wav"}, reader, writer),
+      ExitCode::FileError);
+  EXPECT_NE(run.err.str().find("seqc: error: /full/out.wav: cannot write: disk full\n"),
+            std::string::npos)
+      << run.err.str();
+}
+
+TEST(BeatsCommand, MeterText) {
+  EXPECT_EQ(parse_meter("3/4"), (music::Meter{3, 4}));
+  EXPECT_EQ(parse_meter("6/8"), (music::Meter{6, 8}));
+  EXPECT_EQ(parse_meter("12/16"), (music::Meter{12, 16}));
+  EXPECT_EQ(parse_meter("3"), std::nullopt);
+  EXPECT_EQ(parse_meter("3/5"), std::nullopt);
+  EXPECT_EQ(parse_meter("0/4"), std::nullopt);
+  EXPECT_EQ(parse_meter("17/4"), std::nullopt);
+  EXPECT_EQ(parse_meter("3/4x"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace seqc::cli
