@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace seqc::compiler {
 
@@ -299,7 +300,8 @@ class Fitter {
 
   // Fits a stretch. Each search keeps the free fit only when it beats the on-curve one, but where
   // a search stops short (a shortfall) or is cut, the searches after it start from different
-  // places; then the whole stretch is fitted on the curve as well and the fewer actions kept.
+  // places; then the whole stretch is fitted on the curve as well, and the fit with fewer
+  // shortfalls (then fewer actions) kept.
   void fit_stretch(const Stretch& in, const std::vector<std::size_t>& curved) {
     // As long as the longest action this stretch can hold (a program of straight moves needs
     // none: the table is not allocated for it).
@@ -327,7 +329,9 @@ class Fitter {
     free_ = false;
     fit_range(in, curved, 0, in.n);
     free_ = true;
-    if (with_free.actions.size() < result_.actions.size()) {
+    // Never a miss the on-curve fit avoids: fewer shortfalls first, then fewer actions.
+    if (std::make_pair(with_free.shortfalls.size(), with_free.actions.size()) <
+        std::make_pair(result_.shortfalls.size(), result_.actions.size())) {
       result_ = std::move(with_free);
       pos_ = std::move(pos_free);
     }

@@ -41,11 +41,11 @@ struct RobotProfile {
   double rated_speed = 0;
   // Actions one stored group holds on this controller.
   std::size_t max_actions = lsc::kMaxActions;
+  // The arm's built-in geometry (its degrees_per_unit is taken from units_per_degree), if any.
+  const ArmGeometry* arm = nullptr;
   // How the controller moves a servo during an action (compiler/fitting/fitter.hpp); fitting
   // keeps every tolerance under this model. docs/language.md says why each profile has its own.
   ControllerModel controller = ControllerModel::StraightLine;
-  // The arm's built-in geometry (its degrees_per_unit is taken from units_per_degree), if any.
-  const ArmGeometry* arm = nullptr;
 };
 
 const RobotProfile* find_profile(std::string_view name);

@@ -223,7 +223,7 @@ TEST(Simulate, AShowGivesOneCsvPerPerformer) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "# performer arm (examples/walk.yaml)\n" + walk.out +
                        "# performer car (examples/car-dance.yaml)\n" + car);
-  EXPECT_EQ(r.err.rfind("seqc: examples/walk.yaml (arm): 29 actions, 8 s\n"
+  EXPECT_EQ(r.err.rfind("seqc: examples/walk.yaml (arm): 27 actions, 8 s\n"
                         "seqc: examples/car-dance.yaml (car): ",
                         0),
             0u)
