@@ -72,6 +72,11 @@ class ServoLowering final : public StepWalker {
   // `keys_ok`: false when the step has an unknown key (then a missing 'time' is most likely
   // that key misspelt, already reported).
   void move_step(const YamlNode& step, const YamlNode& target, bool keys_ok);
+  // A move's `tip:` (servo_tip.cpp): appends to `entries` (the move's other servos) the joint
+  // positions that put the claw's tip there, with the move's `pitch:` and the step's `elbow:`;
+  // false after reporting.
+  bool tip_entries(const YamlNode& step, const YamlNode& target,
+                   std::vector<PositionEntry>& entries);
   void wait_step(const YamlNode& step, const YamlNode& value);
   void through_step(const YamlNode& step, const YamlNode& waypoints);
   // The positions a move's entries reach, by servo (nullopt: not named), from the positions in

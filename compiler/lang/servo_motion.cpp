@@ -81,9 +81,28 @@ bool ServoLowering::resolve_targets(const std::vector<PositionEntry>& entries,
 void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool keys_ok) {
   std::vector<PositionEntry> inline_entries;
   std::optional<Reporter::Note> note;
-  const std::vector<PositionEntry>* entries =
-      scopes_.move_entries(target, "servo", entries_parser(), inline_entries, note, reporter_);
-  bool ok = entries != nullptr;
+  const std::vector<PositionEntry>* entries = nullptr;
+  bool ok = true;
+  if (target.is_map() && target.find("tip") != nullptr) {
+    // The other servos parse as usual; tip and pitch are the inverse kinematics' own.
+    YamlNode rest = target;
+    std::erase_if(rest.entries, [](const YamlEntry& e) {
+      return e.first.scalar == "tip" || e.first.scalar == "pitch";
+    });
+    inline_entries = parse_positions(rest, "in this move");
+    ok = tip_entries(step, target, inline_entries);
+    entries = &inline_entries;
+  } else {
+    entries =
+        scopes_.move_entries(target, "servo", entries_parser(), inline_entries, note, reporter_);
+    ok = entries != nullptr;
+    if (const YamlNode* e = step.find("elbow")) {
+      reporter_.error(e->location,
+                      "'elbow' chooses how the arm reaches a 'tip' and needs one in "
+                      "the move, e.g. 'move: {tip: [150mm, 0mm, 80mm]}'");
+      ok = false;
+    }
+  }
 
   const YamlNode* time_node = step.find("time");
   std::optional<ExactMs> total;

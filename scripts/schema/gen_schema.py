@@ -207,7 +207,7 @@ definitions["robotObject"] = robot_object
 
 # Steps of a servo controller file: every key, and per verb the keys it allows.
 SERVO_VERBS = {
-    "move": ["move", "time", "ease", "steps", "tolerance", "at"],
+    "move": ["move", "time", "ease", "steps", "tolerance", "elbow", "at"],
     "wait": ["wait", "at"],
     "through": ["through", "tolerance", "at"],
     "together": ["together", "at"],
@@ -223,7 +223,21 @@ STEP_KEYS = {
     "move": doc("Move", "Move to a pose or to positions over `time` (straight, or along `ease`): "
                 "`move: ready` or `move: {base: 60deg, claw: +50}`.",
                 **{k: v for k, v in definitions["poseOrPositions"].items()
-                   if k not in ("title", "description", "markdownDescription")}),
+                   if k not in ("title", "description", "markdownDescription")},
+                properties={
+                    "tip": doc("Tip", "Where the claw's tip goes, `[x, y, z]` in millimetres "
+                               "(`[150mm, 0mm, 80mm]`); with a sign on any coordinate, from "
+                               "where the tip is (`[+20mm, 0mm, 0mm]`). Needs the arm's "
+                               "geometry.", type="array", minItems=3, maxItems=3,
+                               items={"type": "string", "pattern": r"^[+-]?[0-9.]+mm$",
+                                      "patternErrorMessage": "a length in millimetres: 150mm, "
+                                                             "+20mm"}),
+                    "pitch": doc("Pitch", "The hand's angle with `tip`: 0deg up, 90deg level, "
+                                 "180deg down (default: as it is).", type="string",
+                                 pattern=r"^[+-]?[0-9.]+deg$",
+                                 patternErrorMessage="an angle in degrees: 135deg")}),
+    "elbow": doc("Elbow", "With a `tip` move: `up` (the default) or `down`, which of the two "
+                 "ways the arm reaches the point.", type="string", enum=["up", "down"]),
     "time": ref("servoTime"),
     "ease": ref("ease"),
     "steps": doc("Steps", "Cut the move into this many equal actions instead of fitting it "

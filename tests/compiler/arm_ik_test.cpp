@@ -1,0 +1,194 @@
+// Moving the xArm's tip in millimetres: the joint positions a `tip:` move compiles to, checked
+// by forward kinematics written out here from the documented conventions (not the compiler's),
+// and the wording of the moves it refuses.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using testing::compile_text;
+using testing::messages;
+using testing::program_of;
+
+// The xArm profile: 1000 units over 240 degrees, ids claw 1 .. base 6; links 72 (table to
+// shoulder), 97, 96 and 150 mm; every joint's zero at 500, the base turning +1, the others -1.
+constexpr double kDegPerUnit = 0.24;
+constexpr double kBaseHeight = 72, kUpper = 97, kFore = 96, kHand = 150;
+
+// Each servo's last commanded position, by bus id.
+std::map<int, int> final_positions(const ServoProgram& p) {
+  std::map<int, int> out;
+  for (const Keyframe& k : p.keyframes) {
+    for (const auto& t : k.targets) out[t.id] = t.position;
+  }
+  return out;
+}
+
+struct Tip {
+  std::array<double, 3> at;
+  double pitch;  // degrees
+};
+
+// r = U sin s + F sin(s+e) + H sin(s+e+w), z = base_height + U cos s + F cos(s+e) + H cos(s+e+w),
+// x = r cos(base), y = r sin(base).
+Tip forward(std::map<int, int> pos) {
+  const double rad = std::numbers::pi / 180;
+  const double base = (pos[6] - 500) * kDegPerUnit * rad;
+  const double s = -(pos[5] - 500) * kDegPerUnit * rad;
+  const double e = -(pos[4] - 500) * kDegPerUnit * rad;
+  const double w = -(pos[3] - 500) * kDegPerUnit * rad;
+  const double r = kUpper * std::sin(s) + kFore * std::sin(s + e) + kHand * std::sin(s + e + w);
+  const double z =
+      kBaseHeight + kUpper * std::cos(s) + kFore * std::cos(s + e) + kHand * std::cos(s + e + w);
+  return {{r * std::cos(base), r * std::sin(base), z}, (s + e + w) / rad};
+}
+
+// Rounding a joint to whole units moves it by at most half a unit, 0.12 degrees; the tip moves
+// by at most that angle times the joint's distance to the tip, which is at most the links
+// beyond it: base and shoulder 97+96+150, elbow 96+150, wrist 150 mm. The IK itself is exact.
+const double kRoundingMm =
+    0.5 * kDegPerUnit * std::numbers::pi / 180 * ((343 + 343) + (96 + 150) + 150);
+constexpr double kRoundingPitch = 3 * 0.5 * kDegPerUnit;  // shoulder, elbow and wrist
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+const ServoProgram& compiled(const CompileOutput& out) { return program_of(out); }
+
+TEST(ArmTip, AbsoluteTipIsReachedWithinRounding) {
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [200mm, 0mm, 50mm], pitch: 135deg, claw: 300}
+    time: 1s
+)");
+  const std::map<int, int> pos = final_positions(compiled(out));
+  const Tip tip = forward(pos);
+  EXPECT_LE(distance(tip.at, {200, 0, 50}), kRoundingMm);
+  EXPECT_NEAR(tip.pitch, 135, kRoundingPitch);
+  EXPECT_EQ(pos.at(6), 500);  // straight along +x: the base at its zero
+  EXPECT_EQ(pos.at(1), 300);  // the claw moves in the same step
+}
+
+TEST(ArmTip, BaseFacesThePoint) {
+  // (0, 100) is 90 degrees counter-clockwise from +x: 500 + 90 / 0.24 = 875.
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [0mm, 200mm, 50mm], pitch: 135deg}
+    time: 1s
+)");
+  const std::map<int, int> pos = final_positions(compiled(out));
+  EXPECT_EQ(pos.at(6), 875);
+  EXPECT_LE(distance(forward(pos).at, {0, 200, 50}), kRoundingMm);
+}
+
+TEST(ArmTip, ElbowDownIsTheOtherSolution) {
+  const std::string move =
+      "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n"
+      "  - move: {tip: [250mm, 0mm, 80mm], pitch: 135deg}\n    time: 1s\n";
+  const auto up = compile_text(move);
+  const auto down = compile_text(move + "    elbow: down\n");
+  const std::map<int, int> up_pos = final_positions(compiled(up));
+  const std::map<int, int> down_pos = final_positions(compiled(down));
+  // Elbow up bends the forearm forwards (a positive elbow angle: a position below 500), down
+  // bends it back; both put the tip at the same point.
+  EXPECT_LT(up_pos.at(4), 500);
+  EXPECT_GT(down_pos.at(4), 500);
+  EXPECT_LE(distance(forward(up_pos).at, {250, 0, 80}), kRoundingMm);
+  EXPECT_LE(distance(forward(down_pos).at, {250, 0, 80}), kRoundingMm);
+  EXPECT_NEAR(forward(down_pos).pitch, 135, kRoundingPitch);
+}
+
+TEST(ArmTip, SignedTipMovesFromTheCurrentTipAndKeepsThePitch) {
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [200mm, 0mm, 50mm], pitch: 135deg}
+    time: 1s
+  - move: {tip: [0mm, 0mm, +60mm]}
+    time: 1s
+)");
+  const ServoProgram& p = compiled(out);
+  std::map<int, int> before;
+  for (const Keyframe& k : p.keyframes) {
+    if (k.start_ms >= 2000) break;
+    for (const auto& t : k.targets) before[t.id] = t.position;
+  }
+  const Tip from = forward(before);
+  const Tip to = forward(final_positions(p));
+  // Relative to where the rounded joints put the tip, so only the second rounding counts.
+  EXPECT_LE(distance(to.at, {from.at[0], from.at[1], from.at[2] + 60}), kRoundingMm);
+  EXPECT_NEAR(to.pitch, from.pitch, kRoundingPitch);
+}
+
+TEST(ArmTip, RefusedMovesSayWhy) {
+  // The wrist is 150 mm above the tip when the hand points down: at r = 150, z = 80 + 150 - 72 =
+  // 158 from the shoulder, hypot(150, 158) = 217.9 mm, 24.9 beyond 97 + 96 = 193.
+  EXPECT_EQ(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [150mm, 0mm, 80mm], pitch: 180deg}
+    time: 1s
+)")),
+            std::vector<std::string>{
+                "5:17 error: the tip [150mm, 0mm, 80mm] at pitch 180deg is 25 mm beyond the arm's "
+                "reach of 193 mm (the wrist, 150 mm back from the tip, is 218 mm from the "
+                "shoulder)"});
+  // Pointing down at r = 30: wrist (30, 158), elbow acos((160.82^2 - 97^2 - 96^2) / (2 97 96))
+  // = 67.13deg, shoulder atan2(30, 158) - atan2(96 sin e, 97 + 96 cos e) = -22.62deg, wrist
+  // 180 + 22.62 - 67.13 = 135.49deg: 500 - 135.49 / 0.24 = -64.5, below the servo's 0.
+  EXPECT_EQ(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [30mm, 0mm, 80mm], pitch: 180deg}
+    time: 1s
+)")),
+            std::vector<std::string>{
+                "5:17 error: the tip [30mm, 0mm, 80mm] at pitch 180deg needs 'wrist_pitch' at -65 "
+                "(135.5deg), 65 below its min 0"});
+  // Home stands the arm straight up, the tip at 72 + 97 + 96 + 150 = 415 mm; 420 mm down is 5
+  // mm under the table.
+  EXPECT_EQ(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [0mm, 0mm, -420mm]}
+    time: 1s
+)")),
+            std::vector<std::string>{
+                "5:17 error: the tip [0mm, 0mm, -5mm] would be 5 mm below the table"});
+  EXPECT_EQ(messages(compile_text(R"(robot: lsc-16
+sequence:
+  - move: {tip: [200mm, 0mm, 50mm]}
+    time: 1s
+)")),
+            std::vector<std::string>{
+                "3:17 error: 'tip' needs the arm's geometry, and robot 'lsc-16' has none; give it "
+                "with 'robot: {arm: ...}'"});
+  EXPECT_EQ(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: {tip: [+20mm, 0mm, 0mm]}
+    time: 1s
+)")),
+            std::vector<std::string>{
+                "3:17 error: 'base' has no known position yet, so the tip's position is unknown; "
+                "move the arm to absolute positions first"});
+}
+
+}  // namespace
+}  // namespace seqc::compiler
