@@ -30,6 +30,9 @@ namespace seqc::compiler {
 
 struct CompileOptions {
   bool strict = false;  // warnings are errors (--strict)
+  // Decodes a `music:` song to check the dance against it (docs/music.md); null: no check, so
+  // commands that only need the program do not decode audio.
+  SongReader* songs = nullptr;
 };
 
 enum class RobotKind {

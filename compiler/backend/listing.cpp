@@ -41,8 +41,11 @@ std::string render_listing(const compiler::ServoProgram& program,
                        p.bytes[3], p.fields);
     if (!p.keyframe) continue;
     const compiler::Keyframe& k = program.keyframes[*p.keyframe];
-    out += fmt::format("  action {} at {} ms from {}:", *p.keyframe + 1, k.start_ms,
-                       location_text(k.source, sources));
+    // An action no step wrote (the hold before an `at:` cue) says so rather than "from :".
+    const std::string from = location_text(k.source, sources);
+    out += from.empty()
+               ? fmt::format("  action {} at {} ms, a hold:", *p.keyframe + 1, k.start_ms)
+               : fmt::format("  action {} at {} ms from {}:", *p.keyframe + 1, k.start_ms, from);
     for (const lsc::ServoTarget& t : k.targets) {
       out += fmt::format(" {}={}", servo_label(program, t.id), t.position);
     }

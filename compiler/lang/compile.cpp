@@ -7,8 +7,18 @@
 #include "compiler/lang/reporter.hpp"
 #include "compiler/lang/robot_section.hpp"
 #include "compiler/lang/servo_lowering.hpp"
+#include "compiler/lang/song_check.hpp"
 
 namespace seqc::compiler {
+namespace {
+
+// The audio check, for the commands that pass a SongReader and a file with a song.
+void check_music(const Timeline& timeline, const CompileOptions& options, Reporter& reporter) {
+  if (options.songs == nullptr || !timeline.song) return;
+  check_song(*timeline.song, timeline.tempo_map, timeline.end, *options.songs, reporter);
+}
+
+}  // namespace
 
 const ServoInfo* RobotInfo::find_id(std::uint8_t id) const {
   for (const ServoInfo& s : servos) {
@@ -60,11 +70,13 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
   switch (robot->info.kind) {
     case RobotKind::Raspblock: {
       RaspblockProgram program = lower_raspblock_program(*robot, file, loader, reporter);
+      check_music(program.timeline, options, reporter);
       if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
       break;
     }
     case RobotKind::ServoController: {
       ServoProgram program = lower_servo_program(*robot, file, loader, reporter);
+      check_music(program.timeline, options, reporter);
       if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
       break;
     }

@@ -44,8 +44,8 @@ void RaspblockLowering::run_file(const LoadedFile& f, bool is_main) {
   if (map == nullptr) return;
   const YamlNode& root = *map;
   reporter_.check_keys(root,
-                       {"robot", "tempo", "meter", "resolution", "poses", "sections", "pid",
-                        "sequence", "name", "description"},
+                       {"robot", "music", "tempo", "meter", "resolution", "poses", "sections",
+                        "pid", "sequence", "name", "description"},
                        "at the top level");
   reporter_.check_free_text(root);
   if (!is_main) {

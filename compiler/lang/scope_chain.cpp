@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "compiler/lang/music_section.hpp"
 #include "compiler/lang/robot_section.hpp"
 #include "compiler/source/units.hpp"
 
@@ -12,8 +13,39 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
   if (it != scopes_.end()) return {*it->second, false};
   auto scope = std::make_unique<FileScope>();
   scope->file = &f;
-  if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
-  if (const YamlNode* m = f.root->find("meter")) scope->beats_per_bar = parse_meter(*m, reporter);
+  const YamlEntry* music = nullptr;
+  for (const YamlEntry& e : f.root->entries) {
+    if (e.first.scalar == "music") music = &e;
+  }
+  if (music != nullptr) {
+    // The song owns the one tempo map: a tempo or meter beside it would be a second one.
+    scope->song = parse_music(music->first, music->second, f.path, reporter);
+    for (std::string_view key : {"tempo", "meter"}) {
+      if (const YamlNode* v = f.root->find(key)) {
+        reporter.error(v->location,
+                       "'" + std::string(key) + "' beside 'music': the song sets the " +
+                           (key == "tempo" ? "tempo" : "meter") + " at bar 1",
+                       Reporter::Note{music->first.location,
+                                      "set it here, and changes by bar in its 'changes'"});
+      }
+    }
+    if (scope->song) {
+      scope->tempo = scope->song->bpm;
+      scope->beats_per_bar = scope->song->beats_per_bar;
+    } else if (music->second.is_map()) {
+      // A broken block still counts beats by the tempo and meter it gives, so its mistakes are
+      // not followed by one "no tempo" per step (the reporter says each mistake once).
+      if (const YamlNode* t = music->second.find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+      if (const YamlNode* m = music->second.find("meter")) {
+        scope->beats_per_bar = parse_meter(*m, reporter);
+      }
+    }
+  } else {
+    if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+    if (const YamlNode* m = f.root->find("meter")) {
+      scope->beats_per_bar = parse_meter(*m, reporter);
+    }
+  }
   FileScope& ref = *scope;
   scopes_.emplace(f.path, std::move(scope));
   return {ref, true};

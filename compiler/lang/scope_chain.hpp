@@ -19,6 +19,7 @@
 #include "compiler/lang/reporter.hpp"
 #include "compiler/source/units.hpp"
 #include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/song.hpp"
 #include "compiler/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {
@@ -34,6 +35,7 @@ struct FileScope {
   std::map<std::string, Pose, std::less<>> poses;
   std::optional<double> tempo;
   std::optional<int> beats_per_bar;  // 'meter: 3/4' -> 3
+  std::optional<Song> song;          // `music:`: its tempo and meter at bar 1 are the above
   std::optional<std::uint32_t> resolution_ms;
   std::optional<double> tolerance;                               // device units
   std::map<std::string, const YamlNode*, std::less<>> sections;  // name -> its step list
@@ -46,7 +48,7 @@ class ScopeChain {
       : home_outputs_(std::move(home_outputs)) {}
 
   // The scope of `f` (whose root is a map) and whether it was just made: a new scope has its
-  // 'tempo' parsed; its poses and resolution are for the caller to fill in.
+  // 'tempo' (or its `music:` song) parsed; its poses and resolution are for the caller to fill in.
   std::pair<FileScope&, bool> open(const LoadedFile& f, Reporter& reporter);
 
   void push(FileScope& scope) { chain_.push_back(&scope); }

@@ -147,8 +147,8 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
   if (map == nullptr) return;
   const YamlNode& root = *map;
   reporter_.check_keys(root,
-                       {"robot", "tempo", "meter", "resolution", "tolerance", "poses", "sections",
-                        "sequence", "name", "description"},
+                       {"robot", "music", "tempo", "meter", "resolution", "tolerance", "poses",
+                        "sections", "sequence", "name", "description"},
                        "at the top level");
   reporter_.check_free_text(root);
   if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "compiler/lang/music_section.hpp"
 #include "compiler/lang/step_parts.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/units.hpp"
@@ -405,12 +406,20 @@ bool StepWalker::is_verb(std::string_view key, const YamlNode& /*step*/) const {
 void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const YamlNode& sequence,
                               bool is_main) {
   TempoMap& music = timeline_.tempo_map;
-  if (is_main) music = TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
-  // An included file's own tempo and meter hold while its steps run.
+  if (is_main) {
+    timeline_.song = scope.song;
+    music = scope.song ? song_tempo_map(*scope.song)
+                       : TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
+  } else {
+    check_included_music(root);
+  }
+  // An included file's own tempo and meter hold while its steps run (not while a song plays:
+  // its map is the only one).
   const double outer_bpm = music.bpm_at(now_);
   const int outer_meter = music.meter_at(now_);
-  const bool own_tempo = !is_main && scope.tempo && *scope.tempo != outer_bpm;
-  bool own_meter = !is_main && scope.beats_per_bar && *scope.beats_per_bar != outer_meter;
+  const bool own_tempo = !is_main && !timeline_.song && scope.tempo && *scope.tempo != outer_bpm;
+  bool own_meter =
+      !is_main && !timeline_.song && scope.beats_per_bar && *scope.beats_per_bar != outer_meter;
   if (own_tempo) music.set_tempo(now_, *scope.tempo);
   if (own_meter) {
     const YamlNode& meter = *root.find("meter");
@@ -567,7 +576,32 @@ void StepWalker::together_step(const YamlNode& step, const YamlNode& tracks) {
   run->block_ends(start, longest);
 }
 
+void StepWalker::check_included_music(const YamlNode& root) {
+  for (const YamlEntry& e : root.entries) {
+    if (e.first.scalar != "music") continue;
+    reporter_.error(e.first.location,
+                    "'music' belongs in the main file: the song plays from its "
+                    "first step");
+  }
+  if (!timeline_.song) return;
+  for (std::string_view key : {"tempo", "meter"}) {
+    if (const YamlNode* v = root.find(key)) song_owns(*v, key);
+  }
+}
+
+bool StepWalker::song_owns(const YamlNode& value, std::string_view key) {
+  if (!timeline_.song) return false;
+  reporter_.error(value.location,
+                  "'" + std::string(key) + ": " + value.scalar +
+                      "' while the song plays: its tempo map is the only one",
+                  Reporter::Note{timeline_.song->at,
+                                 "the song's 'music' sets tempo and meter, with changes by bar "
+                                 "in its 'changes'"});
+  return true;
+}
+
 void StepWalker::tempo_step(const YamlNode& value) {
+  if (song_owns(value, "tempo")) return;
   if (!claims_.outside_tracks(value, "tempo", reporter_)) return;
   if (auto bpm = parse_tempo(value, reporter_)) {
     timeline_.tempo_map.set_tempo(now_, *bpm);
@@ -576,6 +610,7 @@ void StepWalker::tempo_step(const YamlNode& value) {
 }
 
 void StepWalker::meter_step(const YamlNode& value) {
+  if (song_owns(value, "meter")) return;
   if (!claims_.outside_tracks(value, "meter", reporter_)) return;
   const std::optional<int> meter = parse_meter(value, reporter_);
   if (meter && change_meter(*meter, value.location, "'meter: " + value.scalar + "'")) {

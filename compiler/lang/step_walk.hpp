@@ -201,6 +201,10 @@ class StepWalker {
   void section_step(const YamlNode& step, const YamlNode& value);
   void together_step(const YamlNode& step, const YamlNode& tracks);
   void tempo_step(const YamlNode& value);
+  // With a song (`music:`), a tempo or meter anywhere else is an error: true after reporting.
+  bool song_owns(const YamlNode& value, std::string_view key);
+  // An included file may not bring a song, nor a tempo or meter while one plays.
+  void check_included_music(const YamlNode& root);
   void meter_step(const YamlNode& value);
 
   const StepTable& table_;

@@ -35,6 +35,21 @@ class FileReader {
   virtual std::optional<std::uint64_t> size(const std::string& /*path*/) { return std::nullopt; }
 };
 
+// A song's audio, decoded to mono samples (channels averaged, in [-1, 1]).
+struct SongSamples {
+  std::vector<float> samples;
+  double sample_rate = 0;
+};
+
+// The compiler's only access to audio: the song of a `music:` block, decoded by the caller
+// (libsndfile in the CLI, generated samples in tests). Paths are resolved as for FileReader.
+class SongReader {
+ public:
+  virtual ~SongReader() = default;
+  // The whole song, or an Error naming the path and what is wrong with it.
+  virtual Result<SongSamples> read(const std::string& path) = 0;
+};
+
 // Owns the text of every file read in one compilation so diagnostics can quote source lines.
 class SourceManager {
  public:

@@ -23,6 +23,7 @@
 #include "compiler/source/source.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/song.hpp"
 #include "compiler/timeline/tempo_map.hpp"
 
 namespace seqc::compiler {
@@ -88,6 +89,8 @@ class Timeline {
   // Where beats and bars fall (the file's tempo and meter and every change of them), for a
   // beat/bar grid.
   TempoMap tempo_map;
+  // The song of the main file's `music:` block, which then owns the tempo map; nullopt without.
+  std::optional<Song> song;
 
  private:
   struct Span {  // what the servos of one step share

@@ -58,7 +58,7 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict) 
       return out;
     }
   }
-  Unit u{shown, shown, compile_quietly(ctx, given, strict), false, 0};
+  Unit u{shown, shown, compile_quietly(ctx, given, strict, SongCheck::Decode), false, 0};
   out.push_back(std::move(u));
   return out;
 }

@@ -72,7 +72,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
                 "commented hex; `seqc decode -` reads it back");
   cmd->callback([&ctx, &result, opts] {
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict);
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
     result.code = c.code;
     if (!c.output.program) return;
     ExitCode failed = ExitCode::Ok;

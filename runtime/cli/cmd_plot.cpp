@@ -117,7 +117,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (o->file != "-" && compiler::is_show_file(ctx.files, o->file)) {
       result.code = plot_show(ctx, o->file, name, o->strict, options, svg);
     } else {
-      Compiled c = compile_and_report(ctx, o->file, o->strict);
+      Compiled c = compile_and_report(ctx, o->file, o->strict, SongCheck::Decode);
       result.code = c.code;
       if (c.code == ExitCode::Ok) svg = plot_program(c.output, name, o->group, options);
     }

@@ -103,7 +103,7 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = simulate_show(ctx, *opts);
       return;
     }
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict);
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
     result.code = c.code;
     if (!c.output.program) return;
     std::string csv;

@@ -23,8 +23,11 @@ class StdinFirstReader final : public compiler::FileReader {
   compiler::FileReader& rest_;
 };
 
-Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict) {
-  Compiled c{compiler::compile_file(path, files, compiler::CompileOptions{strict})};
+Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict,
+                      compiler::SongReader* songs) {
+  compiler::CompileOptions options{strict};
+  options.songs = songs;
+  Compiled c{compiler::compile_file(path, files, options)};
   if (c.output.read_error) {
     c.code = ExitCode::FileError;
   } else {
@@ -35,24 +38,25 @@ Compiled compile_from(compiler::FileReader& files, const std::string& path, bool
 
 }  // namespace
 
-Compiled compile_quietly(Context& ctx, const std::string& path, bool strict) {
+Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song) {
+  compiler::SongReader* songs = song == SongCheck::Decode ? ctx.songs : nullptr;
   if (path == "-") {
     std::string text;
     if (ctx.in != nullptr) {
       text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
     }
     StdinFirstReader reader(std::move(text), ctx.files);
-    return compile_from(reader, kStdinName, strict);
+    return compile_from(reader, kStdinName, strict, songs);
   }
-  return compile_from(ctx.files, path, strict);
+  return compile_from(ctx.files, path, strict, songs);
 }
 
 }  // namespace seqc::cli
 
 namespace seqc::cli {
 
-Compiled compile_and_report(Context& ctx, const std::string& path, bool strict) {
-  Compiled c = compile_quietly(ctx, path, strict);
+Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song) {
+  Compiled c = compile_quietly(ctx, path, strict, song);
   if (c.output.read_error) {
     ctx.err << "seqc: error: " << *c.output.read_error << "\n";
     return c;

@@ -30,9 +30,15 @@ ExitCode write_output(Context& ctx, const std::string& path, const std::string& 
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
                                           ExitCode& code);
 
+// Whether to decode a `music:` song (through ctx.songs) and check the dance against it: the
+// commands that check (check, compile, simulate, plot) do; the rest need only the program.
+enum class SongCheck { Skip, Decode };
+
 // Compiles without printing anything (for --format json|sarif).
-Compiled compile_quietly(Context& ctx, const std::string& path, bool strict);
+Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
+                         SongCheck song = SongCheck::Skip);
 // Compiles and prints the diagnostics (or the file error) on ctx.err.
-Compiled compile_and_report(Context& ctx, const std::string& path, bool strict);
+Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
+                            SongCheck song = SongCheck::Skip);
 
 }  // namespace seqc::cli

@@ -35,6 +35,8 @@ struct Context {
   // -q/--quiet = -1 (errors and data only), 0, -v/--verbose = 1 (every re-send, port, probe).
   int verbosity = 0;
   bool color = false;  // diagnostics in colour (--color, NO_COLOR, err_is_terminal)
+  // Decodes a choreography's `music:` song for the commands that check it; null: not checked.
+  compiler::SongReader* songs = nullptr;
 };
 
 }  // namespace seqc::cli

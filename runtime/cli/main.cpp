@@ -6,7 +6,9 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "runtime/audio/sndfile_audio.hpp"
 #include "runtime/cli/app.hpp"
+#include "runtime/cli/song_audio.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/disk.hpp"
 
@@ -28,6 +30,9 @@ int main(int argc, char** argv) {
   seqc::io::DiskFileReader files;
   seqc::cli::Context ctx{std::cout,      std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
                          &g_interrupted, &std::cin};
+  seqc::audio::SndfileAudioReader audio;
+  seqc::cli::AudioSongReader songs(audio);
+  ctx.songs = &songs;
   const char* no_color = std::getenv("NO_COLOR");  // https://no-color.org: set and non-empty
   ctx.no_color_env = no_color != nullptr && *no_color != '\0';
   struct winsize ws {};

@@ -410,6 +410,30 @@ TOP = {
     "name": doc("Name", "Free text: what this choreography is.",
                 type=["string", "number", "boolean", "null"]),
     "description": doc("Description", "Free text.", type=["string", "number", "boolean", "null"]),
+    "music": doc("Music", "The song the dance is set to; it owns the tempo map (no top-level "
+                 "`tempo` or `meter` beside it, no `tempo` or `meter` steps). The sequence "
+                 "starts on its downbeat.", type="object", additionalProperties=False,
+                 required=["file", "tempo", "meter"],
+                 properties={
+                     "file": doc("Song file", "The audio, relative to this file: WAV, FLAC, Ogg "
+                                 "Vorbis, Opus or MP3.", type="string", minLength=1),
+                     "downbeat": string("Downbeat", "Where bar 1 beat 1 falls in the audio "
+                                        "(`0.750s`, `750ms`); default `0s`.",
+                                        rf"^{NUM}(ms|s)$", "a time in the audio: 0.750s or 750ms"),
+                     "tempo": ref("tempo"),
+                     "meter": ref("meter"),
+                     "changes": doc("Changes", "Where the song's tempo or meter changes, by bar "
+                                    "(`{bar: 33, tempo: 132}`); bars increase.", type="array",
+                                    items=doc("Change", "A change on a bar line.", type="object",
+                                              additionalProperties=False, required=["bar"],
+                                              minProperties=2,
+                                              properties={
+                                                  "bar": doc("Bar", "The bar it falls on (after "
+                                                             "bar 1).", type="integer",
+                                                             minimum=2),
+                                                  "tempo": ref("tempo"),
+                                                  "meter": ref("meter")})),
+                 }),
     "tempo": ref("tempo"),
     "meter": ref("meter"),
     "tolerance": ref("tolerance"),
@@ -455,6 +479,9 @@ choreography = {
     "properties": TOP,
     "additionalProperties": False,
     "if": is_car, "then": car_file, "else": servo_file,
+    # The song owns the tempo map: no second one beside it.
+    "dependencies": {"music": {"not": {"anyOf": [{"required": ["tempo"]},
+                                                 {"required": ["meter"]}]}}},
 }
 definitions["choreography"] = choreography
 

@@ -134,6 +134,22 @@ TEST(Compile, JsonGolden) {
   expect_golden(kCliGolden / "walk-group3.json", r.out);
 }
 
+// At 120 bpm `at: 4b` is 2 s: home takes 0-1 s, a hold of every servo 1-2 s, then base. The
+// hold was written by no step, so its line says it is a hold (it used to read "from :").
+TEST(Compile, AHoldBeforeACueSaysItIsAHold) {
+  SeqcRun r = seqc(kSource, "compile --emit listing tests/cli/data/hold-before-cue.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\n  action 2 at 1000 ms, a hold: claw(1)=500 wrist_roll(2)=500 "
+                       "wrist_pitch(3)=500 elbow(4)=500 shoulder(5)=500 base(6)=500\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\n  action 3 at 2000 ms from tests/cli/data/hold-before-cue.yaml:7:5: "
+                       "base(6)=600\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("from :"), std::string::npos);
+}
+
 TEST(Compile, AShowFileSaysItIsAShowAndHowToRunIt) {
   // compile takes one robot's choreography; a show file gets a located error and a note.
   SeqcRun r = seqc(kSource, "compile examples/duet.yaml");

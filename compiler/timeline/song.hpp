@@ -1,0 +1,34 @@
+// The song a choreography dances to, as its `music:` block writes it: the audio file (resolved
+// relative to the choreography), where bar 1 beat 1 falls in the audio (the sequence's time 0
+// is that instant), and the song's tempo map as written (tempo and meter at bar 1, then the
+// changes by bar). Later stages (plot, play, the audio check) read it; the front end has
+// already turned it into the timeline's TempoMap.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compiler/source/source.hpp"
+#include "compiler/timeline/exact_time.hpp"
+
+namespace seqc::compiler {
+
+struct SongChange {
+  long long bar = 1;                 // counted from 1, as written
+  std::optional<double> bpm;         // the tempo from this bar on, if it changes here
+  std::optional<int> beats_per_bar;  // the meter from this bar on, if it changes here
+  Location at;
+};
+
+struct Song {
+  std::string file;  // the audio file's path, resolved relative to the choreography
+  ExactMs downbeat;  // where bar 1 beat 1 (time 0 of the sequence) falls in the audio
+  double bpm = 0;
+  int beats_per_bar = 0;
+  std::vector<SongChange> changes;  // bars strictly increasing, each after bar 1
+  Location at;                      // the `music:` key, for diagnostics about the song
+  Location file_at;                 // the `file:` value
+};
+
+}  // namespace seqc::compiler

@@ -1,0 +1,26 @@
+// The compiler's SongReader on the audio boundary (runtime/audio): how `seqc check`, `compile`,
+// `simulate` and `plot` decode a choreography's `music:` song for the audio check.
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include "compiler/source/source.hpp"
+#include "runtime/audio/audio_files.hpp"
+
+namespace seqc::cli {
+
+class AudioSongReader final : public compiler::SongReader {
+ public:
+  explicit AudioSongReader(audio::AudioReader& audio) : audio_(audio) {}
+  Result<compiler::SongSamples> read(const std::string& path) override {
+    Result<audio::MonoAudio> a = audio_.read(path);
+    if (!a) return a.error();
+    return compiler::SongSamples{std::move(a->samples), a->sample_rate};
+  }
+
+ private:
+  audio::AudioReader& audio_;
+};
+
+}  // namespace seqc::cli

@@ -1,0 +1,135 @@
+// The audio check of a choreography's `music:` song (compiler/lang/song_check.hpp), with songs
+// generated in the test (tests/music/song_generator.hpp) handed to the compiler through a fake
+// SongReader: every expected bar, offset and length comes from how the song was made.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "tests/compiler/lang_test_util.hpp"
+#include "tests/music/song_generator.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using compiler::testing::MemoryFiles;
+using compiler::testing::messages;
+
+class FakeSongs final : public SongReader {
+ public:
+  std::map<std::string, seqc::testing::Song> songs;
+  std::vector<std::string> asked;
+  Result<SongSamples> read(const std::string& path) override {
+    asked.push_back(path);
+    auto it = songs.find(path);
+    if (it == songs.end()) return make_error(path + ": No such file or directory");
+    return SongSamples{it->second.samples, it->second.sample_rate};
+  }
+};
+
+// 120 bpm in 4/4 (a beat 500 ms, a bar 2 s), bar 1 beat 1 at 0.75 s into the audio.
+constexpr const char* kDance = R"(robot: xarm
+music:
+  file: music/song.wav
+  downbeat: 0.750s
+  tempo: 120
+  meter: 4/4
+sequence:
+  - move: home
+    time: 1s
+)";
+
+CompileOutput compile_with(const std::string& text, FakeSongs& songs) {
+  MemoryFiles files;
+  files.files["main.yaml"] = text;
+  CompileOptions options;
+  options.songs = &songs;
+  return compile_file("main.yaml", files, options);
+}
+
+seqc::testing::SongSpec spec_120() {
+  seqc::testing::SongSpec spec;
+  spec.tempo = 120;
+  spec.meter = 4;
+  spec.lead_in_s = 0.75;
+  spec.bars = 40;
+  return spec;
+}
+
+TEST(SongCheck, ASongOnTheFilesBeatsPassesQuietly) {
+  FakeSongs songs;
+  songs.songs["music/song.wav"] = seqc::testing::make_song(spec_120());
+  auto out = compile_with(kDance, songs);
+  EXPECT_EQ(messages(out), std::vector<std::string>{});
+  EXPECT_EQ(songs.asked, std::vector<std::string>{"music/song.wav"});
+}
+
+TEST(SongCheck, BeatsThatDriftFromABarAreReportedFromThatBar) {
+  // Every hit from bar 33 (beat 32 x 4 = 128, counted from 0) to the end comes 41 ms late, so
+  // the file's beats (on the 500 ms grid) run 41 ms ahead of the song's from bar 33.
+  seqc::testing::SongSpec spec = spec_120();
+  spec.late_beat = 128;
+  spec.late_count = 40 * 4 - 128;
+  spec.late_ms = 41;
+  FakeSongs songs;
+  songs.songs["music/song.wav"] = seqc::testing::make_song(spec);
+  auto out = compile_with(kDance, songs);
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{
+                "2:1 warning: from bar 33 the file's beats run 41 ms ahead of the song"});
+}
+
+TEST(SongCheck, EarlyBeatsRunBehind) {
+  // The file says 0.750 s but the song's bar 1 is 30 ms earlier: every file beat is 30 ms late.
+  seqc::testing::SongSpec spec = spec_120();
+  spec.lead_in_s = 0.72;
+  FakeSongs songs;
+  songs.songs["music/song.wav"] = seqc::testing::make_song(spec);
+  auto out = compile_with(kDance, songs);
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{
+                "2:1 warning: from bar 1 the file's beats run 30 ms behind the song"});
+}
+
+TEST(SongCheck, AMissingSongIsAnErrorAtItsFileName) {
+  FakeSongs songs;
+  auto out = compile_with(kDance, songs);
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{
+                "3:9 error: cannot use the song: music/song.wav: No such file or directory"});
+  EXPECT_FALSE(out.program.has_value());
+}
+
+TEST(SongCheck, ADanceLongerThanTheSongSaysByHowMuch) {
+  // A 10 s click track at 120 bpm; the dance is 12 s from the downbeat at 0.75 s, so it ends
+  // 12.75 s into the audio: 2.75 s past its end.
+  FakeSongs songs;
+  songs.songs["music/song.wav"] = seqc::testing::make_clicks(120, 4, 0.75, 10, 22050);
+  auto out = compile_with(R"(robot: xarm
+music:
+  file: music/song.wav
+  downbeat: 0.750s
+  tempo: 120
+  meter: 4/4
+sequence:
+  - move: home
+    time: 6bar
+)",
+                          songs);
+  EXPECT_EQ(messages(out), std::vector<std::string>{
+                               "2:1 warning: the dance runs 2.750 s past the end of the song (it "
+                               "ends 12.750 s into the audio, which lasts 10.000 s)"});
+}
+
+TEST(SongCheck, WithoutAReaderNothingIsDecoded) {
+  MemoryFiles files;
+  files.files["main.yaml"] = kDance;
+  auto out = compile_file("main.yaml", files, CompileOptions{});
+  EXPECT_EQ(messages(out), std::vector<std::string>{});
+  EXPECT_TRUE(out.program.has_value());
+}
+
+}  // namespace
+}  // namespace seqc::compiler
