@@ -267,8 +267,11 @@ TEST(RaspblockPlot, LanesHaveValuesAndThePathHasAScale) {
       {"<text x=\"144\" y=\"112\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
        "<text x=\"144\" y=\"192\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
        "<text x=\"144\" y=\"272\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
-       ">2500</text>", ">500</text>", ">1 s</text>", ">2 s</text>",
-       "<title>scale: 5 cm (nominal)</title>", ">5 cm</text>"}) {
+       // 2500 us: 2100 of the lane's 2200 us above its bottom, 66.82 px: y = 77.18, label 80.18.
+       "<text x=\"144\" y=\"80.18\" text-anchor=\"end\" fill=\"#9ca3af\" "
+       "font-size=\"9\">2500</text>",
+       ">500</text>", ">1 s</text>", ">2 s</text>", "<title>scale: 5 cm (nominal)</title>",
+       ">5 cm</text>"}) {
     EXPECT_NE(svg.find(label), std::string::npos) << label;
   }
   // The bar itself: from the panel's left edge (x = 150) 80 px long.
