@@ -1,30 +1,19 @@
-// The compiler's entry point: a choreography file (docs/language.md) in, a program out.
+// The compiler's driver: a choreography file (docs/language.md) in, a program
+// (compiler/program/program.hpp) out.
 //
 // compile_file() reads the file (and the files it includes) through a FileReader, reports every
 // mistake it finds into Diagnostics, and returns a program only when there is no error (with
-// options.strict, no warning either). The program is target-neutral data; compiler/backend/
-// turns it into controller frames.
-//
-// Robot kinds are an extension point: a profile (lang/profiles.hpp) names its RobotKind, and
-// each kind has its own program type in the Program variant: the servo controller (xArm / LSC
-// boards) with its stored action groups, and the Raspblock car with its timed packet stream.
-// A profile also names the board that runs its programs (RobotInfo::board), which the runtime
-// looks up in its table of boards; the compiler itself never chooses between boards.
+// options.strict, no warning either). It runs the stages in order: the front end reads the
+// file and its robot section, the robot kind's target lowers the steps to a timeline and then to
+// actions (fitting) or packets, and the music stage checks the dance against its song.
 #pragma once
 
-#include <cstdint>
 #include <optional>
 #include <string>
-#include <string_view>
-#include <variant>
-#include <vector>
 
-#include "compiler/arm_geometry.hpp"
-#include "compiler/raspblock_program.hpp"
-#include "compiler/source/diagnostics.hpp"
-#include "compiler/source/source.hpp"
-#include "compiler/timeline/timeline.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/source/source.hpp"
+#include "compiler/program/program.hpp"
 
 namespace seqc::compiler {
 
@@ -34,60 +23,6 @@ struct CompileOptions {
   // commands that only need the program do not decode audio.
   SongReader* songs = nullptr;
 };
-
-enum class RobotKind {
-  ServoController,  // xArm / LSC-16 / LSC-32 / LSC-6: keyframes stored as an action group
-  Raspblock,        // Yahboom Raspblock car board: a timed packet stream, played live
-};
-
-// One servo as the program sees it, after the file's `robot:` section is applied.
-struct ServoInfo {
-  std::string name;     // the name diagnostics and listings use
-  std::uint8_t id = 0;  // bus id (xArm) or PWM channel (LSC)
-  int min = 0;          // limits in device units
-  int max = 0;
-  int home = 0;                     // centre for mirroring; simulator's starting position
-  std::optional<double> max_speed;  // device units per second; nullopt = unchecked
-  std::optional<double> max_accel;  // device units per second squared; nullopt = unchecked
-};
-
-struct RobotInfo {
-  std::string profile;  // "xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "raspblock"
-  std::string board;    // the board that runs it (RobotProfile::board): "xarm", "lsc6", ...
-  RobotKind kind = RobotKind::ServoController;
-  std::vector<ServoInfo> servos;  // in id order
-  // The highest id the file's `servos:` section names (0 when it names none).
-  std::uint8_t highest_defined_id = 0;
-  // Link lengths and joint servos, for an arm whose profile or file gives them.
-  std::optional<ArmGeometry> arm;
-
-  const ServoInfo* find_id(std::uint8_t id) const;
-  const ServoInfo* find_name(std::string_view name) const;
-};
-
-// One controller action: move the listed servos to their positions over time_ms. Servos not
-// listed keep their position. A wait is an action that re-sends the held positions.
-struct Keyframe {
-  std::uint32_t start_ms = 0;             // when the action starts, from the start of the sequence
-  std::uint16_t time_ms = 0;              // kMinActionMs..kMaxActionMs
-  std::vector<lsc::ServoTarget> targets;  // ascending id, each id once
-  Location source;                        // the step it came from
-};
-
-struct ServoProgram {
-  RobotInfo robot;
-  std::vector<Keyframe> keyframes;
-  // What the author meant, per servo (by index into robot.servos), before fitting.
-  Timeline timeline;
-  // The largest distance between the compiled motion and the intended curve, and where.
-  double fit_error = 0;
-  std::uint32_t fit_error_at_ms = 0;
-  std::string fit_error_servo;
-  std::uint64_t duration_ms() const;
-};
-
-// One alternative per RobotKind.
-using Program = std::variant<ServoProgram, RaspblockProgram>;
 
 struct CompileOutput {
   SourceManager sources;

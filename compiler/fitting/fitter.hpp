@@ -36,17 +36,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
+#include "compiler/program/controller_model.hpp"
 #include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
-
-// How the controller moves a servo during an action, from its previous target to the new one.
-enum class ControllerModel : std::uint8_t {
-  StraightLine,  // the exact straight line between the two whole-unit targets
-  Rounds,        // that line rounded to the nearest whole unit at every instant
-  Truncates,     // that line truncated to a whole unit (towards zero) at every instant
-};
 
 // The position the controller puts out when the straight line is at `line`.
 double controller_output(ControllerModel model, double line);

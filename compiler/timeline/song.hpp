@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
 #include "compiler/timeline/exact_time.hpp"
 
 namespace seqc::compiler {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"

@@ -3,7 +3,7 @@
 // never compares profile strings, emulator names or frame types. A row's functions return data
 // and status values, never text for people, never exit codes. Facts about the board that
 // messages need (its name, what it lacks) are row data. Adding a board: a profile row naming
-// Board::key (compiler/lang/profiles.cpp), a runtime/boards/<board>.cpp defining the row, one
+// Board::key (compiler/frontend/profiles.cpp), a runtime/boards/<board>.cpp defining the row, one
 // line in board_table.cpp (docs/architecture.md, "Adding a board").
 #pragma once
 

@@ -3,7 +3,7 @@
 // talks to when neither --robot nor --port names one.
 #include <algorithm>
 
-#include "compiler/lang/profiles.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/transport/port_spec.hpp"
 

@@ -1,6 +1,6 @@
 #include "runtime/boards/program_views.hpp"
 
-#include "compiler/backend/raspblock_simulate.hpp"
+#include "compiler/formats/raspblock_simulate.hpp"
 
 namespace seqc::boards {
 

@@ -12,20 +12,20 @@
 #include <string_view>
 #include <vector>
 
-#include "compiler/backend/plot_svg.hpp"
-#include "compiler/backend/preview_html.hpp"
-#include "compiler/backend/simulate.hpp"
 #include "compiler/compile.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/preview_html.hpp"
+#include "compiler/formats/simulate.hpp"
 
 namespace seqc::boards {
 
 // How long the program runs: when its last move (or packet's effect) ends; 0 without a program.
 std::uint64_t length_ms(const compiler::CompileOutput& output);
 
-// The program as a picture (backend/plot_svg); "" without a program.
+// The program as a picture (formats/plot_svg); "" without a program.
 std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options);
 
-// The program as one performer of `seqc preview`'s page (backend/preview_html), on a time axis
+// The program as one performer of `seqc preview`'s page (formats/preview_html), on a time axis
 // of `end_ms`; nullopt without a program.
 std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
                                                  const std::string& title, double end_ms);

@@ -5,7 +5,8 @@
 #include <string>
 #include <utility>
 
-#include "compiler/backend/raspblock_stream.hpp"
+#include "compiler/formats/raspblock_listing.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/emulator/raspblock_transport.hpp"

@@ -6,8 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "compiler/lang/profiles.hpp"
-#include "compiler/source/units.hpp"
+#include "compiler/frontend/profiles.hpp"
+#include "compiler/frontend/source/units.hpp"
 
 namespace seqc::boards {
 namespace {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <variant>
 
-#include "compiler/backend/listing.hpp"
-#include "compiler/backend/servo_backend.hpp"
+#include "compiler/formats/listing.hpp"
+#include "compiler/targets/servo_controller/servo_backend.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lang/profiles.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <string_view>
 
-#include "compiler/source/diagnostic_rules.hpp"
-#include "compiler/source/json_text.hpp"
+#include "compiler/frontend/source/diagnostic_rules.hpp"
+#include "compiler/frontend/source/json_text.hpp"
 
 namespace seqc::cli {
 namespace {

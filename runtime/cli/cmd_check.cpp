@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "compiler/lang/profiles.hpp"
-#include "compiler/lang/show.hpp"
-#include "compiler/source/units.hpp"
+#include "compiler/frontend/profiles.hpp"
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/show.hpp"
 #include "runtime/cli/check_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"

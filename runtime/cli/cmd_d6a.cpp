@@ -1,11 +1,11 @@
 // seqc import FILE.d6a [-o out.yaml] [--robot PROFILE] and
 // seqc export FILE.yaml [-o out.d6a] [--group N]: Hiwonder's .d6a action files to and from
-// choreographies (compiler/backend/d6a.hpp, compiler/lang/d6a_import.hpp; docs/d6a.md).
+// choreographies (compiler/formats/d6a.hpp, compiler/formats/d6a_import.hpp; docs/d6a.md).
 #include <filesystem>
 #include <string>
 
-#include "compiler/backend/d6a.hpp"
-#include "compiler/lang/d6a_import.hpp"
+#include "compiler/formats/d6a.hpp"
+#include "compiler/formats/d6a_import.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "compiler/backend/decode_formats.hpp"
+#include "compiler/formats/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/protocol/bytes.hpp"
 

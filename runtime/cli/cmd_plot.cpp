@@ -1,15 +1,15 @@
 // seqc plot FILE [-o out.svg] [--group N] [--from T] [--to T]: the program as an SVG picture
-// (compiler/backend/plot_svg.hpp). Without -o the SVG goes to stdout.
+// (compiler/formats/plot_svg.hpp). Without -o the SVG goes to stdout.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
-#include "compiler/backend/plot_svg.hpp"
-#include "compiler/backend/svg_text.hpp"
-#include "compiler/lang/show.hpp"
-#include "compiler/source/units.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/svg_text.hpp"
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"

@@ -1,13 +1,13 @@
 // seqc preview FILE [-o dance.html] [--group N] [--strict]: the choreography (or a show's
 // performers, on one clock) as one self-contained, animated HTML page
-// (compiler/backend/preview_html.hpp). Without -o the page goes to stdout.
+// (compiler/formats/preview_html.hpp). Without -o the page goes to stdout.
 #include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "compiler/backend/preview_html.hpp"
-#include "compiler/lang/show.hpp"
+#include "compiler/formats/preview_html.hpp"
+#include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"

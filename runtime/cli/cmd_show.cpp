@@ -1,4 +1,4 @@
-// seqc show SHOW.yaml: several performers on one clock (compiler/lang/show.hpp). Every file is
+// seqc show SHOW.yaml: several performers on one clock (compiler/show.hpp). Every file is
 // checked first; then each stored performer's group is uploaded (progress per performer), and
 // nothing starts unless every upload completed. Then everything starts at one instant
 // (boards::perform): one player, one track per performer, a stored performer's run command at
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lang/show.hpp"
+#include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/boards/show.hpp"

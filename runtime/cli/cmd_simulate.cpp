@@ -5,8 +5,8 @@
 // -o OUT.csv each goes to OUT-NAME.csv, on stdout each follows a "# performer NAME (FILE)" line.
 #include <string>
 
-#include "compiler/lang/show.hpp"
-#include "compiler/source/units.hpp"
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/show.hpp"
 #include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"

@@ -7,7 +7,7 @@
 #include <istream>
 #include <string>
 
-#include "compiler/lang/robot_section.hpp"
+#include "compiler/frontend/robot_section.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_command.hpp"

@@ -6,7 +6,7 @@
 #include <atomic>
 #include <iosfwd>
 
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
 #include "runtime/boards/hooks.hpp"
 #include "runtime/io/clock.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "compiler/source/units.hpp"
+#include "compiler/frontend/source/units.hpp"
 
 namespace seqc::cli {
 

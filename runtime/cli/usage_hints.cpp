@@ -2,7 +2,7 @@
 
 #include <cctype>
 
-#include "compiler/source/diagnostics.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
 
 namespace seqc::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "compiler/source/diagnostics.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
 
 namespace seqc::emu {
 namespace {

@@ -1,7 +1,7 @@
 // The real file system behind compiler::FileReader.
 #pragma once
 
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
 
 namespace seqc::io {
 

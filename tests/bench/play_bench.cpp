@@ -27,8 +27,8 @@
 #include <thread>
 #include <vector>
 
-#include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/compile.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/io/disk.hpp"

@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "compiler/source/diagnostics.hpp"
-#include "compiler/yaml/yaml_tree.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "compiler/lang/profiles.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/transport/port_spec.hpp"
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/compile.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/io/disk.hpp"
 

@@ -2,10 +2,10 @@
 // the simulator.
 #include <gtest/gtest.h>
 
-#include "compiler/backend/decode.hpp"
-#include "compiler/backend/listing.hpp"
-#include "compiler/backend/servo_backend.hpp"
-#include "compiler/backend/simulate.hpp"
+#include "compiler/formats/decode.hpp"
+#include "compiler/formats/listing.hpp"
+#include "compiler/formats/simulate.hpp"
+#include "compiler/targets/servo_controller/servo_backend.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/protocol/lsc_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/backend/d6a.hpp"
-#include "compiler/lang/d6a_import.hpp"
+#include "compiler/formats/d6a.hpp"
+#include "compiler/formats/d6a_import.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc {

@@ -19,7 +19,7 @@
 #include <random>
 
 #include "compiler/fitting/fitter.hpp"
-#include "compiler/lang/profiles.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "tests/compiler/easing_reference.hpp"
 #include "tests/compiler/lang_test_util.hpp"

@@ -5,8 +5,8 @@
 
 #include <regex>
 
-#include "compiler/backend/plot_svg.hpp"
-#include "compiler/source/diagnostic_rules.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/frontend/source/diagnostic_rules.hpp"
 #include "compiler/timeline/tempo_map.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 

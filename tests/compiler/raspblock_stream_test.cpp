@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "compiler/backend/plot_svg.hpp"
-#include "compiler/backend/raspblock_stream.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/raspblock_listing.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {

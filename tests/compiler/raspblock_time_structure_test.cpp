@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/backend/raspblock_stream.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lang/raspblock_link.hpp"
+#include "compiler/targets/raspblock/raspblock_link.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {

@@ -1,4 +1,4 @@
-#include "compiler/source/source.hpp"
+#include "compiler/frontend/source/source.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "compiler/source/units.hpp"
+#include "compiler/frontend/source/units.hpp"
 
 #include <gtest/gtest.h>
 

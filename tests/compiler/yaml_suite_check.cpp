@@ -19,8 +19,8 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
-#include "compiler/source/diagnostics.hpp"
-#include "compiler/yaml/yaml_tree.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace fs = std::filesystem;
 

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "compiler/source/diagnostics.hpp"
-#include "compiler/yaml/yaml_tree.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {
 namespace {

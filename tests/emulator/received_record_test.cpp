@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/backend/decode_formats.hpp"
+#include "compiler/formats/decode_formats.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/received_record.hpp"
 #include "tests/emulator/emu_test_util.hpp"

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "compiler/source/diagnostics.hpp"
-#include "compiler/yaml/yaml_tree.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// The audio check of a choreography's `music:` song (compiler/lang/song_check.hpp), with songs
+// The audio check of a choreography's `music:` song (compiler/music/song_check.hpp), with songs
 // generated in the test (tests/music/song_generator.hpp) handed to the compiler through a fake
 // SongReader: every expected bar, offset and length comes from how the song was made.
 #include <gtest/gtest.h>

@@ -11,9 +11,9 @@
 #include <numbers>
 #include <string>
 
-#include "compiler/backend/arm_geometry.hpp"
-#include "compiler/backend/simulate.hpp"
 #include "compiler/compile.hpp"
+#include "compiler/formats/simulate.hpp"
+#include "compiler/program/arm_kinematics.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::backend {

@@ -9,7 +9,7 @@ closed port and a resolver that finds no host), at several `#t=` instants:
   file;
 - a screenshot must have the window's size and not be blank, and for an arm the tip's dot
   (colour #ff00ff) must be drawn where the tip's coordinates put it in the side view, whose
-  layout the page documents (backend/preview_html.hpp): the view's corner at page pixel
+  layout the page documents (formats/preview_html.hpp): the view's corner at page pixel
   (8, 80), 0.4 px per mm, r = 0 at x = 200 and z = 0 at y = 300 inside it; r is the tip's
   distance out along the base's direction, the base angle being (base - 500) * 0.24 degrees on
   the xArm;

@@ -1,4 +1,4 @@
-// The preview page as text (backend/preview_html.hpp): self-contained (no URL, no external
+// The preview page as text (formats/preview_html.hpp): self-contained (no URL, no external
 // source, no link), with the compiled actions and the arm's geometry embedded for its script in
 // the form the script reads, and nothing in the data able to close its <script> element. How
 // the page looks and what it shows at an instant is checked in Chromium
@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "compiler/backend/preview_html.hpp"
+#include "compiler/formats/preview_html.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::backend {

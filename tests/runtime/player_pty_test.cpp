@@ -7,8 +7,8 @@
 #include <atomic>
 #include <thread>
 
-#include "compiler/backend/raspblock_stream.hpp"
 #include "compiler/compile.hpp"
+#include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/player/player.hpp"

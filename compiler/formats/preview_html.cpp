@@ -1,0 +1,209 @@
+#include "compiler/formats/preview_html.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+
+#include "compiler/formats/car_path.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/raspblock_simulate.hpp"
+#include "compiler/formats/svg_text.hpp"
+#include "compiler/frontend/source/json_text.hpp"
+#include "compiler/targets/servo_controller/servo_backend.hpp"
+
+namespace seqc::backend {
+namespace {
+
+using compiler::json_string;
+using svg::num;
+
+// The plot picture as inline SVG in HTML: without the XML namespace attribute (HTML puts an
+// <svg> in its namespace itself, and the page then names no URL at all), with a playhead the
+// script moves.
+std::string lanes_for_page(std::string svg) {
+  const std::string ns = " xmlns=\"http://www.w3.org/2000/svg\"";
+  if (const auto at = svg.find(ns); at != std::string::npos) svg.erase(at, ns.size());
+  const auto h = svg.find("height=\"");
+  const std::string height =
+      h == std::string::npos ? "100" : svg.substr(h + 8, svg.find('"', h + 8) - h - 8);
+  const auto end = svg.rfind("</svg>");
+  if (end != std::string::npos) {
+    svg.insert(end, "<line class=\"playhead\" x1=\"150\" y1=\"44\" x2=\"150\" y2=\"" + height +
+                        "\" stroke=\"#dc2626\" stroke-width=\"1.5\"/>\n");
+  }
+  return svg;
+}
+
+// "bars":[ms...],"beats":[ms...]: where each bar and each beat starts, from the tempo map, as
+// the plot's ruler numbers them.
+std::string bars_json(const compiler::Timeline& tl, double end_ms) {
+  const compiler::TempoMap& map = tl.tempo_map;
+  std::string bars = "[", beats = "[";
+  if (std::any_of(map.changes().begin(), map.changes().end(),
+                  [](const compiler::TempoMap::Change& c) { return c.bpm > 0; })) {
+    for (std::int64_t beat = 0; beat < 100000; ++beat) {
+      const std::optional<compiler::ExactMs> at = map.time_of_beat(beat);
+      if (!at || at->value() > end_ms) break;
+      beats += (beats.size() > 1 ? "," : "") + num(at->value());
+      if (map.meter_at(*at) > 0 && map.bar_of_beat(beat).den() == 1) {
+        bars += (bars.size() > 1 ? "," : "") + num(at->value());
+      }
+    }
+  }
+  return "\"bars\":" + bars + "],\"beats\":" + beats + "]";
+}
+
+PlotOptions window(const std::string& title, double end_ms) {
+  PlotOptions options;
+  options.title = title;
+  options.from_ms = 0;
+  options.to_ms = std::max(end_ms, 1.0);
+  return options;
+}
+
+std::string joint_json(const compiler::ArmJoint& j) {
+  return "{\"servo\":" + json_string(j.servo) + ",\"zero\":" + num(j.zero) +
+         ",\"sign\":" + std::to_string(j.sign) + "}";
+}
+
+// What the script must not see as the end of its <script> element.
+std::string script_safe(std::string json) {
+  for (std::size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 3)) {
+    json.replace(at, 2, "<\\/");
+  }
+  return json;
+}
+
+}  // namespace
+
+PreviewPart preview_servo_part(const compiler::ServoProgram& program, const std::string& title,
+                               double end_ms) {
+  const compiler::RobotInfo& robot = program.robot;
+  std::string j = "{\"kind\":\"servo\",\"title\":" + json_string(title) +
+                  ",\"duration\":" + std::to_string(program.duration_ms()) +
+                  ",\"unit\":" + (robot.profile.rfind("lsc", 0) == 0 ? "\"us\"" : "\"units\"") +
+                  ",\"servos\":[";
+  for (std::size_t i = 0; i < robot.servos.size(); ++i) {
+    const compiler::ServoInfo& s = robot.servos[i];
+    j += std::string(i ? "," : "") + "{\"name\":" + json_string(s.name) +
+         ",\"id\":" + std::to_string(s.id) + ",\"min\":" + std::to_string(s.min) +
+         ",\"max\":" + std::to_string(s.max) + ",\"home\":" + std::to_string(s.home) + "}";
+  }
+  // The servos the program moves, ascending id: simulate's columns and seqc-state's keys.
+  j += "],\"columns\":[";
+  bool first = true;
+  for (std::uint8_t id : used_servo_ids(program)) {
+    const compiler::ServoInfo* s = robot.find_id(id);
+    j += std::string(first ? "" : ",") +
+         json_string(s != nullptr ? s->name : "servo" + std::to_string(id));
+    first = false;
+  }
+  // Actions as [start, time, [[servo index, target], ...]].
+  j += "],\"actions\":[";
+  for (std::size_t k = 0; k < program.keyframes.size(); ++k) {
+    const compiler::Keyframe& key = program.keyframes[k];
+    j += std::string(k ? "," : "") + "[" + std::to_string(key.start_ms) + "," +
+         std::to_string(key.time_ms) + ",[";
+    for (std::size_t t = 0; t < key.targets.size(); ++t) {
+      const compiler::ServoInfo* s = robot.find_id(key.targets[t].id);
+      const std::size_t index =
+          s != nullptr ? static_cast<std::size_t>(s - robot.servos.data()) : 0;
+      j += std::string(t ? "," : "") + "[" + std::to_string(index) + "," +
+           std::to_string(key.targets[t].position) + "]";
+    }
+    j += "]]";
+  }
+  j += "],\"arm\":";
+  if (robot.arm) {
+    const compiler::ArmGeometry& a = *robot.arm;
+    j += "{\"base_height\":" + num(a.base_height) + ",\"upper_arm\":" + num(a.upper_arm) +
+         ",\"forearm\":" + num(a.forearm) + ",\"hand\":" + num(a.hand) +
+         ",\"degrees_per_unit\":" + std::to_string(a.degrees_per_unit) +
+         ",\"joints\":{\"base\":" + joint_json(a.base) + ",\"shoulder\":" + joint_json(a.shoulder) +
+         ",\"elbow\":" + joint_json(a.elbow) + ",\"wrist\":" + joint_json(a.wrist) +
+         "},\"claw\":" + json_string(a.claw) + "}";
+  } else {
+    j += "null";
+  }
+  j += "," + bars_json(program.timeline, end_ms) + "}";
+  return {j, lanes_for_page(plot_servo_program(program, window(title, end_ms)))};
+}
+
+PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const std::string& title,
+                             double end_ms) {
+  // The state at every millisecond, kept where it changes: the page looks up the last change at
+  // or before its instant, as `seqc simulate` samples it.
+  const CarSimulation fine = simulate_car(program, 1);
+  std::string j = "{\"kind\":\"car\",\"title\":" + json_string(title) +
+                  ",\"duration\":" + std::to_string(fine.duration_ms) + ",\"changes\":[";
+  auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : "null"; };
+  bool used[4] = {};  // servo1..servo4
+  const CarState* last = nullptr;
+  for (const CarSimulation::Sample& s : fine.samples) {
+    if (last != nullptr && s.state == *last) continue;
+    const CarState& c = s.state;
+    j += std::string(last ? "," : "") + "[" + std::to_string(s.time_ms) + "," + opt(c.pan) + "," +
+         opt(c.tilt) + "," + opt(c.servos[0]) + "," + opt(c.servos[1]) + "," + opt(c.servos[2]) +
+         "," + opt(c.servos[3]) + "]";
+    for (std::size_t i = 0; i < 4; ++i) used[i] |= c.servos[i].has_value();
+    last = &s.state;
+  }
+  // The outputs in simulate's column order; pan and tilt always, as the plot's lanes.
+  j += "],\"outputs\":[\"pan\",\"tilt\"";
+  for (int i = 0; i < 4; ++i) {
+    if (used[i]) j += ",\"servo" + std::to_string(i + 1) + "\"";
+  }
+  // The path as `seqc plot` integrates it (20 ms samples), in mm.
+  const CarSimulation coarse = simulate_car(program, 20);
+  const std::vector<CarPose> path = car_path(coarse);
+  j += "],\"path\":[";
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    j += std::string(i ? "," : "") + "[" + std::to_string(coarse.samples[i].time_ms) + "," +
+         num(path[i].x * 10) + "," + num(path[i].y * 10) + "," + num(path[i].heading) + "]";
+  }
+  j += "]," + bars_json(program.timeline, end_ms) + "}";
+  return {j, lanes_for_page(plot_car_program(program, window(title, end_ms)))};
+}
+
+std::string preview_page(const std::string& title, const std::vector<std::string>& names,
+                         const std::vector<PreviewPart>& parts, double end_ms) {
+  std::string data =
+      "{\"title\":" + json_string(title) + ",\"end\":" + num(end_ms) + ",\"show\":" +
+      (names.size() > 1 || (!names.empty() && !names[0].empty()) ? "true" : "false") +
+      ",\"parts\":[";
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::string part = parts[i].data_json;
+    part.insert(1, "\"name\":" + json_string(i < names.size() ? names[i] : "") + ",");
+    data += (i ? "," : "") + part;
+  }
+  data += "]}";
+  std::string lanes;
+  for (const PreviewPart& p : parts) lanes += "<div class=\"lanes\">\n" + p.lanes_svg + "</div>\n";
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+         "<meta name=\"viewport\" content=\"width=device-width\">\n<title>" +
+         svg::escape(title) + "</title>\n<style>\n" + preview_style() +
+         "</style>\n</head>\n<body>\n"
+         "<header id=\"controls\">\n"
+         "<button id=\"play\" type=\"button\" title=\"play or pause (space)\">play</button>\n"
+         "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"" +
+         num(end_ms) +
+         "\" step=\"1\" value=\"0\" title=\"the time\">\n"
+         "<span id=\"now\">0.00 s</span>\n"
+         "<label>speed <select id=\"speed\"><option value=\"1\">1</option>"
+         "<option value=\"0.5\">1/2</option><option value=\"0.25\">1/4</option></select></label>\n"
+         "<label><input id=\"loop\" type=\"checkbox\"> loop <span id=\"loop-unit\">bars</span> "
+         "<input id=\"loop-from\" type=\"number\" min=\"1\" value=\"1\"> to "
+         "<input id=\"loop-to\" type=\"number\" min=\"1\" value=\"1\"></label>\n"
+         "<span id=\"title\">" +
+         svg::escape(title) +
+         "</span>\n</header>\n"
+         "<div id=\"stage\"></div>\n"
+         "<div id=\"all-lanes\">\n" +
+         lanes +
+         "</div>\n<pre id=\"seqc-state\"></pre>\n"
+         "<script id=\"seqc-data\" type=\"application/json\">" +
+         script_safe(data) + "</script>\n<script>\n" + preview_script() +
+         "</script>\n</body>\n</html>\n";
+}
+
+}  // namespace seqc::backend

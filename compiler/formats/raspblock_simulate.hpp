@@ -1,0 +1,40 @@
+// `seqc simulate` for the Raspblock car: the state the board is driven to over time.
+//
+// The board applies each packet when it arrives and has no notion of duration, so the state
+// at time t is what the packets sent at or before t set. Fields no packet has set yet are
+// unknown (empty in the CSV): seqc cannot know where the gimbal was before the play.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compiler/program/raspblock_program.hpp"
+
+namespace seqc::backend {
+
+struct CarState {
+  int x = 0, y = 0, z = 0;  // rocker speeds (0 until driven)
+  std::optional<int> pan, tilt;
+  std::array<std::optional<int>, 4> servos;  // single servos 1..4
+  friend bool operator==(const CarState&, const CarState&) = default;
+};
+
+struct CarSimulation {
+  struct Sample {
+    std::uint32_t time_ms = 0;
+    CarState state;
+  };
+  std::vector<Sample> samples;  // every step_ms from 0, plus the final instant
+  std::uint32_t duration_ms = 0;
+};
+
+// step_ms >= 1.
+CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint32_t step_ms);
+
+// "time_ms,x,y,z,pan,tilt,servo1,servo2,servo3,servo4\n0,0,0,0,1500,1500,,,,\n...".
+std::string to_csv(const CarSimulation& sim);
+
+}  // namespace seqc::backend

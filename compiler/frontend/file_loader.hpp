@@ -1,0 +1,46 @@
+// Reads choreography files (the main one and its includes) through the FileReader into the
+// SourceManager, parses each once, and remembers it by its normalised path.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/source/source.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::compiler {
+
+// How deeply includes may nest before the chain is taken for a runaway.
+inline constexpr std::size_t kMaxIncludeDepth = 16;
+
+struct LoadedFile {
+  std::string path;  // as shown in diagnostics
+  std::uint32_t file = 0;
+  std::optional<YamlNode> root;  // nullopt when the YAML could not be trusted
+};
+
+class FileLoader {
+ public:
+  FileLoader(FileReader& reader, SourceManager& sources, Diagnostics& diags)
+      : reader_(reader), sources_(sources), diags_(diags) {}
+
+  // The file at `path` (already resolved), loading it on first use. An error if unreadable.
+  Result<const LoadedFile*> load(const std::string& path);
+
+ private:
+  FileReader& reader_;
+  SourceManager& sources_;
+  Diagnostics& diags_;
+  std::map<std::string, std::unique_ptr<LoadedFile>> files_;
+};
+
+// Lexically normalised path of `target` written in the file at `from` (relative to its folder).
+std::string resolve_include(const std::string& from, const std::string& target);
+
+}  // namespace seqc::compiler

@@ -1,0 +1,62 @@
+#include "compiler/frontend/positions.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace seqc::compiler {
+
+std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const YamlNode& value,
+                                                  std::size_t output, std::string_view examples,
+                                                  Reporter& reporter) {
+  PositionEntry e;
+  e.output = output;
+  e.at = value.location;
+  if (!value.is_scalar()) {
+    reporter.error(value.location, "the position of '" + key.scalar + "' must be a value such as " +
+                                       std::string(examples) + " or home");
+    return std::nullopt;
+  }
+  e.written = value.scalar;
+  if (value.scalar == "home") {
+    e.home = true;
+  } else if (auto p = parse_position(value.scalar); !p) {
+    reporter.error(value.location, p.error().message);
+    return std::nullopt;
+  } else {
+    e.value = *p;
+  }
+  return e;
+}
+
+bool check_position_limits(const PositionEntry& e, std::string_view name, long long min,
+                           long long max, double units, std::string how,
+                           std::optional<Reporter::Note> note, Reporter& reporter) {
+  const long long p = std::llround(units);
+  if (p >= min && p <= max) return true;
+  if (how.empty() && e.value.degrees) how = e.written;
+  std::string message = fmt::format("'{}' would move to {}", name, p);
+  if (!how.empty()) message += " (" + how + ")";
+  message +=
+      p > max ? ", above its max " + std::to_string(max) : ", below its min " + std::to_string(min);
+  reporter.error(e.at, std::move(message), std::move(note));
+  return false;
+}
+
+std::optional<double> relative_units(const PositionEntry& e, std::string_view name,
+                                     const std::optional<int>& base, double delta, std::string& how,
+                                     const std::optional<Reporter::Note>& note,
+                                     Reporter& reporter) {
+  if (!base) {
+    reporter.error(e.at,
+                   "'" + std::string(name) + "' has no known position yet, so the relative move '" +
+                       e.written + "' has nothing to add to; move it to an absolute position first",
+                   note);
+    return std::nullopt;
+  }
+  const long long d = std::llround(delta);
+  how = std::to_string(*base) + (d < 0 ? " " : " +") + std::to_string(d);
+  return static_cast<double>(*base + d);
+}
+
+}  // namespace seqc::compiler

@@ -1,0 +1,43 @@
+// Positions as the choreography writes them (`pan: 1500`, `claw: +10deg`, `tilt: home`), shared
+// by every robot kind: parsing one entry, and the messages for limits and relative moves. What
+// an output is called and how degrees map to units stay with each robot kind.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "compiler/frontend/reporter.hpp"
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
+
+namespace seqc::compiler {
+
+struct PositionEntry {
+  std::size_t output = 0;  // index of the servo or output it names
+  std::string written;     // as in the file, for messages
+  bool home = false;       // the keyword `home`
+  PositionValue value;
+  Location at;
+};
+
+// The entry `key: value` for the already identified `output`; nullopt after reporting.
+// `examples` lists sample values for the message, e.g. "500, 90deg, +50".
+std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const YamlNode& value,
+                                                  std::size_t output, std::string_view examples,
+                                                  Reporter& reporter);
+
+// Reports `units` outside [min, max] on the output called `name`; `how` explains where the value
+// came from (empty: the written value when it was in degrees). True when within the limits.
+bool check_position_limits(const PositionEntry& e, std::string_view name, long long min,
+                           long long max, double units, std::string how,
+                           std::optional<Reporter::Note> note, Reporter& reporter);
+
+// A relative entry's position: `base` plus `delta` units, with `how` set to e.g. "1500 +100".
+// Without a known base this reports, naming the output `name`, and returns nullopt.
+std::optional<double> relative_units(const PositionEntry& e, std::string_view name,
+                                     const std::optional<int>& base, double delta, std::string& how,
+                                     const std::optional<Reporter::Note>& note, Reporter& reporter);
+
+}  // namespace seqc::compiler

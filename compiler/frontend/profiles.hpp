@@ -1,0 +1,66 @@
+// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32, lsc-6) means before the file's
+// own servo definitions are applied.
+//
+// This table is where a new robot kind plugs in: add a RobotKind (program/program.hpp), a profile
+// row here, and the lowering for that kind (compile.cpp dispatches on the profile's kind). A new
+// board for an existing kind needs only a row naming its board.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "compiler/program/controller_model.hpp"
+#include "compiler/program/program.hpp"
+#include "runtime/protocol/group_download.hpp"
+
+namespace seqc::compiler {
+
+struct RobotProfile {
+  std::string_view name;
+  RobotKind kind = RobotKind::ServoController;
+  // The board that runs its programs: a key of the runtime's table of boards
+  // (runtime/boards/board.hpp), copied into RobotInfo::board.
+  std::string_view board;
+  std::uint8_t first_id = 0;  // ids (bus ids or PWM channels) the controller accepts
+  std::uint8_t last_id = 0;
+  int min = 0;  // position range in device units
+  int max = 0;
+  int home = 0;
+  // Degrees: units = degree_zero + degrees * units_per_degree (0deg is the low end of travel).
+  double degree_zero = 0;
+  double units_per_degree = 1;
+  // Names of the profile's servos; ids without a name here are called <default_prefix><id>.
+  std::vector<std::pair<std::string_view, std::uint8_t>> names;
+  std::string_view default_prefix;
+  // The stock servo's rated speed, device units per second: every servo's default max_speed
+  // (0: none).
+  double rated_speed = 0;
+  // Actions one stored group holds on this controller.
+  std::size_t max_actions = lsc::kMaxActions;
+  // The arm's built-in geometry (its degrees_per_unit is taken from units_per_degree), if any.
+  const ArmGeometry* arm = nullptr;
+  // How the controller moves a servo during an action (compiler/program/controller_model.hpp);
+  // fitting keeps every tolerance under this model. docs/language.md says why each profile has its
+  // own.
+  ControllerModel controller = ControllerModel::StraightLine;
+};
+
+const RobotProfile* find_profile(std::string_view name);
+std::vector<std::string> profile_names();
+// "xarm, lsc-16, lsc-32" style list for messages, so adding a profile updates them all.
+std::string profile_list();
+
+// The RobotInfo a profile describes before any per-file servo definitions.
+RobotInfo robot_from_profile(const RobotProfile& profile);
+
+// The number of actions a group holds for `profile` (lsc::kMaxActions for an unknown name), and
+// the end of the message for a sequence that needs one more: "a group holds at most 1,020 (4
+// blocks of 255), and this step makes action 1,021".
+std::size_t group_capacity(const RobotProfile* profile);
+std::string group_capacity_text(const RobotProfile* profile);
+
+}  // namespace seqc::compiler

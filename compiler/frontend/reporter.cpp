@@ -1,0 +1,88 @@
+#include "compiler/frontend/reporter.hpp"
+
+#include <fmt/format.h>
+
+#include <iterator>
+
+namespace seqc::compiler {
+
+void Reporter::report(Severity severity, Location at, std::string message,
+                      std::optional<Note> note) {
+  // Something with no place in any file (the built-in `home` pose) is wrong where it is used.
+  if (at.line == 0 && note && note->at.line > 0) {
+    at = note->at;
+    note.reset();
+  }
+  auto key = std::make_tuple(static_cast<int>(severity), at.file, at.line, at.column, message);
+  if (!seen_.insert(std::move(key)).second) return;
+  if (severity == Severity::Error) {
+    ++errors_;
+    diags_.error(at, std::move(message));
+  } else {
+    diags_.warning(at, std::move(message));
+  }
+  if (note) diags_.note(note->at, std::move(note->message));
+  for (auto it = contexts_.rbegin(); it != contexts_.rend(); ++it) {
+    diags_.note(it->at, it->message);
+  }
+  if (severity == Severity::Warning) {
+    for (auto it = performances_.rbegin(); it != performances_.rend(); ++it) {
+      diags_.note(it->first, "in section '" + it->second + "', performed here");
+    }
+  }
+  for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {
+    diags_.note(*it, "included from here");
+  }
+}
+
+void Reporter::unknown(Location at, std::string_view what, std::string_view word,
+                       const std::vector<std::string>& candidates, std::string_view where,
+                       std::string_view known) {
+  std::string message = fmt::format("unknown {} '{}'", what, word);
+  if (!where.empty()) fmt::format_to(std::back_inserter(message), " {}", where);
+  const std::string suggestion = did_you_mean(word, candidates);
+  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+  if (!known.empty()) fmt::format_to(std::back_inserter(message), " ({})", known);
+  error(at, std::move(message));
+}
+
+void Reporter::check_free_text(const YamlNode& root) {
+  for (const char* key : {"name", "description"}) {
+    const YamlNode* node = root.find(key);
+    if (node != nullptr && !node->is_scalar() && node->kind != YamlNode::Kind::Null) {
+      error(node->location, fmt::format("'{}' is free text, not {}", key, kind_name(*node)));
+    }
+  }
+}
+
+bool Reporter::check_keys(const YamlNode& map, std::span<const std::string_view> allowed,
+                          std::string_view where) {
+  bool ok = true;
+  for (const auto& [key, value] : map.entries) {
+    bool known = false;
+    for (std::string_view a : allowed) known = known || key.scalar == a;
+    if (!known) {
+      // Built only for a mistake: this runs for every step of every file.
+      const std::vector<std::string> candidates(allowed.begin(), allowed.end());
+      unknown(key.location, "key", key.scalar, candidates, where);
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+std::string_view kind_name(const YamlNode& node) {
+  switch (node.kind) {
+    case YamlNode::Kind::Null:
+      return "empty";
+    case YamlNode::Kind::Scalar:
+      return "a single value";
+    case YamlNode::Kind::Sequence:
+      return "a list";
+    case YamlNode::Kind::Map:
+      return "a map";
+  }
+  return "a value";
+}
+
+}  // namespace seqc::compiler

@@ -1,0 +1,91 @@
+// How the language front end reports mistakes: through Diagnostics, once per place and message
+// (a pose used in a loop is wrong once, not once per iteration), with a note for every
+// performance of a section with parameters the mistake is inside (its values explain it), for a
+// warning inside a plain section a note at the `- section:` step that performed it, and an
+// "included from here" note for every include that led to the file the mistake is in.
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/yaml/yaml_tree.hpp"
+
+namespace seqc::compiler {
+
+class Reporter {
+ public:
+  explicit Reporter(Diagnostics& diags) : diags_(diags) {}
+
+  // `note`, if given, follows the diagnostic (e.g. where a pose with a bad value was used).
+  struct Note {
+    Location at;
+    std::string message;
+  };
+  void error(Location at, std::string message, std::optional<Note> note = {}) {
+    report(Severity::Error, at, std::move(message), std::move(note));
+  }
+  void warning(Location at, std::string message, std::optional<Note> note = {}) {
+    report(Severity::Warning, at, std::move(message), std::move(note));
+  }
+
+  // While a section with parameters is performed: every diagnostic gets `note` (innermost
+  // performance first).
+  void push_context(Note note) { contexts_.push_back(std::move(note)); }
+  void pop_context() { contexts_.pop_back(); }
+
+  // The include sites (outermost first) of the file being lowered.
+  void push_include(Location site) { includes_.push_back(site); }
+  void pop_include() { includes_.pop_back(); }
+  const std::vector<Location>& include_sites() const { return includes_; }
+  void set_include_sites(std::vector<Location> sites) { includes_ = std::move(sites); }
+  // The `- section:` steps performing the steps being lowered (outermost first): a warning
+  // raised inside a section names its performance with a note, since the section's own lines
+  // are the same each time it is performed.
+  void push_performance(Location site, std::string name) {
+    performances_.push_back({site, std::move(name)});
+  }
+  void pop_performance() { performances_.pop_back(); }
+  std::size_t errors_reported() const { return errors_; }
+  std::size_t include_depth() const { return includes_.size(); }
+
+  // Reports every key of `map` that is not in `allowed`, with "did you mean". True if all known.
+  bool check_keys(const YamlNode& map, std::initializer_list<std::string_view> allowed,
+                  std::string_view where) {
+    return check_keys(map, std::span<const std::string_view>(allowed.begin(), allowed.size()),
+                      where);
+  }
+  bool check_keys(const YamlNode& map, std::span<const std::string_view> allowed,
+                  std::string_view where);
+
+  // `name` and `description` are free text: a list or map there is an error.
+  void check_free_text(const YamlNode& root);
+
+  // "unknown X 'word'; did you mean 'y'?" (the suggestion only when one is close). `known`, if
+  // given, lists the valid names after it: "(robots: xarm, lsc-16, ...)".
+  void unknown(Location at, std::string_view what, std::string_view word,
+               const std::vector<std::string>& candidates, std::string_view where = {},
+               std::string_view known = {});
+
+ private:
+  void report(Severity severity, Location at, std::string message, std::optional<Note> note);
+
+  Diagnostics& diags_;
+  std::vector<Location> includes_;
+  std::vector<std::pair<Location, std::string>> performances_;  // site, section name
+  std::vector<Note> contexts_;
+  std::size_t errors_ = 0;
+  std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
+};
+
+// "a list", "a map", "a value" for "must be ..." messages.
+std::string_view kind_name(const YamlNode& node);
+
+}  // namespace seqc::compiler

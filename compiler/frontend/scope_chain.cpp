@@ -1,0 +1,322 @@
+#include "compiler/frontend/scope_chain.hpp"
+
+#include <cmath>
+
+#include "compiler/frontend/music_section.hpp"
+#include "compiler/frontend/robot_section.hpp"
+#include "compiler/frontend/source/units.hpp"
+
+namespace seqc::compiler {
+
+std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& reporter) {
+  auto it = scopes_.find(f.path);
+  if (it != scopes_.end()) return {*it->second, false};
+  auto scope = std::make_unique<FileScope>();
+  scope->file = &f;
+  const YamlEntry* music = nullptr;
+  for (const YamlEntry& e : f.root->entries) {
+    if (e.first.scalar == "music") music = &e;
+  }
+  if (music != nullptr) {
+    // The song owns the one tempo map: a tempo or meter beside it would be a second one.
+    scope->song = parse_music(music->first, music->second, f.path, reporter);
+    for (std::string_view key : {"tempo", "meter"}) {
+      if (const YamlNode* v = f.root->find(key)) {
+        reporter.error(v->location,
+                       "'" + std::string(key) + "' beside 'music': the song sets the " +
+                           (key == "tempo" ? "tempo" : "meter") + " at bar 1",
+                       Reporter::Note{music->first.location,
+                                      "set it here, and changes by bar in its 'changes'"});
+      }
+    }
+    if (scope->song) {
+      scope->tempo = scope->song->bpm;
+      scope->beats_per_bar = scope->song->beats_per_bar;
+    } else if (music->second.is_map()) {
+      // A broken block still counts beats by the tempo and meter it gives, so its mistakes are
+      // not followed by one "no tempo" per step (the reporter says each mistake once).
+      if (const YamlNode* t = music->second.find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+      if (const YamlNode* m = music->second.find("meter")) {
+        scope->beats_per_bar = parse_meter(*m, reporter);
+      }
+    }
+  } else {
+    if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
+    if (const YamlNode* m = f.root->find("meter")) {
+      scope->beats_per_bar = parse_meter(*m, reporter);
+    }
+  }
+  FileScope& ref = *scope;
+  scopes_.emplace(f.path, std::move(scope));
+  return {ref, true};
+}
+
+std::optional<std::uint32_t> ScopeChain::resolution_ms() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->resolution_ms) return (*it)->resolution_ms;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> ScopeChain::tempo() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->tempo) return (*it)->tempo;
+  }
+  return std::nullopt;
+}
+
+std::optional<int> ScopeChain::beats_per_bar() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->beats_per_bar) return (*it)->beats_per_bar;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> ScopeChain::tolerance() const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    if ((*it)->tolerance) return (*it)->tolerance;
+  }
+  return std::nullopt;
+}
+
+const YamlNode* ScopeChain::find_section(const YamlNode& name, Reporter& reporter) const {
+  if (!name.is_scalar()) {
+    reporter.error(name.location, "'section' names a section of this file, e.g. 'section: nod'");
+    return nullptr;
+  }
+  std::vector<std::string> known;
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    auto s = (*it)->sections.find(name.scalar);
+    if (s != (*it)->sections.end()) return s->second;
+    for (const auto& [n, list] : (*it)->sections) known.push_back(n);
+  }
+  reporter.unknown(name.location, "section", name.scalar, known);
+  return nullptr;
+}
+
+std::optional<ExactMs> ScopeChain::exact_ms(const YamlNode& node, std::string_view what,
+                                            std::optional<double> tempo_override,
+                                            Reporter& reporter) const {
+  const std::optional<TimeValue> t = parse_time_node(node, what, reporter);
+  if (!t) return std::nullopt;
+  ExactMs ms = ExactMs::from_double(t->amount);
+  if (t->unit == TimeUnit::Seconds) ms = ms * ExactMs(1000);
+  if (t->unit == TimeUnit::Beats || t->unit == TimeUnit::Bars) {
+    const std::optional<double> tempo = tempo_override ? tempo_override : this->tempo();
+    if (!tempo) {
+      report_no_tempo(node, reporter);
+      return std::nullopt;
+    }
+    if (t->unit == TimeUnit::Bars) {
+      const std::optional<int> bar = beats_per_bar();
+      if (!bar) {
+        report_no_meter(node, reporter);
+        return std::nullopt;
+      }
+      ms = ms * ExactMs(*bar);
+    }
+    ms = ms * ExactMs(60000) / ExactMs::from_double(*tempo);
+  }
+  return ms;
+}
+
+std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::string_view what,
+                                                 std::uint64_t max_ms, std::string_view too_long,
+                                                 Reporter& reporter) const {
+  auto exact = exact_ms(node, what, std::nullopt, reporter);
+  if (!exact) return std::nullopt;
+  const double ms = exact->value();
+  if (ms > static_cast<double>(max_ms)) {
+    reporter.error(node.location, "'" + node.scalar + "' " + std::string(too_long));
+    return std::nullopt;
+  }
+  return static_cast<std::uint32_t>(std::llround(ms));
+}
+
+const Pose* ScopeChain::find_pose(const YamlNode& name, Reporter& reporter) {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    auto p = (*it)->poses.find(name.scalar);
+    if (p != (*it)->poses.end()) return &p->second;
+  }
+  if (name.scalar == "home") {
+    if (!home_) {
+      home_ = std::make_unique<Pose>();
+      for (std::size_t i : home_outputs_) {
+        PositionEntry e;
+        e.output = i;
+        e.home = true;
+        e.written = "home";
+        home_->entries.push_back(e);
+      }
+    }
+    return home_.get();
+  }
+  std::vector<std::string> names{"home"};
+  for (const FileScope* s : chain_) {
+    for (const auto& [n, pose] : s->poses) names.push_back(n);
+  }
+  reporter.unknown(name.location, "pose", name.scalar, names);
+  return nullptr;
+}
+
+const std::vector<PositionEntry>* ScopeChain::move_entries(
+    const YamlNode& target, std::string_view noun, const ParseEntries& parse,
+    std::vector<PositionEntry>& inline_entries, std::optional<Reporter::Note>& note,
+    Reporter& reporter) {
+  if (target.is_scalar()) {
+    const Pose* pose = find_pose(target, reporter);
+    if (pose == nullptr) return nullptr;
+    // The built-in home has no place in the file: its mistakes are reported at this move
+    // (Reporter::report), so the note is that location.
+    note = Reporter::Note{target.location, "in this move to pose '" + target.scalar + "'"};
+    return &pose->entries;
+  }
+  if (target.is_map()) {
+    inline_entries = parse(target, "in this move");
+    return &inline_entries;
+  }
+  reporter.error(target.location, "'move' takes a pose name or a map of " + std::string(noun) +
+                                      ": position, not " + std::string(kind_name(target)));
+  return nullptr;
+}
+
+const LoadedFile* ScopeChain::load_include(const YamlNode& value, std::string_view example,
+                                           CannotLoad cannot_load, FileLoader& loader,
+                                           Reporter& reporter) {
+  if (!value.is_scalar() || value.scalar.empty()) {
+    reporter.error(value.location,
+                   "'include' takes a file path, e.g. 'include: " + std::string(example) + "'");
+    return nullptr;
+  }
+  const LoadedFile& current = *chain_.back()->file;
+  const std::string path = resolve_include(current.path, value.scalar);
+  for (std::size_t i = 0; i < chain_.size(); ++i) {
+    if (chain_[i]->file->path != path) continue;
+    std::string cycle;
+    for (std::size_t j = i; j < chain_.size(); ++j) cycle += chain_[j]->file->path + " -> ";
+    reporter.error(value.location, "include cycle: " + cycle + path);
+    return nullptr;
+  }
+  if (reporter.include_depth() >= kMaxIncludeDepth) {
+    reporter.error(value.location, "includes nest more than " + std::to_string(kMaxIncludeDepth) +
+                                       " files deep; is there a runaway include chain?");
+    return nullptr;
+  }
+  auto loaded = loader.load(path);
+  if (!loaded) {
+    reporter.error(value.location, cannot_load(path, loaded.error().message));
+    return nullptr;
+  }
+  return *loaded;
+}
+
+void parse_poses(const YamlNode& poses, FileScope& scope, std::string_view not_a_map,
+                 std::string_view pose_shape, const ScopeChain::ParseEntries& parse,
+                 Reporter& reporter) {
+  if (poses.kind == YamlNode::Kind::Null) return;
+  if (!poses.is_map()) {
+    reporter.error(poses.location, std::string(not_a_map));
+    return;
+  }
+  for (const auto& [key, value] : poses.entries) {
+    Pose pose;
+    pose.at = key.location;
+    if (!value.is_map()) {
+      reporter.error(value.location,
+                     "pose '" + key.scalar + "' must be a map of " + std::string(pose_shape));
+    } else {
+      pose.entries = parse(value, "in pose '" + key.scalar + "'");
+    }
+    scope.poses.emplace(key.scalar, std::move(pose));
+  }
+}
+
+const YamlNode* file_root(const LoadedFile& f, Reporter& reporter) {
+  if (!f.root) return nullptr;
+  if (!f.root->is_map()) {
+    reporter.error(f.root->location,
+                   "a choreography file must be a map with 'robot' and 'sequence' keys");
+    return nullptr;
+  }
+  return &*f.root;
+}
+
+bool check_included_robot(const YamlNode& root, const std::string& profile, Reporter& reporter) {
+  const YamlNode* r = root.find("robot");
+  if (r == nullptr) return true;
+  auto name = included_robot_name(*r, reporter);
+  if (!name || *name == profile) return true;
+  reporter.error(r->location, "this file is for robot '" + *name +
+                                  "' but is included by a file for '" + profile + "'");
+  return false;
+}
+
+const YamlNode* find_sequence(const YamlNode& root, Reporter& reporter) {
+  const YamlNode* sequence = root.find("sequence");
+  if (sequence == nullptr) {
+    reporter.error(root.location, "missing 'sequence': the list of steps to perform");
+  }
+  return sequence;
+}
+
+std::optional<TimeValue> parse_time_node(const YamlNode& node, std::string_view what,
+                                         Reporter& reporter) {
+  if (!node.is_scalar()) {
+    reporter.error(node.location, std::string(what) + " must be a time such as 500ms, 1.5s or 2b");
+    return std::nullopt;
+  }
+  auto t = parse_time(node.scalar);
+  if (!t) {
+    reporter.error(node.location, t.error().message);
+    return std::nullopt;
+  }
+  if (t->amount > 1e9) {
+    reporter.error(node.location, "'" + node.scalar + "' is far longer than any sequence");
+    return std::nullopt;
+  }
+  return *t;
+}
+
+void report_no_tempo(const YamlNode& node, Reporter& reporter) {
+  reporter.error(node.location, "'" + node.scalar +
+                                    "' counts beats but no 'tempo' is set; add e.g. "
+                                    "'tempo: 120' at the top of the file");
+}
+
+void report_no_meter(const YamlNode& node, Reporter& reporter) {
+  reporter.error(node.location, "'" + node.scalar +
+                                    "' counts bars but no 'meter' is set; add e.g. "
+                                    "'meter: 4/4' at the top of the file");
+}
+
+std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter) {
+  std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
+  if (text.size() > 3 && text.substr(text.size() - 3) == "bpm") text.remove_suffix(3);
+  double bpm = 0;
+  if (!node.is_scalar() || !parse_decimal(text, bpm) || bpm < 1 || bpm > 1000) {
+    reporter.error(node.location,
+                   "'tempo' must be beats per minute between 1 and 1000, e.g. 'tempo: 120'");
+    return std::nullopt;
+  }
+  return bpm;
+}
+
+std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter) {
+  const std::string text = node.is_scalar() ? node.scalar : "";
+  const auto slash = text.find('/');
+  double beats = 0, unit = 0;
+  const bool ok = slash != std::string::npos &&
+                  parse_decimal(std::string_view(text).substr(0, slash), beats) &&
+                  parse_decimal(std::string_view(text).substr(slash + 1), unit) &&
+                  beats == std::floor(beats) && beats >= 1 && beats <= 32 &&
+                  (unit == 1 || unit == 2 || unit == 4 || unit == 8 || unit == 16 || unit == 32);
+  if (!ok) {
+    reporter.error(node.location,
+                   "'meter' must be beats per bar over the beat's note value, e.g. 'meter: 3/4' "
+                   "or 'meter: 6/8'");
+    return std::nullopt;
+  }
+  return static_cast<int>(beats);
+}
+
+}  // namespace seqc::compiler

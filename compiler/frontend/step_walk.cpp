@@ -1,0 +1,621 @@
+// The step walk's shared pieces (step_walk.hpp): musical time, `at:`, meter changes, sections
+// and their performances, and the tracks of `together` blocks.
+#include "compiler/frontend/step_walk.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <iterator>
+#include <sstream>
+#include <utility>
+
+#include "compiler/frontend/music_section.hpp"
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/frontend/step_parts.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+// "17.000 s": an instant or span to the millisecond, for `at: bar N` messages.
+std::string seconds_text(ExactMs t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", t.value() / 1000.0);
+  return buf;
+}
+
+// "1 beat", "1.5 beats": how far a meter change is off its bar line.
+std::string beats_text(ExactMs beats) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", beats.value());
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s + (s == "1" ? " beat" : " beats");
+}
+
+// A section parameter's name: what may follow `$`.
+bool parameter_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+bool is_parameter_name(std::string_view name) {
+  return !name.empty() && std::isdigit(static_cast<unsigned char>(name[0])) == 0 &&
+         std::all_of(name.begin(), name.end(), parameter_char);
+}
+
+bool mentions_parameter(const YamlNode& node) {
+  if (node.scalar.find('$') != std::string::npos) return true;
+  for (const YamlNode& item : node.items) {
+    if (mentions_parameter(item)) return true;
+  }
+  for (const YamlEntry& e : node.entries) {
+    if (mentions_parameter(e.first) || mentions_parameter(e.second)) return true;
+  }
+  return false;
+}
+
+// Every `$name` and `${name}` in `node`'s keys and values replaced by the parameter's text; the
+// names not in `values` go to `unknown` with where they are written.
+void put_in_parameters(YamlNode& node,
+                       const std::map<std::string, std::string, std::less<>>& values,
+                       std::vector<std::pair<Location, std::string>>& unknown) {
+  if (node.scalar.find('$') != std::string::npos) {
+    std::string out;
+    const std::string& in = node.scalar;
+    for (std::size_t i = 0; i < in.size();) {
+      const bool braced = in[i] == '$' && i + 1 < in.size() && in[i + 1] == '{';
+      std::size_t from = i + (braced ? 2 : 1), to = from;
+      while (in[i] == '$' && to < in.size() && parameter_char(in[to])) ++to;
+      if (in[i] != '$' || to == from || (braced && (to >= in.size() || in[to] != '}'))) {
+        out += in[i++];
+        continue;
+      }
+      const std::string name = in.substr(from, to - from);
+      auto it = values.find(name);
+      if (it == values.end()) {
+        unknown.emplace_back(node.location, name);
+      } else {
+        out += it->second;
+      }
+      i = to + (braced ? 1 : 0);
+    }
+    node.scalar = std::move(out);
+  }
+  for (YamlNode& item : node.items) put_in_parameters(item, values, unknown);
+  for (YamlEntry& e : node.entries) {
+    put_in_parameters(e.first, values, unknown);
+    put_in_parameters(e.second, values, unknown);
+  }
+}
+
+std::string format_exact_ms(ExactMs t) {
+  const double ms = t.value();
+  if (ms == std::floor(ms)) return std::to_string(static_cast<long long>(ms)) + "ms";
+  return format_ms(ms);
+}
+
+}  // namespace
+
+std::optional<ExactMs> musical_time(const TempoMap& map, const YamlNode& node,
+                                    std::string_view what, ExactMs from, Reporter& reporter) {
+  const std::optional<TimeValue> t = parse_time_node(node, what, reporter);
+  if (!t) return std::nullopt;
+  const ExactMs amount = ExactMs::from_double(t->amount);
+  switch (t->unit) {
+    case TimeUnit::Milliseconds:
+      return from + amount;
+    case TimeUnit::Seconds:
+      return from + amount * ExactMs(1000);
+    case TimeUnit::Beats:
+    case TimeUnit::Bars:
+      break;
+  }
+  if (map.bpm_at(from) <= 0) {
+    report_no_tempo(node, reporter);
+    return std::nullopt;
+  }
+  if (t->unit == TimeUnit::Bars && map.meter_at(from) <= 0) {
+    report_no_meter(node, reporter);
+    return std::nullopt;
+  }
+  const std::optional<ExactMs> end =
+      t->unit == TimeUnit::Beats ? map.after_beats(from, amount) : map.after_bars(from, amount);
+  if (!end) report_no_tempo(node, reporter);  // a stretch on the way has none
+  return end;
+}
+
+std::optional<ExactMs> bar_position(const TempoMap& map, const YamlNode& at, Reporter& reporter) {
+  // "bar N" or "bar N beat B", counted like a musician: bar 1 beat 1 is the start.
+  std::vector<std::string> words;
+  std::istringstream in(at.scalar);
+  for (std::string w; in >> w;) words.push_back(w);
+  double bar = 0, beat = 1;
+  const bool ok = (words.size() == 2 || (words.size() == 4 && words[2] == "beat")) &&
+                  parse_decimal(words[1], bar) && bar == std::floor(bar) && bar >= 1 &&
+                  bar <= 1e6 && (words.size() == 2 || parse_decimal(words[3], beat)) && beat >= 1 &&
+                  beat <= 1e6;
+  if (!ok) {
+    reporter.error(at.location,
+                   "'at: " + at.scalar +
+                       "' is not a position; write 'bar N' or 'bar N beat B' (counted from 1, "
+                       "e.g. 'at: bar 9 beat 3'), or a time from the start of this list such "
+                       "as 'at: 8bar'");
+    return std::nullopt;
+  }
+  const TempoMap::Change& start = map.changes().front();
+  if (start.bpm <= 0 || start.beats_per_bar <= 0) {
+    reporter.error(at.location, "'at: " + at.scalar +
+                                    "' counts bars from the start of the sequence; set "
+                                    "'tempo' and 'meter' at the top of the file");
+    return std::nullopt;
+  }
+  const std::optional<ExactMs> first = map.beat_of_bar(ExactMs::from_double(bar - 1));
+  const std::optional<ExactMs> bar_start = first ? map.time_of_beat(*first) : std::nullopt;
+  if (!bar_start) {
+    report_no_tempo(at, reporter);
+    return std::nullopt;
+  }
+  const int per_bar = map.meter_at(*bar_start);
+  if (beat >= per_bar + 1) {
+    reporter.error(at.location, "bar " + words[1] + " has " + std::to_string(per_bar) +
+                                    " beats: 'beat " + words[3] + "' is past its end");
+    return std::nullopt;
+  }
+  return map.time_of_beat(*first + ExactMs::from_double(beat - 1));
+}
+
+std::optional<ExactMs> at_target(const TempoMap& map, const YamlNode& at_node, ExactMs now,
+                                 ExactMs list_start, Reporter& reporter) {
+  const YamlNode* at = &at_node;
+  const bool position = at->is_scalar() && at->scalar.rfind("bar ", 0) == 0;
+  std::optional<ExactMs> target = position ? bar_position(map, *at, reporter)
+                                           : musical_time(map, *at, "'at'", list_start, reporter);
+  if (!target) return std::nullopt;
+  if (*target < now && position) {
+    reporter.error(at->location, at->scalar + " is at " + seconds_text(*target) +
+                                     " but this list is already at " + seconds_text(now) + " (" +
+                                     seconds_text(now - *target) + " past it)");
+    return std::nullopt;
+  }
+  if (*target < now) {
+    reporter.error(at->location,
+                   "'at: " + at->scalar + "' is " + format_exact_ms(now - *target) +
+                       " in the past: the steps before it already run until " +
+                       format_seconds(static_cast<std::uint64_t>((now - list_start).round())) +
+                       " of this list");
+    return std::nullopt;
+  }
+  return target;
+}
+
+bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, std::string_view what,
+                  Reporter& reporter) {
+  const int current = map.meter_at(now);
+  if (current > 0 && map.bpm_at(now) > 0 && beats_per_bar != current) {
+    const ExactMs bar = map.bar_at(now);
+    if (bar.den() != 1) {
+      const std::int64_t whole = bar.num() / bar.den();  // bars are never negative
+      const ExactMs into = map.beat_at(now) - map.beat_of_bar(whole).value_or(ExactMs(0));
+      reporter.error(at, std::string(what) + " must fall on a bar line, but here it is " +
+                             beats_text(into) + " into bar " + std::to_string(whole + 1) + " (" +
+                             beats_text(ExactMs(current) - into) + " before bar " +
+                             std::to_string(whole + 2) + ")");
+      return false;
+    }
+  }
+  map.set_meter(now, beats_per_bar);
+  return true;
+}
+
+void read_sections(const YamlNode& sections, FileScope& scope, Reporter& reporter) {
+  if (!sections.is_map()) {
+    reporter.error(sections.location, "'sections' must be a map of section names to step lists");
+    return;
+  }
+  for (const auto& [name, list] : sections.entries) scope.sections[name.scalar] = &list;
+}
+
+const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, const YamlNode& section,
+                                YamlNode& copy, std::optional<Reporter::Note>& performance,
+                                Reporter& reporter) {
+  const std::string quoted = "section '" + name.scalar + "'";
+  const Reporter::Note here{name.location, quoted + " is performed here"};
+  const YamlNode* steps = &section;
+  const YamlNode* params = nullptr;
+  if (section.is_map()) {
+    reporter.check_keys(section, {"params", "steps"}, "in a section");
+    params = section.find("params");
+    steps = section.find("steps");
+    if (steps == nullptr) {
+      reporter.error(section.location, quoted + " needs 'steps', the list of its steps");
+      return nullptr;
+    }
+  }
+  std::map<std::string, std::string, std::less<>> values;
+  std::vector<std::string> names;  // in the order declared
+  bool ok = true;
+  if (params != nullptr && params->kind != YamlNode::Kind::Null) {
+    if (!params->is_map()) {
+      reporter.error(params->location,
+                     "'params' must be a map of parameter names to default values, e.g. "
+                     "'params: {amount: 40}'");
+      return nullptr;
+    }
+    for (const auto& [key, v] : params->entries) {
+      if (!is_parameter_name(key.scalar)) {
+        reporter.error(key.location, "'" + key.scalar +
+                                         "' cannot be a parameter name; use letters, digits "
+                                         "and '_', starting with a letter");
+        ok = false;
+      } else if (!v.is_scalar()) {
+        reporter.error(v.location, "parameter '" + key.scalar +
+                                       "' needs a default that is a single value, e.g. '" +
+                                       key.scalar + ": 40'");
+        ok = false;
+      } else {
+        values[key.scalar] = v.scalar;
+        names.push_back(key.scalar);
+      }
+    }
+  }
+  if (const YamlNode* with = step.find("with")) {
+    if (!with->is_map()) {
+      reporter.error(with->location,
+                     "'with' gives the section's parameters values, e.g. 'with: {amount: 80}'",
+                     here);
+      return nullptr;
+    }
+    for (const auto& [key, v] : with->entries) {
+      auto it = values.find(key.scalar);
+      if (it == values.end()) {
+        std::string message = quoted + " has no parameter '" + key.scalar + "'";
+        const std::string suggestion = did_you_mean(key.scalar, names);
+        if (!suggestion.empty()) {
+          message += "; did you mean '" + suggestion + "'?";
+        } else if (names.empty()) {
+          message += "; it declares none (under 'params:')";
+        }
+        reporter.error(key.location, message, here);
+        ok = false;
+      } else if (!v.is_scalar()) {
+        reporter.error(v.location,
+                       "'" + key.scalar +
+                           "' takes a single value, such as 80 or wrist_roll, "
+                           "not " +
+                           std::string(kind_name(v)),
+                       here);
+        ok = false;
+      } else {
+        it->second = v.scalar;
+      }
+    }
+  }
+  if (!ok) return nullptr;
+  if (!values.empty()) {
+    std::string given;
+    for (const std::string& n : names) given += (given.empty() ? "" : ", ") + n + ": " + values[n];
+    performance = Reporter::Note{name.location, quoted + " is performed here with " + given};
+  }
+  if (!mentions_parameter(*steps)) return steps;
+  copy = *steps;
+  std::vector<std::pair<Location, std::string>> unknown;
+  put_in_parameters(copy, values, unknown);
+  for (const auto& [at, word] : unknown) {
+    std::string message = "unknown parameter '$" + word + "' in " + quoted;
+    const std::string suggestion = did_you_mean(word, names);
+    if (!suggestion.empty()) {
+      message += "; did you mean '$" + suggestion + "'?";
+    } else if (names.empty()) {
+      message += ", which declares none; declare it under 'params:'";
+    }
+    reporter.error(at, message, performance.value_or(here));
+  }
+  return unknown.empty() ? &copy : nullptr;
+}
+
+void run_section(const YamlNode& step, const YamlNode& value, const ScopeChain& scopes,
+                 std::vector<const YamlNode*>& running, Reporter& reporter,
+                 const std::function<void(const YamlNode& steps, const std::string& what)>& run) {
+  const YamlNode* section = scopes.find_section(value, reporter);
+  if (section == nullptr) return;
+  if (std::find(running.begin(), running.end(), section) != running.end()) {
+    reporter.error(value.location, "section '" + value.scalar + "' performs itself");
+    return;
+  }
+  YamlNode copy;
+  std::optional<Reporter::Note> performance;
+  const YamlNode* list = perform_section(step, value, *section, copy, performance, reporter);
+  if (list == nullptr) return;
+  running.push_back(section);
+  // A performance with values explains every mistake inside it; a plain one names itself
+  // under the warnings (an error inside it is the section's own).
+  if (performance) {
+    reporter.push_context(*performance);
+  } else {
+    reporter.push_performance(value.location, value.scalar);
+  }
+  run(*list, "section '" + value.scalar + "'");
+  if (performance) {
+    reporter.pop_context();
+  } else {
+    reporter.pop_performance();
+  }
+  running.pop_back();
+}
+
+void TrackClaims::begin_track(std::string name, Location at) {
+  blocks_.back().track = Track{std::move(name), at, {}};
+}
+
+void TrackClaims::end_block() { blocks_.pop_back(); }
+
+bool TrackClaims::claim(std::size_t output, std::string_view who, std::string_view verb,
+                        std::string_view rule, Location at, Reporter& reporter) {
+  // One track of each running block: the innermost block is checked first (its tracks are
+  // the closest places to name).
+  for (auto block = blocks_.rbegin(); block != blocks_.rend(); ++block) {
+    auto it = block->claimed.find(output);
+    if (it == block->claimed.end() || it->second.first == block->track.name) continue;
+    reporter.error(
+        at,
+        std::string(who) + " " + std::string(verb) + " in two tracks, '" + it->second.first +
+            "' and '" + block->track.name + "'; " + std::string(rule),
+        Reporter::Note{it->second.second, std::string(who) + " " + std::string(verb) +
+                                              " in track '" + it->second.first + "' here"});
+    return false;
+  }
+  for (Block& block : blocks_) {
+    block.claimed.try_emplace(output, block.track.name, at);
+    std::vector<std::size_t>& outputs = block.track.outputs;
+    if (std::find(outputs.begin(), outputs.end(), output) == outputs.end()) {
+      outputs.push_back(output);
+    }
+  }
+  return true;
+}
+
+bool TrackClaims::outside_tracks(const YamlNode& value, std::string_view verb,
+                                 Reporter& reporter) const {
+  if (blocks_.empty()) return true;
+  const Track& track = blocks_.front().track;
+  reporter.error(value.location,
+                 "'" + std::string(verb) +
+                     "' inside a 'together' track would change the other tracks' " +
+                     (verb == "tempo" ? "beats" : "bars") +
+                     " too; "
+                     "move it out of the 'together', before or after it",
+                 Reporter::Note{track.at, "in track '" + track.name + "' of this 'together'"});
+  return false;
+}
+
+// ---- the walker ------------------------------------------------------------------------------
+
+StepWalker::StepWalker(FileLoader& loader, Reporter& reporter, const StepTable& table,
+                       std::vector<std::size_t> home_outputs, std::size_t outputs)
+    : loader_(loader), reporter_(reporter), scopes_(std::move(home_outputs)), table_(table) {
+  timeline_.resize(outputs);
+}
+
+bool StepWalker::is_verb(std::string_view key, const YamlNode& /*step*/) const {
+  static constexpr std::string_view kShared[] = {"repeat",   "include", "section",
+                                                 "together", "tempo",   "meter"};
+  return std::find(std::begin(kShared), std::end(kShared), key) != std::end(kShared) ||
+         std::find(table_.verbs.begin(), table_.verbs.end(), key) != table_.verbs.end();
+}
+
+void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const YamlNode& sequence,
+                              bool is_main) {
+  TempoMap& music = timeline_.tempo_map;
+  if (is_main) {
+    timeline_.song = scope.song;
+    music = scope.song ? song_tempo_map(*scope.song)
+                       : TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
+  } else {
+    check_included_music(root);
+  }
+  // An included file's own tempo and meter hold while its steps run (not while a song plays:
+  // its map is the only one).
+  const double outer_bpm = music.bpm_at(now_);
+  const int outer_meter = music.meter_at(now_);
+  const bool own_tempo = !is_main && !timeline_.song && scope.tempo && *scope.tempo != outer_bpm;
+  bool own_meter =
+      !is_main && !timeline_.song && scope.beats_per_bar && *scope.beats_per_bar != outer_meter;
+  if (own_tempo) music.set_tempo(now_, *scope.tempo);
+  if (own_meter) {
+    const YamlNode& meter = *root.find("meter");
+    own_meter = change_meter(*scope.beats_per_bar, meter.location, "'meter: " + meter.scalar + "'");
+  }
+  scopes_.push(scope);
+  run_steps(sequence, "'sequence'");
+  scopes_.pop();
+  if (own_meter && !reporter_.include_sites().empty()) {
+    change_meter(outer_meter, reporter_.include_sites().back(),
+                 "the including file's meter, resuming after this include,");
+  }
+  if (own_tempo) music.set_tempo(now_, outer_bpm);
+}
+
+void StepWalker::run_steps(const YamlNode& list, std::string_view what) {
+  lists_.push_back({now_, std::nullopt});
+  for (const YamlNode& step : step_items(list, what, reporter_)) {
+    if (stopped()) break;
+    run_step(step);
+  }
+  lists_.pop_back();
+}
+
+void StepWalker::run_step(const YamlNode& step) {
+  if (!step.is_map()) {
+    reporter_.error(step.location, "a step must be a map such as " + std::string(table_.example) +
+                                       ", not " + std::string(kind_name(step)));
+    return;
+  }
+  const auto combinable = [this](std::string_view verb) {
+    return std::find(table_.combinable.begin(), table_.combinable.end(), verb) !=
+           table_.combinable.end();
+  };
+  const YamlNode* verb = nullptr;
+  for (const auto& [key, value] : step.entries) {
+    if (!is_verb(key.scalar, step)) continue;
+    if (verb == nullptr) {
+      verb = &key;
+    } else if (!combinable(verb->scalar) || !combinable(key.scalar)) {
+      reporter_.error(key.location, "a step does one thing: '" + key.scalar +
+                                        "' cannot be combined with '" + verb->scalar +
+                                        "'; make it a separate step");
+      return;
+    }
+  }
+  if (verb == nullptr) {
+    if (reporter_.check_keys(step, table_.step_keys, "in a step")) {
+      reporter_.error(step.location, std::string(table_.needs_one_of));
+    }
+    return;
+  }
+  const std::string& name = verb->scalar;
+  const YamlNode& value = *step.find(name);
+  if (name == "repeat") {
+    if (reporter_.check_keys(step, {"repeat", "do", "at"}, "in a repeat step") && apply_at(step)) {
+      repeat_step(step, value);
+    }
+  } else if (name == "include") {
+    if (reporter_.check_keys(step, {"include", "at"}, "in an include step") && apply_at(step)) {
+      include_step(value);
+    }
+  } else if (name == "section") {
+    if (reporter_.check_keys(step, {"section", "with", "at"}, "in a section step") &&
+        apply_at(step)) {
+      section_step(step, value);
+    }
+  } else if (name == "together") {
+    if (reporter_.check_keys(step, {"together", "at"}, "in a together step") && apply_at(step)) {
+      together_step(step, value);
+    }
+  } else if (name == "tempo") {
+    if (reporter_.check_keys(step, {"tempo"}, "in a tempo step")) tempo_step(value);
+  } else if (name == "meter") {
+    if (reporter_.check_keys(step, {"meter"}, "in a meter step")) meter_step(value);
+  } else {
+    own_step(*verb, step);
+  }
+}
+
+bool StepWalker::apply_at(const YamlNode& step) {
+  const YamlNode* at = step.find("at");
+  if (at == nullptr) return true;
+  const std::optional<ExactMs> target =
+      at_target(timeline_.tempo_map, *at, now_, lists_.back().start, reporter_);
+  if (!target) return false;
+  if (*target > now_ && !hold_until(*target, *at)) return false;
+  // A cue is drawn wherever it falls, also where the steps before it already end there.
+  timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
+  return true;
+}
+
+std::optional<ExactMs> StepWalker::musical_time(const YamlNode& node, std::string_view what,
+                                                ExactMs from) {
+  return compiler::musical_time(timeline_.tempo_map, node, what, from, reporter_);
+}
+
+bool StepWalker::change_meter(int beats_per_bar, Location at, std::string_view what) {
+  return compiler::change_meter(timeline_.tempo_map, now_, beats_per_bar, at, what, reporter_);
+}
+
+void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
+  const auto repeat = parse_repeat(step, value, reporter_);
+  if (!repeat) return;
+  const std::unique_ptr<RepeatBudget> budget = repeat_budget(step, repeat->times);
+  for (long long i = 0; i < repeat->times && !stopped(); ++i) {
+    if (!budget->before_pass(i)) break;
+    const std::size_t errors_before = reporter_.errors_reported();
+    run_steps(*repeat->body, "'do'");
+    // A pass with mistakes would only repeat them in the passes after it (and nested repeats
+    // would never end).
+    if (reporter_.errors_reported() > errors_before || !budget->after_pass(i)) break;
+  }
+}
+
+void StepWalker::include_step(const YamlNode& value) {
+  const LoadedFile* loaded = scopes_.load_include(value, table_.include_example,
+                                                  table_.cannot_include, loader_, reporter_);
+  if (loaded == nullptr) return;
+  reporter_.push_include(value.location);
+  run_file(*loaded, false);
+  reporter_.pop_include();
+}
+
+void StepWalker::section_step(const YamlNode& step, const YamlNode& value) {
+  run_section(step, value, scopes_, sections_running_, reporter_,
+              [&](const YamlNode& steps, const std::string& what) {
+                timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
+                run_steps(steps, what);
+              });
+}
+
+void StepWalker::together_step(const YamlNode& step, const YamlNode& tracks) {
+  if (!tracks.is_map() || tracks.entries.empty()) {
+    reporter_.error(tracks.location, "'together' takes named tracks, each a list of steps, e.g. " +
+                                         std::string(table_.together_example));
+    return;
+  }
+  const std::unique_ptr<BlockRun> run = block_run(step);
+  const ExactMs start = now_;
+  ExactMs longest = start;
+  claims_.begin_block();
+  for (const auto& [name, list] : tracks.entries) {
+    claims_.begin_track(name.scalar, name.location);
+    now_ = start;
+    run->track_begins();
+    run_steps(list, "track '" + name.scalar + "'");
+    run->track_ends();
+    longest = std::max(longest, now_);
+    if (stopped()) break;
+  }
+  claims_.end_block();
+  now_ = longest;
+  run->block_ends(start, longest);
+}
+
+void StepWalker::check_included_music(const YamlNode& root) {
+  for (const YamlEntry& e : root.entries) {
+    if (e.first.scalar != "music") continue;
+    reporter_.error(e.first.location,
+                    "'music' belongs in the main file: the song plays from its "
+                    "first step");
+  }
+  if (!timeline_.song) return;
+  for (std::string_view key : {"tempo", "meter"}) {
+    if (const YamlNode* v = root.find(key)) song_owns(*v, key);
+  }
+}
+
+bool StepWalker::song_owns(const YamlNode& value, std::string_view key) {
+  if (!timeline_.song) return false;
+  reporter_.error(value.location,
+                  "'" + std::string(key) + ": " + value.scalar +
+                      "' while the song plays: its tempo map is the only one",
+                  Reporter::Note{timeline_.song->at,
+                                 "the song's 'music' sets tempo and meter, with changes by bar "
+                                 "in its 'changes'"});
+  return true;
+}
+
+void StepWalker::tempo_step(const YamlNode& value) {
+  if (song_owns(value, "tempo")) return;
+  if (!claims_.outside_tracks(value, "tempo", reporter_)) return;
+  if (auto bpm = parse_tempo(value, reporter_)) {
+    timeline_.tempo_map.set_tempo(now_, *bpm);
+    timeline_.markers.push_back({now_, "tempo " + value.scalar, value.location});
+  }
+}
+
+void StepWalker::meter_step(const YamlNode& value) {
+  if (song_owns(value, "meter")) return;
+  if (!claims_.outside_tracks(value, "meter", reporter_)) return;
+  const std::optional<int> meter = parse_meter(value, reporter_);
+  if (meter && change_meter(*meter, value.location, "'meter: " + value.scalar + "'")) {
+    timeline_.markers.push_back({now_, "meter " + value.scalar, value.location});
+  }
+}
+
+}  // namespace seqc::compiler

@@ -1,0 +1,25 @@
+// Checks a choreography against its song's audio (the `music:` block): the file must decode,
+// the dance should end before the song does, and the song's beats, as the beat analysis finds
+// them (compiler/music), should fall where the file's tempo map puts them. Pure: the audio comes
+// through a SongReader.
+#pragma once
+
+#include "compiler/frontend/reporter.hpp"
+#include "compiler/frontend/source/source.hpp"
+#include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/song.hpp"
+#include "compiler/timeline/tempo_map.hpp"
+
+namespace seqc::compiler {
+
+// How far (ms) a detected beat may lie from the file's before the check warns.
+inline constexpr double kSongBeatToleranceMs = 20;
+
+// Reports an error at the `file:` value when the song cannot be decoded; a warning when the
+// dance (ending at `end`, program time) runs past the end of the audio; and, from the first bar
+// whose detected beats lie more than kSongBeatToleranceMs from the file's (by their median), a
+// warning "from bar N the file's beats run M ms ahead of the song" (or "behind").
+void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& reader,
+                Reporter& reporter);
+
+}  // namespace seqc::compiler

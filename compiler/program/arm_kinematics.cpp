@@ -1,0 +1,34 @@
+#include "compiler/program/arm_kinematics.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace seqc::backend {
+
+ArmPoints arm_points(const compiler::ArmGeometry& arm,
+                     const std::function<double(std::string_view)>& position) {
+  auto radians = [&](const compiler::ArmJoint& j) {
+    return j.sign * (position(j.servo) - j.zero) * arm.degrees_per_unit * std::numbers::pi / 180;
+  };
+  const double base = radians(arm.base);
+  const double s = radians(arm.shoulder);
+  const double se = s + radians(arm.elbow);
+  const double sew = se + radians(arm.wrist);
+  ArmPoints out;
+  out.base_degrees = base * 180 / std::numbers::pi;
+  // Each point in the arm's plane (r out from the base axis, z up), then turned with the base.
+  auto place = [base](double r, double z) {
+    return std::array<double, 3>{r * std::cos(base), r * std::sin(base), z};
+  };
+  double r = 0, z = arm.base_height;
+  out.shoulder = place(r, z);
+  r += arm.upper_arm * std::sin(s), z += arm.upper_arm * std::cos(s);
+  out.elbow = place(r, z);
+  r += arm.forearm * std::sin(se), z += arm.forearm * std::cos(se);
+  out.wrist = place(r, z);
+  r += arm.hand * std::sin(sew), z += arm.hand * std::cos(sew);
+  out.tip = place(r, z);
+  return out;
+}
+
+}  // namespace seqc::backend

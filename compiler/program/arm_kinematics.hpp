@@ -1,0 +1,33 @@
+// Forward kinematics of an arm (compiler/program/arm_geometry.hpp): where the claw's tip is for
+// given joint positions. The conventions, which the preview page's script mirrors and `seqc
+// simulate`'s tip columns print:
+//   - a joint angle is sign * (position - zero) * degrees_per_unit;
+//   - with every angle 0 the arm points straight up;
+//   - the base turns about the vertical axis: 0 faces +x, positive is counter-clockwise seen
+//     from above;
+//   - shoulder, elbow and wrist tilt in the arm's vertical plane, positive away from the base
+//     axis, each angle adding to the one before.
+// With U, F, H the upper arm, forearm and hand and s, e, w their angles:
+//   r = U sin s + F sin(s+e) + H sin(s+e+w), z = base_height + U cos s + F cos(s+e) + H cos(s+e+w),
+//   x = r cos(base), y = r sin(base).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string_view>
+
+#include "compiler/program/arm_geometry.hpp"
+
+namespace seqc::backend {
+
+struct ArmPoints {
+  // x, y, z in mm of the shoulder axis, the elbow, the wrist and the tip.
+  std::array<double, 3> shoulder{}, elbow{}, wrist{}, tip{};
+  double base_degrees = 0;  // the base's angle (the arm's vertical plane)
+};
+
+// `position` gives a servo's position (device units) by name.
+ArmPoints arm_points(const compiler::ArmGeometry& arm,
+                     const std::function<double(std::string_view)>& position);
+
+}  // namespace seqc::backend

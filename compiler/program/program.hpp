@@ -1,0 +1,79 @@
+// The programs the compiler produces: target-neutral data that the targets' back ends, the
+// formats (listing, simulate, plot, preview, .d6a) and the runtime read. One alternative per
+// robot kind in the Program variant: the servo controller (xArm / LSC boards) with its stored
+// action groups, and the Raspblock car with its timed packet stream. A program also carries what
+// the author meant (the timeline) and the robot it was compiled for (RobotInfo), including the
+// board that runs it (RobotInfo::board), which the runtime looks up in its table of boards; the
+// compiler itself never chooses between boards. Nothing here depends on the front end.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "compiler/frontend/source/source.hpp"
+#include "compiler/program/arm_geometry.hpp"
+#include "compiler/program/raspblock_program.hpp"
+#include "compiler/timeline/timeline.hpp"
+#include "runtime/protocol/lsc_messages.hpp"
+
+namespace seqc::compiler {
+
+enum class RobotKind {
+  ServoController,  // xArm / LSC-16 / LSC-32 / LSC-6: keyframes stored as an action group
+  Raspblock,        // Yahboom Raspblock car board: a timed packet stream, played live
+};
+
+// One servo as the program sees it, after the file's `robot:` section is applied.
+struct ServoInfo {
+  std::string name;     // the name diagnostics and listings use
+  std::uint8_t id = 0;  // bus id (xArm) or PWM channel (LSC)
+  int min = 0;          // limits in device units
+  int max = 0;
+  int home = 0;                     // centre for mirroring; simulator's starting position
+  std::optional<double> max_speed;  // device units per second; nullopt = unchecked
+  std::optional<double> max_accel;  // device units per second squared; nullopt = unchecked
+};
+
+struct RobotInfo {
+  std::string profile;  // "xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "raspblock"
+  std::string board;    // the board that runs it (RobotProfile::board): "xarm", "lsc6", ...
+  RobotKind kind = RobotKind::ServoController;
+  std::vector<ServoInfo> servos;  // in id order
+  // The highest id the file's `servos:` section names (0 when it names none).
+  std::uint8_t highest_defined_id = 0;
+  // Link lengths and joint servos, for an arm whose profile or file gives them.
+  std::optional<ArmGeometry> arm;
+
+  const ServoInfo* find_id(std::uint8_t id) const;
+  const ServoInfo* find_name(std::string_view name) const;
+};
+
+// One controller action: move the listed servos to their positions over time_ms. Servos not
+// listed keep their position. A wait is an action that re-sends the held positions.
+struct Keyframe {
+  std::uint32_t start_ms = 0;             // when the action starts, from the start of the sequence
+  std::uint16_t time_ms = 0;              // kMinActionMs..kMaxActionMs
+  std::vector<lsc::ServoTarget> targets;  // ascending id, each id once
+  Location source;                        // the step it came from
+};
+
+struct ServoProgram {
+  RobotInfo robot;
+  std::vector<Keyframe> keyframes;
+  // What the author meant, per servo (by index into robot.servos), before fitting.
+  Timeline timeline;
+  // The largest distance between the compiled motion and the intended curve, and where.
+  double fit_error = 0;
+  std::uint32_t fit_error_at_ms = 0;
+  std::string fit_error_servo;
+  std::uint64_t duration_ms() const;
+};
+
+// One alternative per RobotKind.
+using Program = std::variant<ServoProgram, RaspblockProgram>;
+
+}  // namespace seqc::compiler

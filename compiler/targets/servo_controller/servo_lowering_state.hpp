@@ -1,0 +1,130 @@
+// The servo-controller front end's state while it walks a file's steps (private to
+// servo_lowering.cpp, which reads files and supplies the shared walk's hooks, and
+// servo_motion.cpp, which turns move, wait and through steps into timeline segments and checks
+// them). The walk itself (lists, repeat, include, sections, together, at, tempo, meter) is
+// StepWalker's (step_walk.hpp).
+//
+// Time is exact (ExactMs): each step list remembers when it started (for `at:`) and its
+// tolerance override; beats and bars go through the timeline's tempo map. A `together` block
+// runs each track from the block's start, and a servo may move in one track of each block only.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/frontend/file_loader.hpp"
+#include "compiler/frontend/positions.hpp"
+#include "compiler/frontend/profiles.hpp"
+#include "compiler/frontend/reporter.hpp"
+#include "compiler/frontend/robot_section.hpp"
+#include "compiler/frontend/scope_chain.hpp"
+#include "compiler/frontend/step_walk.hpp"
+#include "compiler/program/program.hpp"
+#include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/timeline.hpp"
+
+namespace seqc::compiler {
+
+class ServoLowering final : public StepWalker {
+ public:
+  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
+  ServoProgram run(const LoadedFile& main);
+
+ private:
+  // ---- files and the walk's hooks (servo_lowering.cpp) --------------------------------------
+  void run_file(const LoadedFile& f, bool is_main) override;
+  FileScope& scope_for(const LoadedFile& f);
+  // move, wait, through, mirror and tolerance.
+  void own_step(const YamlNode& verb, const YamlNode& step) override;
+  // 'tolerance' is a verb only on its own: on a move or through it is a setting.
+  bool is_verb(std::string_view key, const YamlNode& step) const override;
+  bool hold_until(ExactMs target, const YamlNode& at) override;
+  std::unique_ptr<RepeatBudget> repeat_budget(const YamlNode& step, long long times) override;
+  std::unique_ptr<BlockRun> block_run(const YamlNode& step) override;
+  // After a `together` block (from `start` to `longest`): unless some servo `held` a position
+  // before it, reports a block none of whose tracks moves at its start.
+  void check_block_start(const YamlNode& step, ExactMs start, ExactMs longest, bool held,
+                         std::size_t errors_before);
+  friend class ServoBlockRun;
+  void mirror_step(const YamlNode& step, const YamlNode& body);
+  void tolerance_step(const YamlNode& value);
+  void finish(ServoProgram& program);
+
+  // ---- values (servo_lowering.cpp) ----------------------------------------------------------
+  std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);
+  ScopeChain::ParseEntries entries_parser();
+  double absolute_units(const PositionEntry& e, std::size_t target, bool reflect) const;
+  bool check_limits(const PositionEntry& e, std::size_t target, double units, std::string how,
+                    std::optional<Reporter::Note> note = {});
+  // A time value as exact milliseconds (ms, s, or beats and bars counted through the tempo map
+  // from now).
+  std::optional<ExactMs> exact_time(const YamlNode& node, std::string_view what);
+  // Device units of a tolerance ("1", "0.5deg"); nullopt after reporting.
+  std::optional<double> parse_tolerance(const YamlNode& node);
+  double tolerance() const;
+
+  // ---- motion (servo_motion.cpp) ------------------------------------------------------------
+  // `keys_ok`: false when the step has an unknown key (then a missing 'time' is most likely
+  // that key misspelt, already reported).
+  void move_step(const YamlNode& step, const YamlNode& target, bool keys_ok);
+  // A move's `tip:` (servo_tip.cpp): appends to `entries` (the move's other servos) the joint
+  // positions that put the claw's tip there, with the move's `pitch:` and the step's `elbow:`;
+  // false after reporting.
+  bool tip_entries(const YamlNode& step, const YamlNode& target,
+                   std::vector<PositionEntry>& entries);
+  void wait_step(const YamlNode& step, const YamlNode& value);
+  void through_step(const YamlNode& step, const YamlNode& waypoints);
+  // The positions a move's entries reach, by servo (nullopt: not named), from the positions in
+  // `targets` on entry; false if any entry was wrong (reported). `degrees` gets, for servos
+  // whose entry was written in degrees, the distance in degrees as written (NaN otherwise).
+  bool resolve_targets(const std::vector<PositionEntry>& entries,
+                       const std::optional<Reporter::Note>& note,
+                       std::vector<std::optional<int>>& targets, std::vector<double>& degrees);
+  void add_segment(std::size_t servo, Segment segment);
+  // One servo breaking its max_speed or max_accel on one segment, kept until the step ends so
+  // the servos that break it alike get one warning.
+  struct KinematicFinding {
+    std::size_t servo = 0;
+    bool speed = true;  // else acceleration
+    bool curved = false;
+    Location at;
+    double start_ms = 0;
+    std::optional<Reporter::Note> note;
+    std::string moved, value, shape, limit;  // "100 in 2000ms", "400/s", " on this ...", "300/s"
+  };
+  // Speed and acceleration along a segment, from its exact derivative; what breaks a limit goes
+  // to `findings`. `degrees`: the distance as written in degrees (NaN: in device units).
+  void check_kinematics(std::size_t servo, const Segment& segment, double degrees,
+                        const std::optional<Reporter::Note>& note,
+                        std::vector<KinematicFinding>& findings);
+  void report_kinematics(const std::vector<KinematicFinding>& findings);
+  // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
+  // short from the far end at max_speed. `targets`: the move's positions, by servo.
+  void check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time, Location at);
+  // Limits along a curve that may overshoot its ends.
+  bool check_overshoot(std::size_t servo, const Segment& segment, Location at,
+                       const std::optional<Reporter::Note>& note);
+  // Marks `servo` as moved by the running track; false after reporting a servo in two tracks.
+  bool claim(std::size_t servo, Location at);
+  void count_actions(std::uint64_t n, Location at);
+
+  // Actions one group holds on the robot's controller.
+  std::size_t capacity() const { return group_capacity(robot_.profile); }
+
+  const Robot& robot_;
+  std::vector<std::optional<int>> pos_;
+  bool mirrored_ = false;
+  // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
+  std::uint64_t min_actions_ = 0;
+  bool truncated_ = false;
+  // The step that made the count pass the group's limit (then the file is not fitted).
+  std::optional<Location> over_budget_at_;
+  std::optional<Location> sequence_at_;
+};
+
+}  // namespace seqc::compiler

@@ -1,0 +1,196 @@
+// A move's `tip:` in millimetres: the joint positions inverse kinematics gives for the claw's tip
+// (targets/servo_controller/arm_ik.hpp), rounded to whole units and checked against the servos'
+// limits, so that the move goes on as an ordinary move of the joint servos.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "compiler/frontend/source/units.hpp"
+#include "compiler/program/arm_kinematics.hpp"
+#include "compiler/targets/servo_controller/arm_ik.hpp"
+#include "compiler/targets/servo_controller/servo_lowering_state.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+// "150mm", "+20mm", "-5.5mm": the amount and whether a sign was written; nullopt if malformed.
+std::optional<double> parse_length(std::string_view text, bool& signed_) {
+  signed_ = !text.empty() && (text.front() == '+' || text.front() == '-');
+  if (text.size() < 3 || text.substr(text.size() - 2) != "mm") return std::nullopt;
+  text.remove_suffix(2);
+  const bool negative = !text.empty() && text.front() == '-';
+  if (signed_) text.remove_prefix(1);
+  double v = 0;
+  if (!parse_decimal(text, v)) return std::nullopt;
+  return negative ? -v : v;
+}
+
+std::string point_text(const std::array<double, 3>& p) {
+  // Adding 0.0 turns a -0 (from rounding a tiny negative) into 0.
+  auto mm = [](double v) { return std::round(v) + 0.0; };
+  return fmt::format("[{:g}mm, {:g}mm, {:g}mm]", mm(p[0]), mm(p[1]), mm(p[2]));
+}
+
+}  // namespace
+
+bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
+                                std::vector<PositionEntry>& entries) {
+  const YamlNode& tip = *target.find("tip");
+  if (!robot_.info.arm) {
+    reporter_.error(tip.location, "'tip' needs the arm's geometry, and robot '" +
+                                      robot_.info.profile +
+                                      "' has none; give it with 'robot: {arm: ...}'");
+    return false;
+  }
+  const ArmGeometry& arm = *robot_.info.arm;
+  bool ok = true;
+  std::array<double, 3> point{};
+  bool relative = false;
+  if (!tip.is_sequence() || tip.items.size() != 3) {
+    reporter_.error(tip.location,
+                    "'tip' takes [x, y, z] in millimetres, e.g. 'tip: [150mm, 0mm, 80mm]', or "
+                    "with signs to move from where the tip is, e.g. 'tip: [+20mm, 0mm, 0mm]'");
+    ok = false;
+  } else {
+    for (std::size_t i = 0; i < 3; ++i) {
+      bool sign = false;
+      const YamlNode& item = tip.items[i];
+      const std::optional<double> v =
+          item.is_scalar() ? parse_length(item.scalar, sign) : std::nullopt;
+      if (!v) {
+        reporter_.error(item.location,
+                        "a tip coordinate is a length in millimetres such as "
+                        "150mm or +20mm");
+        ok = false;
+        continue;
+      }
+      point[i] = *v;
+      relative = relative || sign;
+    }
+  }
+  std::optional<double> pitch;
+  if (const YamlNode* p = target.find("pitch")) {
+    std::string_view text = p->is_scalar() ? std::string_view(p->scalar) : "";
+    const bool negative = !text.empty() && text.front() == '-';
+    if (negative || (!text.empty() && text.front() == '+')) text.remove_prefix(1);
+    double v = 0;
+    if (text.size() > 3 && text.substr(text.size() - 3) == "deg" &&
+        parse_decimal(text.substr(0, text.size() - 3), v)) {
+      pitch = negative ? -v : v;
+    } else {
+      reporter_.error(p->location,
+                      "'pitch' is the hand's angle in degrees (0deg up, 90deg "
+                      "level, 180deg down), e.g. 'pitch: 180deg'");
+      ok = false;
+    }
+  }
+  bool elbow_up = true;
+  if (const YamlNode* e = step.find("elbow")) {
+    if (e->is_scalar() && (e->scalar == "up" || e->scalar == "down")) {
+      elbow_up = e->scalar == "up";
+    } else {
+      reporter_.error(e->location, "'elbow' is up or down");
+      ok = false;
+    }
+  }
+  if (mirrored_) {
+    reporter_.error(tip.location, "a 'tip' move cannot be mirrored; give the joints instead");
+    ok = false;
+  }
+  const ArmJoint* joints[] = {&arm.base, &arm.shoulder, &arm.elbow, &arm.wrist};
+  std::size_t joint_servo[4] = {};
+  for (std::size_t j = 0; j < 4; ++j) {
+    auto it = robot_.names.find(joints[j]->servo);
+    if (it == robot_.names.end()) {
+      reporter_.error(tip.location, "the arm's joint servo '" + joints[j]->servo +
+                                        "' is not a servo of this robot");
+      return false;
+    }
+    joint_servo[j] = it->second;
+    for (const PositionEntry& e : entries) {
+      if (e.output != joint_servo[j]) continue;
+      reporter_.error(e.at, "'" + joints[j]->servo +
+                                "' is placed by 'tip' in this move; leave it out or drop 'tip'");
+      ok = false;
+    }
+  }
+  if (!ok) return false;
+
+  // Where the tip is now: needed to move from it, and for the pitch it keeps.
+  if (relative || !pitch) {
+    for (std::size_t j = 0; j < 4; ++j) {
+      if (pos_[joint_servo[j]]) continue;
+      reporter_.error(tip.location, "'" + joints[j]->servo +
+                                        "' has no known position yet, so the tip's " +
+                                        (relative ? "position" : "pitch") +
+                                        " is unknown; move the arm to absolute positions first");
+      return false;
+    }
+  }
+  auto now_position = [&](std::string_view servo) {
+    auto it = robot_.names.find(servo);
+    return it != robot_.names.end() && pos_[it->second] ? static_cast<double>(*pos_[it->second])
+                                                        : 0.0;
+  };
+  auto angle_of = [&](std::size_t j) {
+    return joints[j]->sign * (now_position(joints[j]->servo) - joints[j]->zero) *
+           arm.degrees_per_unit;
+  };
+  if (relative) {
+    const std::array<double, 3> from = backend::arm_points(arm, now_position).tip;
+    for (std::size_t i = 0; i < 3; ++i) point[i] += from[i];
+  }
+  if (!pitch) pitch = angle_of(1) + angle_of(2) + angle_of(3);
+  const std::string where =
+      point_text(point) + fmt::format(" at pitch {:g}deg", std::round(*pitch * 10) / 10);
+  if (point[2] < 0) {
+    reporter_.error(tip.location, fmt::format("the tip {} would be {:.0f} mm below the table",
+                                              point_text(point), -point[2]));
+    return false;
+  }
+  const double base_now = pos_[joint_servo[0]] ? angle_of(0) : 0.0;
+  const backend::ArmSolution solution = backend::solve_arm(arm, point, *pitch, elbow_up, base_now);
+  if (!solution.angles) {
+    if (solution.needed > solution.reach) {
+      reporter_.error(
+          tip.location,
+          fmt::format("the tip {} is {:.0f} mm beyond the arm's reach of {:g} mm (the wrist, "
+                      "{:g} mm back from the tip, is {:.0f} mm from the shoulder)",
+                      where, solution.needed - solution.reach, solution.reach, arm.hand,
+                      solution.needed));
+    } else {
+      reporter_.error(tip.location,
+                      fmt::format("the tip {} puts the wrist {:.0f} mm from the shoulder, nearer "
+                                  "than the arm can fold ({:g} mm)",
+                                  where, solution.needed, solution.reach));
+    }
+    return false;
+  }
+  const double angles[] = {solution.angles->base, solution.angles->shoulder, solution.angles->elbow,
+                           solution.angles->wrist};
+  for (std::size_t j = 0; j < 4; ++j) {
+    const ServoInfo& servo = robot_.info.servos[joint_servo[j]];
+    const long long units =
+        std::llround(joints[j]->zero + joints[j]->sign * angles[j] / arm.degrees_per_unit);
+    if (units < servo.min || units > servo.max) {
+      const long long over = units > servo.max ? units - servo.max : servo.min - units;
+      reporter_.error(
+          tip.location,
+          fmt::format("the tip {} needs '{}' at {} ({:.1f}deg), {} {} its {} {}", where, servo.name,
+                      units, angles[j], over, units > servo.max ? "above" : "below",
+                      units > servo.max ? "max" : "min",
+                      units > servo.max ? servo.max : servo.min));
+      ok = false;
+      continue;
+    }
+    PositionEntry e;
+    e.output = joint_servo[j];
+    e.written = "tip";
+    e.value.amount = static_cast<double>(units);
+    e.at = tip.location;
+    entries.push_back(std::move(e));
+  }
+  return ok;
+}
+
+}  // namespace seqc::compiler
