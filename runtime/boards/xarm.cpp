@@ -111,6 +111,8 @@ std::string comment(std::size_t index, ByteView frame) {
   std::string role;
   if (std::holds_alternative<lsc::GetBatteryVoltage>(*request)) {
     role = index == 0 ? "probe: " : "barrier: ";
+  } else if (std::holds_alternative<lsc::ServoPositionRead>(*request)) {
+    role = "first moves: ";  // before the run, where the servos are (boards/first_move.hpp)
   }
   return role + lsc::describe(*request);
 }

@@ -4,7 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "compiler/frontend/profiles.hpp"
+#include "compiler/frontend/source/units.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -148,6 +151,14 @@ std::string other_dialect_text(const boards::Board& board, const std::string& pr
   return "this is an " + std::string(answered->name) + " board; the file is for " + profile +
          ": use " + fix + " for this board, or give --port the port the " +
          std::string(board.name) + " is on";
+}
+
+std::string first_move_text(const boards::FirstMoveTooFast& fast) {
+  return fmt::format(
+      "'{}' is at {}; reaching {} in {} is {:.0f} units/s, above its max_speed {:.0f}/s; slow the "
+      "first move or pass --force",
+      fast.name, fast.from, fast.to, compiler::format_seconds(fast.time_ms), fast.speed,
+      fast.max_speed);
 }
 
 }  // namespace seqc::cli

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/first_move.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
@@ -33,6 +34,10 @@ BoardError port_failure(const boards::PortFailure& failure, const boards::PortRe
 // names the far end ("the controller", "the board"); `timeout` is the per-reply wait it quotes.
 BoardError outcome_text(const boards::Outcome& outcome, const std::string& port,
                         io::Duration timeout, std::string_view called);
+
+// Why a start was refused (boards/first_move.hpp): "'base' is at 120; reaching 880 in 0.5 s is
+// 1520 units/s, above its max_speed 800/s; slow the first move or pass --force".
+std::string first_move_text(const boards::FirstMoveTooFast& fast);
 
 // "seqc: error: the LSC-6 board has no battery command: ...; nothing was sent" on ctx.err, for a
 // command `board` has no way to answer; returns ExitCode::Usage.

@@ -14,15 +14,12 @@
 #include "runtime/cli/check_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/counted.hpp"
 #include "runtime/cli/version.hpp"
 #include "runtime/protocol/group_download.hpp"
 
 namespace seqc::cli {
 namespace {
-
-std::string plural(std::size_t n, const char* word) {
-  return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
-}
 
 // One thing checked: a choreography; or a show file's own part, then each performer's file.
 struct Unit {

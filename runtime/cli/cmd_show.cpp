@@ -1,6 +1,8 @@
 // seqc show SHOW.yaml: several performers on one clock (compiler/show.hpp). Every file is
 // checked first; then each stored performer's group is uploaded (progress per performer), and
-// nothing starts unless every upload completed. Then everything starts at one instant
+// nothing starts unless every upload completed and, where a board reports its servos, every
+// performer's first move is safe from where they are (boards/first_move.hpp; --force skips the
+// read). Then everything starts at one instant
 // (boards::perform): one player, one track per performer, a stored performer's run command at
 // t = 0 and a streamed performer's frames at their times, so "one instant" is one deadline, not
 // several programs' guesses. The report gives each performer's start (how long after the common
@@ -14,11 +16,13 @@
 
 #include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/first_move.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/boards/show.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/counted.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
@@ -82,8 +86,8 @@ bool upload_stage(Context& ctx, Stage& stage) {
   }
   io::Transport& transport = *stage.port->transport;
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: " << p.name << ": uploading " << planned->actions << " actions into group "
-            << p.group << " on " << transport.describe() << "\n";
+    ctx.err << "seqc: " << p.name << ": uploading " << plural(planned->actions, "action")
+            << " into group " << p.group << " on " << transport.describe() << "\n";
   }
   upload::UploadOptions options;
   options.group = group;
@@ -92,12 +96,19 @@ bool upload_stage(Context& ctx, Stage& stage) {
   const boards::Line line{transport, *stage.port->clock, ctx.interrupted};
   const upload::UploadResult r = boards::upload(*stage.board, line, *planned, options, &progress);
   progress.finish();
+  if (r.status == upload::UploadStatus::OtherDialect) {
+    const compiler::ServoProgram* program = p.output.servo_program();
+    ctx.err << "seqc: error: " << p.name << ": "
+            << other_dialect_text(*stage.board, program != nullptr ? program->robot.profile : "")
+            << "\nseqc: " << p.name << ": " << r.message << "\n";
+    return false;
+  }
   if (!r.ok()) {
     ctx.err << "seqc: error: " << p.name << ": " << r.message << "\n";
     return false;
   }
-  summarize(ctx, p.name + ": the controller acknowledged " +
-                     std::to_string(r.actions_acknowledged) + " actions");
+  summarize(ctx,
+            p.name + ": the controller acknowledged " + plural(r.actions_acknowledged, "action"));
   return true;
 }
 
@@ -157,8 +168,23 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
   return code;
 }
 
+// The robot may be anywhere: each performer whose board reports its servos is read before the
+// common start, and nothing starts if one performer's first move from there is too fast.
+bool first_moves_safe(Context& ctx, std::vector<Stage>& stages) {
+  for (Stage& s : stages) {
+    const compiler::ServoProgram* program = s.performer->output.servo_program();
+    if (program == nullptr) continue;
+    const boards::Line line{*s.port->transport, *s.port->clock, ctx.interrupted};
+    if (const auto fast = boards::first_move_too_fast(*s.board, line, *program)) {
+      ctx.err << "seqc: error: " << s.performer->name << ": " << first_move_text(*fast) << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
 ExitCode run_show(Context& ctx, const std::string& path, bool strict,
-                  const std::string& trace_prefix) {
+                  const std::string& trace_prefix, bool force) {
   ExitCode loaded = ExitCode::Ok;
   compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
@@ -175,6 +201,10 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
       ctx.err << "seqc: nothing was started\n";
       return ExitCode::DeviceFailure;
     }
+  }
+  if (!force && !first_moves_safe(ctx, stages)) {
+    ctx.err << "seqc: nothing was started\n";
+    return ExitCode::InvalidInput;
   }
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: show " << show.name << ": starting " << stages.size()
@@ -198,6 +228,7 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string file;
     bool strict = false;
     std::string trace;
+    bool force = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -207,7 +238,11 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--trace", o->trace,
                   "Write every byte exchanged with each performer's board, with times, to "
                   "PREFIX-NAME.trace (docs/trace.md; `seqc decode` reads each)");
-  cmd->callback([&ctx, &result, o] { result.code = run_show(ctx, o->file, o->strict, o->trace); });
+  cmd->add_flag("--force", o->force,
+                "Start even if a performer's first move is too fast from where its "
+                "servos are");
+  cmd->callback(
+      [&ctx, &result, o] { result.code = run_show(ctx, o->file, o->strict, o->trace, o->force); });
 }
 
 }  // namespace seqc::cli

@@ -1,19 +1,22 @@
-// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever]] [--dry-run]
+// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force]] [--dry-run]
 //                  [--trace FILE] [--strict] [--retries N]
 // Compiles FILE, stores it in an action group of the board the file is for (runtime/boards)
 // and, with --run, starts it. An invalid file sends nothing and opens no port.
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/dry_run.hpp"
+#include "runtime/boards/first_move.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/counted.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
 
@@ -31,11 +34,8 @@ struct UploadArgs {
   bool forever = false;
   bool strict = false;
   int retries = 4;
+  bool force = false;  // start even if a first move is too fast from where the servos are
 };
-
-std::string plural(std::size_t n, const char* word) {
-  return fmt::format("{} {}{}", n, word, n == 1 ? "" : "s");
-}
 
 // Why the upload failed, and what was done to leave the group in a known state.
 void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r,
@@ -80,6 +80,17 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   options.retries = a.retries;
   options.run = a.run;
   options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
+  // The robot may be anywhere: before the run, read the servos where the board can and keep
+  // the group stored but not started if a first move from there is too fast.
+  std::optional<boards::FirstMoveTooFast> too_fast;
+  if (const compiler::ServoProgram* program = c.output.servo_program();
+      a.run && !a.force && program != nullptr) {
+    options.may_run = [&board, &ctx, &too_fast, program](io::Transport& t, io::Clock& clock) {
+      too_fast =
+          boards::first_move_too_fast(board, boards::Line{t, clock, ctx.interrupted}, *program);
+      return !too_fast;
+    };
+  }
 
   if (a.dry_run) {
     const boards::DryRun dry = boards::dry_run(board, plan, options);
@@ -148,6 +159,11 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (r.reopens > 0) {
     detail += ", the port came back " + plural(static_cast<std::size_t>(r.reopens), "time");
   }
+  if (r.run_refused && too_fast) {
+    ctx.err << "seqc: error: " << first_move_text(*too_fast) << "; group " << a.group
+            << " is stored but was not started\n";
+    return ExitCode::InvalidInput;
+  }
   if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it
   ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
           << " into group " << a.group << " (" << detail << ")\n";
@@ -184,6 +200,9 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--forever", a->forever, "With --run: play it until stopped")
       ->needs(run)
       ->excludes(times);
+  cmd->add_flag("--force", a->force,
+                "With --run: start even if a first move is too fast from where the servos are")
+      ->needs(run);
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
   cmd->add_option("--trace", a->trace,
                   "Write every byte sent and received, with times, to this file (docs/trace.md)");

@@ -176,15 +176,6 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
   return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, r);
 }
 
-// "'base' is at 120; reaching 880 in 0.5 s is 1520 units/s, above its max_speed 800/s; slow the
-// first move or pass --force"
-std::string first_move_text(const boards::FirstMoveTooFast& f) {
-  return fmt::format(
-      "'{}' is at {}; reaching {} in {} is {:.0f} units/s, above its max_speed {:.0f}/s; slow the "
-      "first move or pass --force",
-      f.name, f.from, f.to, compiler::format_seconds(f.time_ms), f.speed, f.max_speed);
-}
-
 }  // namespace
 
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,

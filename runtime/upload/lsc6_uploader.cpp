@@ -283,7 +283,11 @@ UploadResult Lsc6Run::go() {
   if (flow == Flow::Ok) {
     completed_ = true;
     result_.status = UploadStatus::Completed;
-    if (opt_.run) start_group();
+    if (opt_.run && opt_.may_run && !opt_.may_run(link_.transport(), link_.clock())) {
+      result_.run_refused = true;
+    } else if (opt_.run) {
+      start_group();
+    }
   }
   if (result_.status == UploadStatus::Interrupted && result_.run_sent) {
     result_.stop_sent = static_cast<bool>(link_.send(lsc6::Stop{}));

@@ -172,7 +172,11 @@ auto Uploader::Run::sequence() -> Flow {
   }
   completed_ = true;
 
-  if (opt().run) start_group();
+  if (opt().run && opt().may_run && !opt().may_run(link().transport(), link().clock())) {
+    result_.run_refused = true;
+  } else if (opt().run) {
+    start_group();
+  }
   return Flow::Ok;
 }
 

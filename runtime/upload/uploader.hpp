@@ -103,6 +103,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -131,6 +132,10 @@ struct UploadOptions {
   io::Duration open_margin = std::chrono::seconds(3);
   bool run = false;             // send GroupRun after a successful download
   std::uint16_t run_times = 1;  // GroupRun's count; 0 = loop until stopped
+  // Asked over the upload's own transport and clock after the download, just before the run is
+  // sent: false leaves the group stored and not started (UploadResult::run_refused). Commands
+  // read the servos here so that a first move too fast from where the robot is never starts.
+  std::function<bool(io::Transport&, io::Clock&)> may_run;
 };
 
 enum class UploadStatus {
@@ -212,6 +217,7 @@ struct UploadResult {
   std::size_t stale_acks = 0;               // acks discarded by barriers and drains
   bool run_sent = false;
   bool run_reported = false;  // the controller announced the group started
+  bool run_refused = false;   // options.may_run said no: stored, not started
   // Interrupted: what was sent to leave the controller in a known state.
   bool stop_sent = false;        // GroupStop: no group is playing
   bool erase_sent = false;       // GroupErase of the group: step 5 was sent but not confirmed

@@ -112,10 +112,12 @@ TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
-  // As without --run, then GroupRun and a barrier.
-  ASSERT_EQ(frames.size(), 37u);
+  // As without --run, then the first-move read, GroupRun and a barrier.
+  ASSERT_EQ(frames.size(), 38u);
+  // ServoPositionRead (0x15) of walk's six servos: count 06, ids 01..06, LEN = 6 + 3 = 09.
+  EXPECT_EQ(to_hex(frames[35]), "55 55 09 15 06 01 02 03 04 05 06");
   // GroupRun group 3, once: 55 55 05 06 03 01 00 (docs/protocol/servo-controller.md).
-  EXPECT_EQ(to_hex(frames[35]), "55 55 05 06 03 01 00");
+  EXPECT_EQ(to_hex(frames[36]), "55 55 05 06 03 01 00");
 
   Bench live;
   const Ran sent =

@@ -76,6 +76,58 @@ TEST(Show, NothingStartsWhenAPerformerIsBroken) {
   EXPECT_EQ(h.received(), "");  // not even the arm was touched
 }
 
+// --trace PREFIX writes one trace per performer, PREFIX-NAME.trace, each in its board's dialect,
+// and `seqc decode` reads both: the arm's shows the first-move read just before its GroupRun,
+// the car's its two Rocker packets one second apart (drive y 10 for 1 s, then the stop).
+TEST(Show, TracesEveryPerformerInItsOwnDialect) {
+  DeviceHarness h;
+  h.files.add("duo.yaml",
+              "show: duo\nperformers:\n  arm: {file: arm.yaml, port: emu:xarm}\n"
+              "  car: {file: car.yaml, port: emu:raspblock}\n");
+  h.files.add("arm.yaml", "robot: xarm\nsequence:\n  - move: {claw: 300}\n    time: 1s\n");
+  h.files.add("car.yaml", "robot: raspblock\nsequence:\n  - drive: {y: 10}\n    time: 1s\n");
+  const fs::path dir = fs::temp_directory_path() / "seqc-show-trace-test";
+  fs::create_directories(dir);
+  const std::string prefix = (dir / "duo").string();
+  fs::remove(prefix + "-arm.trace");
+  fs::remove(prefix + "-car.trace");
+  const RunResult r = h.run({"show", "duo.yaml", "--trace", prefix});
+  ASSERT_EQ(r.code, 0) << r.err;
+
+  const std::string arm = slurp_file(prefix + "-arm.trace");
+  const std::string car = slurp_file(prefix + "-car.trace");
+  EXPECT_NE(arm.find("# dialect: xArm / LSC-16 / LSC-32\n"), std::string::npos) << arm;
+  EXPECT_NE(car.find("# dialect: Raspblock\n"), std::string::npos) << car;
+  // The car's packets by hand (docs/protocol/raspblock.md, 0x03 rocker): FF FE 03 08, mode 01,
+  // X 00 00, Y 00 0a (then 00 00 for the stop), Z 00 00, direction 01 (Z >= 0), and the checksum
+  // 03 + 08 + 01 + 0a + 01 = 0x17 (0x0d for the stop).
+  EXPECT_NE(car.find(" > ff fe 03 08 01 00 00 00 0a 00 00 01 17\n"), std::string::npos) << car;
+  EXPECT_NE(car.find(" > ff fe 03 08 01 00 00 00 00 00 00 01 0d\n"), std::string::npos) << car;
+
+  h.files.add(prefix + "-arm.trace", arm);
+  h.files.add(prefix + "-car.trace", car);
+  const RunResult da = h.run({"decode", prefix + "-arm.trace"});
+  ASSERT_EQ(da.code, 0) << da.err;
+  const auto read = da.out.find("> ServoPositionRead servos=[1]\n");
+  const auto run = da.out.find("> GroupRun group=0 times=1\n");
+  ASSERT_NE(read, std::string::npos) << da.out;
+  ASSERT_NE(run, std::string::npos) << da.out;
+  EXPECT_LT(read, run);
+  const RunResult dc = h.run({"decode", prefix + "-car.trace"});
+  ASSERT_EQ(dc.code, 0) << dc.err;
+  EXPECT_NE(dc.out.find("# trace, Raspblock packets\n"), std::string::npos) << dc.out;
+  const auto go = dc.out.find(" > Rocker x=0 y=10 z=0\n");
+  const auto stop = dc.out.find(" > Rocker x=0 y=0 z=0\n");
+  ASSERT_NE(go, std::string::npos) << dc.out;
+  ASSERT_NE(stop, std::string::npos) << dc.out;
+  // "t=S.SSSSSS > ...": the stop leaves exactly 1 s after the drive on the manual clock.
+  const auto time_before = [&](std::size_t at) {
+    const std::size_t line = dc.out.rfind("t=", at);
+    return std::stod(dc.out.substr(line + 2, at - line - 2));
+  };
+  EXPECT_NEAR(time_before(stop) - time_before(go), 1.0, 1e-6);
+}
+
 // `seqc emulate DEVICE ARGS...` in the background; returns its pid and the pty it printed.
 pid_t emulate(const std::vector<std::string>& args, const fs::path& err, std::string& pty) {
   int pipefd[2];

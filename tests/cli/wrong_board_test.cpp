@@ -129,5 +129,24 @@ TEST(WrongBoard, TheRightBoardIsNotAsked) {
             hex("55 55 02 07  55 55 0b 19 00 01 00 01 f4 01 01 d0 07"));
 }
 
+// A show says the same of a performer whose port has the other board, naming the performer,
+// and starts nobody.
+TEST(WrongBoard, AShowPerformerOnTheOtherBoardIsNamedAndNothingStarts) {
+  Bench b;
+  b.files.add("duo.yaml", "show: duo\nperformers:\n  arm: {file: arm.yaml, port: emu:lsc6}\n");
+  b.files.add("arm.yaml", kXarmFile);
+  RunResult r = b.run({"show", "duo.yaml"});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("seqc: error: arm: this is an LSC-6 board; the file is for xarm: use a "
+                       "file with `robot: lsc-6` for this board, or give --port the port the "
+                       "xArm / LSC-16 / LSC-32 is on\n"
+                       "seqc: arm: the board on emu:lsc6 ignores GetBatteryVoltage and answers "
+                       "a DownloadAction with 55 55 02 19: it speaks the LSC-6 dialect\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("seqc: nothing was started\n"), std::string::npos) << r.err;
+  EXPECT_EQ(b.lsc6.stored_count(0), 0);
+}
+
 }  // namespace
 }  // namespace seqc::cli::test
