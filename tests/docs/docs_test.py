@@ -2,7 +2,8 @@
 """What a reader of the documentation meets: every complete choreography shown in README.md and
 docs/ (a ```yaml block with both `robot:` and `sequence:` at the top level) passes `seqc check`,
 every diagnostic shown has its caret under the column it names, and every relative link points
-at a file (and heading) that exists. The examples are checked by one `seqc check` of them all
+at a file (and heading) that exists. The tutorial's xArm files also play live on `emu:xarm`
+at 9600 baud without a late move. The examples are checked by one `seqc check` of them all
 (a process per example is slow under the sanitizers), each judged by its summary line.
 Usage: docs_test.py SEQC REPO_ROOT"""
 import os
@@ -83,6 +84,15 @@ with tempfile.TemporaryDirectory() as tmp:
             if states[path] != "valid":
                 alone = batch.run(seqc, ["check", path], cwd=tmp)
                 problems.append(f"{where}: the example does not check:\n{alone.stderr}")
+    # The tutorial's files are played as its reader plays them: live on the emulated xArm at its
+    # 9600 baud, in emulated time, with no move late (a late move fails the play, exit 1).
+    for path, where in examples:
+        if not where.startswith("docs/tutorial.md:") or "robot: xarm" not in open(path).read():
+            continue
+        blocks += 1
+        played = batch.run(seqc, ["play", path, "--port", "emu:xarm"], cwd=tmp)
+        if played.returncode != 0 or "seqc: played " not in played.stderr:
+            problems.append(f"{where}: does not play on emu:xarm at 9600 baud:\n{played.stderr}")
 for p in problems:
     print("FAIL:", p, file=sys.stderr)
 print(f"docs: {len(pages)} pages, {blocks} examples and diagnostics checked, {links} links "
