@@ -38,10 +38,12 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
   const auto step = static_cast<std::uint32_t>(std::max(1.0, std::floor((f.to - f.from) / 900)));
   const Simulation sim = simulate(program, step, true);
   const std::size_t lanes = sim.columns.size();
-  const double height = kTop + static_cast<double>(lanes) * (kLane + kGap) + kAxis + 12;
+  const double song_lane = options.song != nullptr ? plot::kSongLane + kGap : 0;
+  const double height = kTop + static_cast<double>(lanes) * (kLane + kGap) + song_lane + kAxis + 12;
   const bool pwm = program.robot.profile.rfind("lsc", 0) == 0;
   const std::string unit = pwm ? "us" : "units";
-  const double bottom = kTop + static_cast<double>(lanes) * (kLane + kGap) - kGap;
+  const double lanes_bottom = kTop + static_cast<double>(lanes) * (kLane + kGap) - kGap;
+  const double bottom = lanes_bottom + song_lane;
 
   std::string body = svg::text(12, 20, options.title, "font-size=\"15\" font-weight=\"bold\"");
   body += svg::text(12, 38,
@@ -49,6 +51,8 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
                         num(duration / 1000.0) + " s; dashed: the curve as written, solid: the " +
                         "controller's motion; ticks: actions; shaded: outside the limits",
                     "fill=\"#4b5563\"");
+  // The song under the grid, so its beats can be read against the file's bar lines.
+  if (options.song != nullptr) body += plot::song_lane(*options.song, f, lanes_bottom + kGap);
   body += beat_grid(program.timeline, f, kTop, bottom);
 
   for (std::size_t lane = 0; lane < lanes; ++lane) {

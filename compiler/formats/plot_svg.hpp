@@ -6,7 +6,8 @@
 // departs from the curve it shows; the servo's limits as shaded bands; a tick per action that
 // moves it; the beat and bar grid when the file has a tempo (bar numbers on the axis);
 // sections, `at:` cues and tempo changes as labelled markers; every warning (speed,
-// acceleration, fit) as a marker at its time whose <title> is the message.
+// acceleration, fit) as a marker at its time whose <title> is the message. With a song, its
+// waveform and the beats found in it in a lane under the servos, the bar grid over it.
 //
 // Raspblock: the gimbal and servo outputs over time on the same time axis, each lane with its
 // values (500, 1500, 2500 us), under the same bar grid and markers; and the car's path seen from
@@ -18,14 +19,16 @@
 #include <optional>
 #include <string>
 
+#include "compiler/formats/plot_song.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/program/raspblock_program.hpp"
 
 namespace seqc::backend {
 
 struct PlotOptions {
-  std::string title;              // e.g. the file name
-  std::optional<double> from_ms;  // the time window (default: the whole program)
+  std::string title;               // e.g. the file name
+  const PlotSong* song = nullptr;  // the `music:` song, drawn under the lanes (plot_song.hpp)
+  std::optional<double> from_ms;   // the time window (default: the whole program)
   std::optional<double> to_ms;
 };
 

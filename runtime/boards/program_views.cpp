@@ -1,5 +1,9 @@
 #include "runtime/boards/program_views.hpp"
 
+#include <filesystem>
+
+#include "compiler/music/beat_analysis.hpp"
+
 #include "compiler/formats/raspblock_simulate.hpp"
 
 namespace seqc::boards {
@@ -8,6 +12,27 @@ std::uint64_t length_ms(const compiler::CompileOutput& output) {
   if (const compiler::ServoProgram* p = output.servo_program()) return p->duration_ms();
   if (const compiler::RaspblockProgram* p = output.raspblock_program()) return p->duration_ms;
   return 0;
+}
+
+std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output,
+                                           compiler::SongReader& songs) {
+  const compiler::ServoProgram* program = output.servo_program();
+  if (program == nullptr || !program->timeline.song) return std::nullopt;
+  const compiler::Song& song = *program->timeline.song;
+  Result<compiler::SongSamples> decoded = songs.read(song.file);
+  if (!decoded) return std::nullopt;
+  backend::PlotSong out;
+  out.label = std::filesystem::path(song.file).filename().string();
+  out.sample_rate = decoded->sample_rate;
+  out.downbeat_s = song.downbeat.value() / 1000.0;
+  music::BeatOptions options;
+  options.tempo_hint = song.bpm;
+  if (song.beats_per_bar > 0) options.meter = music::Meter{song.beats_per_bar, 4};
+  if (auto found = music::analyze_beats(decoded->samples, decoded->sample_rate, options)) {
+    out.beats_s = std::move(found->beats_s);
+  }
+  out.samples = std::move(decoded->samples);
+  return out;
 }
 
 std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options) {

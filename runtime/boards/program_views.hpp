@@ -25,6 +25,13 @@ std::uint64_t length_ms(const compiler::CompileOutput& output);
 // The program as a picture (formats/plot_svg); "" without a program.
 std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options);
 
+// The song of a file with `music:` as the plot draws it under the lanes: decoded through
+// `songs`, with the beats found in it (the file's tempo as the hint between half and double
+// readings, its meter given). nullopt without a song or when it cannot be decoded (the check
+// has said why); no beats when none are steady enough to find.
+std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output,
+                                           compiler::SongReader& songs);
+
 // The program as one performer of `seqc preview`'s page (formats/preview_html), on a time axis
 // of `end_ms`; nullopt without a program.
 std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,

@@ -119,7 +119,13 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     } else {
       Compiled c = compile_and_report(ctx, o->file, o->strict, SongCheck::Decode);
       result.code = c.code;
-      if (c.code == ExitCode::Ok) svg = plot_program(c.output, name, o->group, options);
+      if (c.code == ExitCode::Ok) {
+        // A file with `music:` gets its song drawn under the lanes.
+        std::optional<backend::PlotSong> song;
+        if (ctx.songs != nullptr) song = boards::plot_song(c.output, *ctx.songs);
+        options.song = song ? &*song : nullptr;
+        svg = plot_program(c.output, name, o->group, options);
+      }
     }
     if (result.code != ExitCode::Ok) return;
     result.code = write_output(ctx, o->output, svg);
