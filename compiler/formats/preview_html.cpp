@@ -1,6 +1,7 @@
 #include "compiler/formats/preview_html.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <optional>
 
@@ -74,10 +75,40 @@ std::string script_safe(std::string json) {
   return json;
 }
 
+// RFC 4648 base64, for the song's data: URL.
+std::string base64(const std::string& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      v = (v << 8) | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
+std::string audio_mime(const std::string& path) {
+  const auto dot = path.rfind('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "wav") return "audio/wav";
+  if (ext == "flac") return "audio/flac";
+  if (ext == "ogg" || ext == "oga" || ext == "opus") return "audio/ogg";
+  if (ext == "mp3") return "audio/mpeg";
+  return "";
+}
+
 PreviewPart preview_servo_part(const compiler::ServoProgram& program, const std::string& title,
-                               double end_ms) {
+                               double end_ms, const PlotSong* song) {
   const compiler::RobotInfo& robot = program.robot;
   std::string j = "{\"kind\":\"servo\",\"title\":" + json_string(title) +
                   ",\"duration\":" + std::to_string(program.duration_ms()) +
@@ -126,7 +157,9 @@ PreviewPart preview_servo_part(const compiler::ServoProgram& program, const std:
     j += "null";
   }
   j += "," + bars_json(program.timeline, end_ms) + "}";
-  return {j, lanes_for_page(plot_servo_program(program, window(title, end_ms)))};
+  PlotOptions options = window(title, end_ms);
+  options.song = song;
+  return {j, lanes_for_page(plot_servo_program(program, options))};
 }
 
 PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const std::string& title,
@@ -166,7 +199,8 @@ PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const st
 }
 
 std::string preview_page(const std::string& title, const std::vector<std::string>& names,
-                         const std::vector<PreviewPart>& parts, double end_ms) {
+                         const std::vector<PreviewPart>& parts, double end_ms,
+                         const PreviewSong* song) {
   std::string data =
       "{\"title\":" + json_string(title) + ",\"end\":" + num(end_ms) + ",\"show\":" +
       (names.size() > 1 || (!names.empty() && !names[0].empty()) ? "true" : "false") +
@@ -176,7 +210,13 @@ std::string preview_page(const std::string& title, const std::vector<std::string
     part.insert(1, "\"name\":" + json_string(i < names.size() ? names[i] : "") + ",");
     data += (i ? "," : "") + part;
   }
-  data += "]}";
+  data += "]";
+  if (song != nullptr) data += ",\"song\":{\"downbeat\":" + num(song->downbeat_s) + "}";
+  data += "}";
+  const std::string audio = song != nullptr
+                                ? "<audio id=\"song\" preload=\"auto\" src=\"data:" + song->mime +
+                                      ";base64," + base64(song->bytes) + "\"></audio>\n"
+                                : "";
   std::string lanes;
   for (const PreviewPart& p : parts) lanes += "<div class=\"lanes\">\n" + p.lanes_svg + "</div>\n";
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -197,9 +237,8 @@ std::string preview_page(const std::string& title, const std::vector<std::string
          "<span id=\"title\">" +
          svg::escape(title) +
          "</span>\n</header>\n"
-         "<div id=\"stage\"></div>\n"
-         "<div id=\"all-lanes\">\n" +
-         lanes +
+         "<div id=\"stage\"></div>\n" +
+         audio + "<div id=\"all-lanes\">\n" + lanes +
          "</div>\n<pre id=\"seqc-state\"></pre>\n"
          "<script id=\"seqc-data\" type=\"application/json\">" +
          script_safe(data) + "</script>\n<script>\n" + preview_script() +

@@ -8,7 +8,12 @@
 // without geometry as a row of dials, one per servo; the car from above on its path with the
 // gimbal's heading. The page plays, pauses, scrubs (click or drag on the lanes or the slider),
 // loops a range of bars and plays at 1/2 and 1/4 speed, all from one time source, `clock()`
-// (seconds), which an <audio> element can later drive.
+// (seconds). A file with `music:` brings its song: the audio is embedded in the page (a data:
+// URL, so nothing is fetched), its waveform and beats are drawn under the lanes, and then the
+// <audio> element (id `song`) IS the time source: the sequence's time is the audio's
+// currentTime minus the downbeat, so the picture follows the audio's clock, not a timer, and
+// seeking, pausing or changing the rate of the page does the same to the audio. Past the
+// audio's end the page goes on on the wall clock.
 //
 // The page's contract, which tests and screenshots rely on:
 //   - `#t=SECONDS` in the URL shows that instant, paused;
@@ -27,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/formats/plot_song.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/program/raspblock_program.hpp"
 
@@ -38,16 +44,30 @@ struct PreviewPart {
   std::string lanes_svg;
 };
 
-// `title` names the part; `end_ms` is the page's time axis (a show's longest performer).
+// The song the page plays: the audio file's bytes as they are on disk, its MIME type
+// (audio_mime) and where the sequence's time 0 falls in it.
+struct PreviewSong {
+  std::string bytes;
+  std::string mime;
+  double downbeat_s = 0;
+};
+
+// The type a browser needs for an audio file, by its extension (.wav audio/wav, .flac
+// audio/flac, .ogg and .opus audio/ogg, .mp3 audio/mpeg); "" for any other.
+std::string audio_mime(const std::string& path);
+
+// `title` names the part; `end_ms` is the page's time axis (a show's longest performer);
+// `song`, when given, is drawn under the lanes as `seqc plot` draws it.
 PreviewPart preview_servo_part(const compiler::ServoProgram& program, const std::string& title,
-                               double end_ms);
+                               double end_ms, const PlotSong* song = nullptr);
 PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const std::string& title,
                              double end_ms);
 
 // The whole page. `names` (one per part) label a show's performers in `seqc-state`; a single
 // file passes one part and an empty name.
 std::string preview_page(const std::string& title, const std::vector<std::string>& names,
-                         const std::vector<PreviewPart>& parts, double end_ms);
+                         const std::vector<PreviewPart>& parts, double end_ms,
+                         const PreviewSong* song = nullptr);
 
 // The page's script and style (preview_script.cpp).
 const std::string& preview_script();

@@ -46,14 +46,27 @@ std::string plot(const compiler::CompileOutput& output, const backend::PlotOptio
 }
 
 std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
-                                                 const std::string& title, double end_ms) {
+                                                 const std::string& title, double end_ms,
+                                                 const backend::PlotSong* song) {
   if (const compiler::ServoProgram* p = output.servo_program()) {
-    return backend::preview_servo_part(*p, title, end_ms);
+    return backend::preview_servo_part(*p, title, end_ms, song);
   }
   if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
     return backend::preview_car_part(*p, title, end_ms);
   }
   return std::nullopt;
+}
+
+std::optional<backend::PreviewSong> preview_song(const compiler::CompileOutput& output,
+                                                 compiler::FileReader& files) {
+  const compiler::ServoProgram* program = output.servo_program();
+  if (program == nullptr || !program->timeline.song) return std::nullopt;
+  const compiler::Song& song = *program->timeline.song;
+  const std::string mime = backend::audio_mime(song.file);
+  if (mime.empty()) return std::nullopt;
+  Result<std::string> bytes = files.read(song.file);
+  if (!bytes) return std::nullopt;
+  return backend::PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
 }
 
 Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare) {

@@ -33,9 +33,15 @@ std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output
                                            compiler::SongReader& songs);
 
 // The program as one performer of `seqc preview`'s page (formats/preview_html), on a time axis
-// of `end_ms`; nullopt without a program.
+// of `end_ms`, with `song` (plot_song) under its lanes when given; nullopt without a program.
 std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
-                                                 const std::string& title, double end_ms);
+                                                 const std::string& title, double end_ms,
+                                                 const backend::PlotSong* song = nullptr);
+
+// The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
+// type a browser plays; nullopt without a song, when it cannot be read or is of another type.
+std::optional<backend::PreviewSong> preview_song(const compiler::CompileOutput& output,
+                                                 compiler::FileReader& files);
 
 struct Simulated {
   bool ok = false;  // false: no program of a kind that can be simulated

@@ -3,6 +3,7 @@
 // (compiler/formats/preview_html.hpp). Without -o the page goes to stdout.
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,8 +78,13 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
       if (c.code == ExitCode::Ok) {
         const double end = static_cast<double>(boards::length_ms(c.output));
         const std::string title = part_title(c.output, name, o->group);
-        if (auto part = boards::preview_part(c.output, title, end)) {
-          html = backend::preview_page(title, {""}, {std::move(*part)}, end);
+        // A file with `music:` brings its song: drawn under the lanes and played with the page.
+        std::optional<backend::PlotSong> picture;
+        if (ctx.songs != nullptr) picture = boards::plot_song(c.output, *ctx.songs);
+        const std::optional<backend::PreviewSong> song = boards::preview_song(c.output, ctx.files);
+        if (auto part = boards::preview_part(c.output, title, end, picture ? &*picture : nullptr)) {
+          html =
+              backend::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
         }
       }
     }
