@@ -22,6 +22,12 @@ struct CompileOptions {
   // Decodes a `music:` song to check the dance against it (docs/music.md); null: no check, so
   // commands that only need the program do not decode audio.
   SongReader* songs = nullptr;
+  // The board's clock is this many parts per million fast (slow when negative), as
+  // `seqc calibrate clock` measures it: a stored group's action times are pre-scaled so that it
+  // lasts the intended time on the host's clock. Every action boundary on the absolute timeline
+  // is multiplied by (1 + ppm / 1e6) and then rounded, once (docs/music.md, "Long songs").
+  // Only stored servo groups are scaled: a streamed program is timed by the host.
+  std::int32_t clock_ppm = 0;
 };
 
 struct CompileOutput {

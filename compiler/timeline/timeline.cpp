@@ -78,6 +78,31 @@ void Timeline::add(std::size_t servo, const Segment& s) {
                             static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
 }
 
+Timeline Timeline::stretched(std::int64_t num, std::int64_t den) const {
+  Timeline out = *this;
+  const double n = static_cast<double>(num);
+  const double d = static_cast<double>(den);
+  const auto scale = [&](Instant t) {
+    Instant r;
+    r.ms = t.ms * n / d;
+    return r;
+  };
+  for (Span& span : out.spans_) {
+    span.start = scale(span.start);
+    span.end = scale(span.end);
+  }
+  for (std::vector<Piece>& pieces : out.servos_) {
+    for (Piece& p : pieces) {
+      p.slope_from = static_cast<float>(static_cast<double>(p.slope_from) * d / n);
+      p.slope_to = static_cast<float>(static_cast<double>(p.slope_to) * d / n);
+    }
+  }
+  for (TimelineMarker& m : out.markers) m.at = m.at * ExactMs::ratio(num, den);
+  for (TimelineWarning& w : out.warnings) w.at_ms = w.at_ms * n / d;
+  out.end = end * ExactMs::ratio(num, den);
+  return out;
+}
+
 Segment Timeline::segment(std::size_t servo, std::size_t i) const {
   const Piece& p = servos_[servo][i];
   const Span& span = spans_[p.span];

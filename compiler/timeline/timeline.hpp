@@ -82,6 +82,12 @@ class Timeline {
   std::optional<std::size_t> index_at(std::size_t servo, double t_ms) const;
   // The intended position of `servo` at t, or nullopt while it is still unknown.
   std::optional<double> value(std::size_t servo, double t_ms) const;
+  // The same motion on a clock running num/den as fast: every instant (segments, markers,
+  // warnings, the end) multiplied by num/den, Hermite slopes divided by it. An instant of whole
+  // milliseconds times whole num and den is computed exactly (the product is below 2^53), so
+  // a boundary that lands on a half rounds as the exact value does. The tempo map and song
+  // stay as they are (they are the music's, read for pictures).
+  Timeline stretched(std::int64_t num, std::int64_t den) const;
 
   std::vector<TimelineMarker> markers;
   std::vector<TimelineWarning> warnings;

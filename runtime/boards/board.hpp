@@ -58,6 +58,13 @@ struct StopOutcome : Outcome {
   std::optional<std::uint8_t> group;  // the group the board said it stopped
 };
 
+// One timed run of a stored group (seqc calibrate clock): the host time between the board's
+// notice that the group started and its notice that it finished, on the line's clock. Both
+// notices are frames of one length on one line, so the line's delay cancels out.
+struct TimedRun : Outcome {
+  io::Duration lasted{0};
+};
+
 struct Plan {
   std::uint8_t group = 0;
   std::size_t actions = 0;
@@ -117,6 +124,10 @@ struct Board {
   // After run_frame was written: did the board start the group?
   RunOutcome (*confirm_run)(const Line&, std::uint8_t group, std::uint16_t times) = nullptr;
   std::string_view run_note;  // LSC-6: "the LSC-6 accepts a run before looking at the group: …"
+  // Runs `group` once and times it from its start notice to its finish notice (TimedRun),
+  // waiting at most `longest` (plus the line's timeout) for the end; null: the board does not
+  // announce both, so its clock cannot be measured.
+  TimedRun (*time_run)(const Line&, std::uint8_t group, io::Duration longest) = nullptr;
   Bytes (*stop_frame)() = nullptr;
   StopOutcome (*stop)(const Line&) = nullptr;
   // nullopt: every group.

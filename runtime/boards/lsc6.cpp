@@ -132,6 +132,51 @@ RunOutcome confirm_run(const Line& line, std::uint8_t /*group*/, std::uint16_t /
   return out;
 }
 
+// A wait for a notice the board owes (time_run): a timeout is no reply, not a failed read.
+Outcome notice_failure(const upload::Lsc6Wait& w, std::string request, std::string awaiting) {
+  Outcome out = wait_failure(w, std::move(request), std::move(awaiting));
+  if (w.status == upload::WaitStatus::Timeout) out.failure = Failure::NoReply;
+  return out;
+}
+
+// Run is answered (55 55 02 06) as the group starts and a counted run's end announced
+// (55 55 02 07): two 4-byte frames on one line, so the time between them is the run's length on
+// the board's clock. A copy that sends either not cannot be timed (NoReply).
+TimedRun time_run(const Line& line, std::uint8_t group, io::Duration longest) {
+  upload::Lsc6Link link(line.transport, line.clock, line.interrupted);
+  TimedRun out;
+  upload::WaitStatus drained = upload::WaitStatus::Timeout;
+  (void)link.drain(drained);
+  if (link.interrupted()) {
+    out.failure = Failure::Interrupted;
+    out.request = "Run";
+    return out;
+  }
+  if (auto sent = link.send(lsc6::Request{lsc6::Run{group, 1}}); !sent) {
+    out.failure = Failure::SendFailed;
+    out.request = "Run";
+    out.detail = sent.error().message;
+    return out;
+  }
+  const upload::Lsc6Wait started = link.wait_for(
+      [](const lsc6::Reply& r) { return std::holds_alternative<lsc6::RunAccepted>(r); },
+      line.clock.now() + line.timeout);
+  if (!started.ok()) {
+    static_cast<Outcome&>(out) = notice_failure(started, "Run", "the run's answer");
+    return out;
+  }
+  const io::TimePoint from = line.clock.now();
+  const upload::Lsc6Wait finished = link.wait_for(
+      [](const lsc6::Reply& r) { return std::holds_alternative<lsc6::GroupFinished>(r); },
+      from + longest + line.timeout);
+  if (!finished.ok()) {
+    static_cast<Outcome&>(out) = notice_failure(finished, "Run", "the end-of-run notice");
+    return out;
+  }
+  out.lasted = line.clock.now() - from;
+  return out;
+}
+
 Bytes stop_frame() { return lsc6::encode_serial(lsc6::Request{lsc6::Stop{}}).value(); }
 
 Outcome send(const Line& line, const lsc6::Request& request, std::string what) {
@@ -242,6 +287,7 @@ const Board kLsc6Board = {
     .run_note =
         "the LSC-6 accepts a run before looking at the group: an empty group, or a run "
         "of another group while one plays, does nothing",
+    .time_run = time_run,
     .stop_frame = stop_frame,
     .stop = stop,
     .erase = erase,

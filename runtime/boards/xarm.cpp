@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -168,6 +169,74 @@ RunOutcome confirm_run(const Line& line, std::uint8_t group, std::uint16_t times
   return out;
 }
 
+// The link's wait, as a failure of the run being timed.
+void fail_wait(const upload::WaitResult& r, const std::string& request, const std::string& awaiting,
+               Outcome& out) {
+  out.request = request;
+  out.awaiting = awaiting;
+  out.detail = r.message;
+  switch (r.status) {
+    case upload::WaitStatus::Matched:
+      return;
+    case upload::WaitStatus::Timeout:
+      out.failure = Failure::NoReply;
+      return;
+    case upload::WaitStatus::HangUp:
+      out.failure = Failure::HangUp;
+      return;
+    case upload::WaitStatus::Interrupted:
+      out.failure = Failure::Interrupted;
+      return;
+    case upload::WaitStatus::Error:
+      out.failure = Failure::ReadFailed;
+      return;
+  }
+}
+
+// GroupStarted is sent as the first action starts and GroupFinished as the last one ends
+// (docs/protocol/servo-controller.md): both are 7-byte frames, so the time between their
+// arrivals is the run's length on the controller's clock, read on the host's.
+TimedRun time_run(const Line& line, std::uint8_t group, io::Duration longest) {
+  upload::ControllerLink link(line.transport, line.clock, line.interrupted);
+  TimedRun out;
+  const lsc::Request run{lsc::GroupRun{group, 1}};
+  const std::string request = lsc::describe(run);
+  link.drain([](const lsc::Reply&) {});
+  if (link.interrupted()) {
+    out.failure = Failure::Interrupted;
+    out.request = request;
+    return out;
+  }
+  if (auto sent = link.send(run); !sent) {
+    out.failure = Failure::SendFailed;
+    out.request = request;
+    out.detail = sent.error().message;
+    return out;
+  }
+  auto notice = [&](auto* type) {
+    using T = std::remove_pointer_t<decltype(type)>;
+    return [group](const lsc::Reply& r) {
+      const auto* n = std::get_if<T>(&r);
+      return n != nullptr && n->group == group ? upload::Verdict::Take : upload::Verdict::Skip;
+    };
+  };
+  auto started = link.wait_for(notice(static_cast<lsc::GroupStarted*>(nullptr)),
+                               line.clock.now() + line.timeout);
+  if (!started.ok()) {
+    fail_wait(started, request, "the group-started notice", out);
+    return out;
+  }
+  const io::TimePoint from = line.clock.now();
+  auto finished = link.wait_for(notice(static_cast<lsc::GroupFinished*>(nullptr)),
+                                from + longest + line.timeout);
+  if (!finished.ok()) {
+    fail_wait(finished, request, "the group-finished notice", out);
+    return out;
+  }
+  out.lasted = line.clock.now() - from;
+  return out;
+}
+
 Bytes stop_frame() { return lsc::encode_serial(lsc::Request{lsc::GroupStop{}}).value(); }
 
 StopOutcome stop(const Line& line) {
@@ -287,6 +356,7 @@ const Board kXarmBoard = {
     .run_frame = run_frame,
     .confirm_run = confirm_run,
     .run_note = "",
+    .time_run = time_run,
     .stop_frame = stop_frame,
     .stop = stop,
     .erase = erase,

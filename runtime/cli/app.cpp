@@ -82,6 +82,7 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_offset_command(app, ctx, outcome);
   add_bus_info_command(app, ctx, outcome);
   add_upload_command(app, ctx, outcome);
+  add_calibrate_command(app, ctx, outcome);
   add_import_command(app, ctx, outcome);
   add_export_command(app, ctx, outcome);
   add_teach_command(app, ctx, outcome);

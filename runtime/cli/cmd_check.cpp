@@ -12,6 +12,7 @@
 #include "compiler/frontend/source/units.hpp"
 #include "compiler/show.hpp"
 #include "runtime/cli/check_formats.hpp"
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
@@ -30,7 +31,8 @@ struct Unit {
   std::size_t performers = 0;
 };
 
-std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict) {
+std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
+                           std::int32_t clock_ppm) {
   std::vector<Unit> out;
   const std::string shown = given == "-" ? kStdinName : given;
   if (given != "-") {
@@ -55,7 +57,7 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict) 
       return out;
     }
   }
-  Unit u{shown, shown, compile_quietly(ctx, given, strict, SongCheck::Decode), false, 0};
+  Unit u{shown, shown, compile_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm), false, 0};
   out.push_back(std::move(u));
   return out;
 }
@@ -98,6 +100,7 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::vector<std::string> files;
     bool strict = false;
     std::string format = "text";
+    ClockScaleOptions clock;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("check", "Check choreography (or show) files for mistakes");
@@ -106,10 +109,16 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--format", opts->format,
                   "text (default), json (an array of diagnostics) or sarif (SARIF 2.1.0)")
       ->check(CLI::IsMember({"text", "json", "sarif"}));
+  add_clock_options(*cmd, opts->clock);
   cmd->callback([&ctx, &result, opts] {
+    std::int32_t ppm = 0;
+    if (const ExitCode e = resolve_clock_ppm(ctx, opts->clock, ppm); e != ExitCode::Ok) {
+      result.code = e;
+      return;
+    }
     std::vector<Unit> units;
     for (const std::string& given : opts->files) {
-      for (Unit& u : units_of(ctx, given, opts->strict)) units.push_back(std::move(u));
+      for (Unit& u : units_of(ctx, given, opts->strict, ppm)) units.push_back(std::move(u));
     }
     bool invalid = false;
     bool unreadable = false;

@@ -5,6 +5,7 @@
 
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/dry_run.hpp"
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/disk.hpp"
@@ -51,6 +52,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string emit = "hex";
     std::string output;
     bool strict = false;
+    ClockScaleOptions clock;
     bool dry_run = false;
   };
   auto opts = std::make_shared<Options>();
@@ -68,11 +70,17 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("-o,--output", opts->output,
                   "Write here instead of stdout (only on success; - is stdout)");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
+  add_clock_options(*cmd, opts->clock);
   cmd->add_flag("--dry-run", opts->dry_run,
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
                 "commented hex; `seqc decode -` reads it back");
   cmd->callback([&ctx, &result, opts] {
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
+    std::int32_t ppm = 0;
+    if (const ExitCode e = resolve_clock_ppm(ctx, opts->clock, ppm); e != ExitCode::Ok) {
+      result.code = e;
+      return;
+    }
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, ppm);
     result.code = c.code;
     if (!c.output.program) return;
     ExitCode failed = ExitCode::Ok;

@@ -7,6 +7,7 @@
 #include "compiler/formats/d6a.hpp"
 #include "compiler/formats/d6a_import.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -71,6 +72,7 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string output;
     int group = 0;
     bool strict = false;
+    ClockScaleOptions clock;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -83,8 +85,14 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "it only names the default output, groupN.d6a, when FILE is -")
       ->check(CLI::Range(0, 254));
   cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
+  add_clock_options(*cmd, o->clock);
   cmd->callback([&ctx, &result, o] {
-    Compiled c = compile_and_report(ctx, o->file, o->strict);
+    std::int32_t ppm = 0;
+    if (const ExitCode e = resolve_clock_ppm(ctx, o->clock, ppm); e != ExitCode::Ok) {
+      result.code = e;
+      return;
+    }
+    Compiled c = compile_and_report(ctx, o->file, o->strict, SongCheck::Skip, ppm);
     result.code = c.code;
     if (c.code != ExitCode::Ok) return;
     const compiler::ServoProgram* program = c.output.servo_program();

@@ -1,11 +1,14 @@
 // seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force]] [--dry-run]
-//                  [--trace FILE] [--strict] [--retries N]
+//                  [--trace FILE] [--strict] [--retries N] [--clock-ppm N] [--rig FILE]
+//                  [--resync BARS]
 // Compiles FILE, stores it in an action group of the board the file is for (runtime/boards)
 // and, with --run, starts it. An invalid file sends nothing and opens no port.
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -13,10 +16,13 @@
 #include "runtime/boards/dry_run.hpp"
 #include "runtime/boards/first_move.hpp"
 #include "runtime/boards/ports.hpp"
+#include "runtime/boards/resync_run.hpp"
 #include "runtime/cli/board_text.hpp"
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
+#include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
 
@@ -35,6 +41,8 @@ struct UploadArgs {
   bool strict = false;
   int retries = 4;
   bool force = false;  // start even if a first move is too fast from where the servos are
+  ClockScaleOptions clock;
+  unsigned resync = 0;  // bars a piece; 0 = one group
 };
 
 // Why the upload failed, and what was done to leave the group in a known state.
@@ -63,8 +71,80 @@ void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResul
   if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
 }
 
+// --resync's pieces, or why the file cannot be cut (said on ctx.err): before any port opens.
+std::optional<std::vector<backend::ResyncPiece>> resync_pieces(
+    Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output, std::int32_t ppm) {
+  auto pieces = backend::split_at_bars(*output.servo_program(), a.resync, ppm);
+  if (!pieces) {
+    ctx.err << "seqc: error: " << a.file << ": " << pieces.error().message << "\n";
+    return std::nullopt;
+  }
+  const std::size_t last = static_cast<std::size_t>(a.group) + pieces->size() - 1;
+  if (last > 254) {
+    ctx.err << "seqc: error: " << a.file << ": " << plural(pieces->size(), "piece") << " of "
+            << a.resync << (a.resync == 1 ? " bar" : " bars") << " need groups " << a.group << "-"
+            << last << "; groups go up to 254 (give a lower --group or more bars)\n";
+    return std::nullopt;
+  }
+  return std::move(pieces).value();
+}
+
+// --resync: the pieces stored one group each, then started by the computer at their bar lines.
+ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output,
+                    const boards::Board& board, const std::vector<backend::ResyncPiece>& pieces,
+                    const boards::Line& line, upload::UploadObserver* progress,
+                    upload::ProgressPrinter& printer, const upload::UploadOptions& options,
+                    const std::optional<boards::FirstMoveTooFast>& too_fast) {
+  const std::size_t last = static_cast<std::size_t>(a.group) + pieces.size() - 1;
+  const boards::ResyncRun r = boards::store_and_start(
+      board, line, output, pieces, static_cast<std::uint8_t>(a.group), options, progress);
+  printer.finish();
+  if (!r.stored()) {
+    const upload::UploadResult& failed = r.uploads.back();
+    ctx.err << "seqc: error: piece " << r.uploads.size() << " (group "
+            << a.group + static_cast<int>(r.uploads.size()) - 1 << "): " << failed.message << "\n";
+    return failed.status == upload::UploadStatus::BadPlan ? ExitCode::InvalidInput
+                                                          : exit_code_for(failed.status);
+  }
+  if (r.run_refused && too_fast) {
+    ctx.err << "seqc: error: " << first_move_text(*too_fast) << "; groups " << a.group << "-"
+            << last << " are stored but were not started\n";
+    return ExitCode::InvalidInput;
+  }
+  if (r.play.end == player::PlayEnd::Interrupted) {
+    ctx.err << "seqc: interrupted after starting " << plural(r.play.sent, "piece") << "\n";
+    return ExitCode::Interrupted;
+  }
+  if (r.play.end == player::PlayEnd::WriteFailed) {
+    ctx.err << "seqc: error: " << r.play.error << "\n";
+    return ExitCode::DeviceFailure;
+  }
+  if (ctx.verbosity < 0) return ExitCode::Ok;
+  io::Duration latest{0};
+  for (const io::Duration& l : r.play.lateness) latest = std::max(latest, l);
+  ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
+          << (a.resync == 1 ? " bar" : " bars") << " in groups " << a.group << "-" << last
+          << " and started each at its bar line (the latest " << io::ms_text(latest, 1)
+          << " late)\n";
+  if (ctx.verbosity > 0) {
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      ctx.err << "  group " << a.group + static_cast<int>(k) << ": "
+              << plural(pieces[k].keyframes.size(), "action") << " from "
+              << io::seconds_text(r.starts[k].at) << "\n";
+    }
+  }
+  return ExitCode::Ok;
+}
+
 ExitCode run_upload(Context& ctx, const UploadArgs& a) {
-  Compiled c = compile_and_report(ctx, a.file, a.strict);
+  if (a.resync > 0 && (!a.run || a.dry_run)) {
+    ctx.err << "seqc: error: --resync needs --run (the computer starts each piece) and no "
+               "--dry-run\n";
+    return ExitCode::Usage;
+  }
+  std::int32_t ppm = 0;
+  if (const ExitCode e = resolve_clock_ppm(ctx, a.clock, ppm); e != ExitCode::Ok) return e;
+  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, ppm);
   if (c.code != ExitCode::Ok) return c.code;
   if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
   const boards::Board& board = boards::board_for(c.output);
@@ -75,6 +155,11 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     return ExitCode::InvalidInput;
   }
   const boards::Plan& plan = *planned;
+  std::optional<std::vector<backend::ResyncPiece>> pieces;
+  if (a.resync > 0) {
+    pieces = resync_pieces(ctx, a, c.output, ppm);
+    if (!pieces) return ExitCode::InvalidInput;
+  }
   upload::UploadOptions options;
   options.group = group;
   options.retries = a.retries;
@@ -140,10 +225,14 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
   if (ctx.verbosity > 0) {
-    ctx.err << "upload: " << plural(plan.actions, "action") << " into group " << a.group << " on "
+    ctx.err << "upload: " << plural(plan.actions, "action") << " into group " << a.group
+            << (pieces ? " and on, " + plural(pieces->size(), "piece") : std::string()) << " on "
             << transport->describe() << " (" << board.name << " dialect)\n";
   }
   const boards::Line line{*transport, clock, ctx.interrupted};
+  if (pieces)
+    return run_resync(ctx, a, c.output, board, *pieces, line, &progress, progress, options,
+                      too_fast);
   const upload::UploadResult r = boards::upload(board, line, plan, options, &progress);
   progress.finish();
 
@@ -197,9 +286,16 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
       cmd->add_option("--times", a->times, "With --run: how many times to play it (1-65535)")
           ->check(CLI::Range(1, 65535))
           ->needs(run);
-  cmd->add_flag("--forever", a->forever, "With --run: play it until stopped")
+  CLI::Option* forever = cmd->add_flag("--forever", a->forever, "With --run: play it until stopped")
+                             ->needs(run)
+                             ->excludes(times);
+  cmd->add_option("--resync", a->resync,
+                  "With --run: cut the dance every BARS bars into groups --group, --group + 1, "
+                  "... and start each at its bar line from the computer")
+      ->check(CLI::Range(1, 10000))
       ->needs(run)
-      ->excludes(times);
+      ->excludes(times)
+      ->excludes(forever);
   cmd->add_flag("--force", a->force,
                 "With --run: start even if a first move is too fast from where the servos are")
       ->needs(run);
@@ -207,6 +303,7 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--trace", a->trace,
                   "Write every byte sent and received, with times, to this file (docs/trace.md)");
   cmd->add_flag("--strict", a->strict, "Treat warnings as errors");
+  add_clock_options(*cmd, a->clock);
   cmd->add_option("--retries", a->retries,
                   "Re-sends of one frame before giving up (0-20, default 4)")
       ->check(CLI::Range(0, 20));

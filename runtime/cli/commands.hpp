@@ -40,6 +40,8 @@ void add_servo_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_offset_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_bus_info_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_upload_command(CLI::App& app, Context& ctx, Outcome& result);
+// `seqc calibrate clock`: the board's clock against the computer's (cmd_calibrate.cpp).
+void add_calibrate_command(CLI::App& app, Context& ctx, Outcome& result);
 // Hiwonder .d6a action files (cmd_d6a.cpp).
 void add_import_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_export_command(CLI::App& app, Context& ctx, Outcome& result);

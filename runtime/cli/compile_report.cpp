@@ -24,9 +24,10 @@ class StdinFirstReader final : public compiler::FileReader {
 };
 
 Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict,
-                      compiler::SongReader* songs) {
+                      compiler::SongReader* songs, std::int32_t clock_ppm) {
   compiler::CompileOptions options{strict};
   options.songs = songs;
+  options.clock_ppm = clock_ppm;
   Compiled c{compiler::compile_file(path, files, options)};
   if (c.output.read_error) {
     c.code = ExitCode::FileError;
@@ -38,7 +39,8 @@ Compiled compile_from(compiler::FileReader& files, const std::string& path, bool
 
 }  // namespace
 
-Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song) {
+Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
+                         std::int32_t clock_ppm) {
   compiler::SongReader* songs = song == SongCheck::Decode ? ctx.songs : nullptr;
   if (path == "-") {
     std::string text;
@@ -46,17 +48,18 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
       text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
     }
     StdinFirstReader reader(std::move(text), ctx.files);
-    return compile_from(reader, kStdinName, strict, songs);
+    return compile_from(reader, kStdinName, strict, songs, clock_ppm);
   }
-  return compile_from(ctx.files, path, strict, songs);
+  return compile_from(ctx.files, path, strict, songs, clock_ppm);
 }
 
 }  // namespace seqc::cli
 
 namespace seqc::cli {
 
-Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song) {
-  Compiled c = compile_quietly(ctx, path, strict, song);
+Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
+                            std::int32_t clock_ppm) {
+  Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm);
   if (c.output.read_error) {
     ctx.err << "seqc: error: " << *c.output.read_error << "\n";
     return c;

@@ -4,6 +4,7 @@
 // diagnostics and its includes resolve from the current directory.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "compiler/compile.hpp"
@@ -34,11 +35,12 @@ compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path,
 // commands that check (check, compile, simulate, plot) do; the rest need only the program.
 enum class SongCheck { Skip, Decode };
 
-// Compiles without printing anything (for --format json|sarif).
+// Compiles without printing anything (for --format json|sarif). clock_ppm: the board's clock
+// error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
-                         SongCheck song = SongCheck::Skip);
+                         SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
 // Compiles and prints the diagnostics (or the file error) on ctx.err.
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
-                            SongCheck song = SongCheck::Skip);
+                            SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
 
 }  // namespace seqc::cli

@@ -181,9 +181,10 @@ ServeResult serve_raspblock(const ServeOptions& options, io::Clock& clock,
 std::string faults_help() {
   std::string out = "Faults, KEY=VALUE,... e.g. drop=0.01,late=0.02,late-by=400ms\nxarm:";
   for (const FaultKey& k : fault_keys()) {
-    const char* value = k.value == FaultValue::Rate       ? "=P"
-                        : k.value == FaultValue::Duration ? "=TIME"
-                                                          : "=N";
+    const char* value = k.value == FaultValue::Rate         ? "=P"
+                        : k.value == FaultValue::Duration   ? "=TIME"
+                        : k.value == FaultValue::ClockError ? "=ERR"
+                                                            : "=N";
     out += "\n  " + std::string(k.key) + value + ": " + std::string(k.does);
   }
   out += "\nlsc6:";
@@ -192,7 +193,9 @@ std::string faults_help() {
     out += "\n  " + std::string(k.key) + (k.value.empty() ? "" : "=") + std::string(k.value) +
            ": " + std::string(k.does);
   }
-  return out + "\n(P: a rate 0..1 per frame; TIME: ms, s, us or ns)";
+  return out +
+         "\n(P: a rate 0..1 per frame; TIME: ms, s, us or ns; ERR: a percent or ppm, e.g. "
+         "+0.8%, -1%, +120ppm)";
 }
 
 }  // namespace seqc::emu

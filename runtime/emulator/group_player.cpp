@@ -2,12 +2,15 @@
 
 #include <algorithm>
 
+#include "runtime/emulator/board_clock.hpp"
+
 namespace seqc::emu {
 
 io::Duration GroupPlayer::scaled(std::uint16_t ms) const {
   const std::int64_t pct = s_ && s_->percent > 0 ? s_->percent : 100;
   const std::int64_t ns = static_cast<std::int64_t>(ms) * 1000000 * 100 / pct;
-  return std::max(io::Duration{ns}, io::Duration{std::chrono::milliseconds(1)});
+  return std::max(board_to_host(io::Duration{ns}, clock_ppm_),
+                  io::Duration{std::chrono::milliseconds(1)});
 }
 
 void GroupPlayer::start(std::uint8_t group, std::uint16_t times,

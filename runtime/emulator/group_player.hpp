@@ -1,7 +1,9 @@
 // Plays a stored action group in emulated time: each action moves its servos to their targets
 // over the action's time, scaled by the group's speed percentage (200 = twice as fast). A run
 // of `times` loops ends with a GroupFinished notification at the moment the last action ends;
-// times = 0 loops until stopped (no GroupFinished).
+// times = 0 loops until stopped (no GroupFinished). Action times are the controller's own
+// milliseconds: on a clock `clock_ppm` fast they last that much less host time
+// (board_clock.hpp).
 #pragma once
 
 #include <cstddef>
@@ -23,6 +25,8 @@ struct Notification {
 
 class GroupPlayer {
  public:
+  explicit GroupPlayer(std::int32_t clock_ppm = 0) : clock_ppm_(clock_ppm) {}
+
   // Starts playing `actions` (non-empty) at `at`, replacing whatever was playing.
   void start(std::uint8_t group, std::uint16_t times, std::vector<lsc::GroupAction> actions,
              std::uint16_t percent, io::TimePoint at);
@@ -57,6 +61,7 @@ class GroupPlayer {
     io::TimePoint action_end{0};
     bool issued = false;
   };
+  std::int32_t clock_ppm_ = 0;
   std::optional<State> s_;
 };
 

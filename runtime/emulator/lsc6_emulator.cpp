@@ -4,6 +4,8 @@
 #include <charconv>
 #include <string>
 
+#include "runtime/emulator/board_clock.hpp"
+
 namespace seqc::emu {
 namespace {
 
@@ -28,6 +30,9 @@ constexpr Lsc6OptionKey kOptionKeys[] = {
     {"no-run-reply", "", "Run is never answered (some firmware copies)"},
     {"no-finish", "", "the end of a counted run is never announced (some firmware copies)"},
     {"seed", "N", "seed of drop (1)"},
+    {"clock", "ERR",
+     "the board's clock is this fast or slow (+0.8%, -1%, +120ppm): its actions and moves "
+     "take that much less or more time"},
     {"baud", "N", "the line's rate", false},
 };
 
@@ -49,7 +54,9 @@ Status apply_lsc6_options(std::string_view spec, Lsc6Config& config) {
     };
     const bool known = std::any_of(std::begin(kOptionKeys), std::end(kOptionKeys),
                                    [&](const Lsc6OptionKey& k) { return k.key == key; });
-    if (!known) return bad("unknown; expected drop=P, seed=N, baud=N, no-run-reply or no-finish");
+    if (!known) {
+      return bad("unknown; expected drop=P, seed=N, clock=ERR, baud=N, no-run-reply or no-finish");
+    }
     if (key == "no-run-reply" && eq == std::string_view::npos) {
       config.run_reply = false;
     } else if (key == "no-finish" && eq == std::string_view::npos) {
@@ -61,6 +68,10 @@ Status apply_lsc6_options(std::string_view spec, Lsc6Config& config) {
         return bad("expected a fraction 0..1");
       }
       config.drop = p;
+    } else if (key == "clock") {
+      auto ppm = parse_clock_error(value);
+      if (!ppm) return bad(ppm.error().message);
+      config.clock_ppm = *ppm;
     } else if (key == "seed" || key == "baud") {
       std::uint64_t v = 0;
       const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
@@ -74,7 +85,7 @@ Status apply_lsc6_options(std::string_view spec, Lsc6Config& config) {
         config.baud = static_cast<std::uint32_t>(v);
       }
     } else {
-      return bad("unknown; expected drop=P, seed=N, baud=N, no-run-reply or no-finish");
+      return bad("unknown; expected drop=P, seed=N, clock=ERR, baud=N, no-run-reply or no-finish");
     }
   }
   return Ok{};
@@ -233,7 +244,11 @@ void Lsc6Emulator::set_servo(std::uint8_t channel, std::uint16_t pulse, std::uin
   c.from = this->pulse(channel, at);
   c.to = pulse;
   c.start = at;
-  c.duration = ms(t);
+  c.duration = board_ms(t);
+}
+
+io::Duration Lsc6Emulator::board_ms(unsigned v) const {
+  return board_to_host(ms(v), config_.clock_ppm);
 }
 
 std::uint16_t Lsc6Emulator::pulse(std::uint8_t channel, io::TimePoint at) const {
@@ -281,7 +296,7 @@ io::Duration Lsc6Emulator::play_action(io::TimePoint at) {
     set_servo(slot[3 + 3 * i], static_cast<std::uint16_t>(slot[4 + 3 * i] | (slot[5 + 3 * i] << 8)),
               time, at);
   }
-  return std::max(ms(time), kTick);
+  return std::max(board_ms(time), kTick);
 }
 
 // The action that ends at `at` is over: the next one, the next loop, or the end of the run.

@@ -29,7 +29,9 @@
 // with more than 8 servos (erased flash reads 0xff) stops it. A counted run that ends sends
 // 55 55 02 07 (unless finish_notice is off).
 //
-// Faults: drop (a fraction of completed frames lost, as on a noisy line), from a seed.
+// Faults: drop (a fraction of completed frames lost, as on a noisy line), from a seed; clock (the
+// board's oscillator fast or slow: every time it counts, a stored action's or a Move's, lasts
+// that much less or more host time; board_clock.hpp).
 #pragma once
 
 #include <array>
@@ -58,6 +60,7 @@ struct Lsc6Config {
   io::Duration table_write = std::chrono::microseconds(1400);  // 256 bytes: one page program
   double drop = 0.0;                                           // fraction of completed frames lost
   std::uint64_t seed = 1;
+  std::int32_t clock_ppm = 0;  // the board's clock this many ppm fast (slow when negative)
 };
 
 // Every item apply_lsc6_options takes, in the order `seqc emulate --help` lists them: it refuses
@@ -71,7 +74,8 @@ struct Lsc6OptionKey {
 };
 std::span<const Lsc6OptionKey> lsc6_option_keys();
 
-// "drop=0.05,seed=7,no-run-reply,no-finish" (any subset; "" = defaults). Error names the item.
+// "drop=0.05,seed=7,clock=+0.8%,no-run-reply,no-finish" (any subset; "" = defaults). Error names
+// the item.
 Status apply_lsc6_options(std::string_view spec, Lsc6Config& config);
 
 struct Lsc6Received {
@@ -132,6 +136,8 @@ class Lsc6Emulator final : public ControllerDevice {
   void complete_frame(io::TimePoint at);
   io::Duration process(io::TimePoint at);
   void answer(lsc6::Command cmd, io::TimePoint ready);
+  // The host time `ms` of the board's own clock lasts.
+  io::Duration board_ms(unsigned ms) const;
   void set_servo(std::uint8_t channel, std::uint16_t pulse, std::uint16_t time_ms,
                  io::TimePoint at);
   void full_act_run(std::uint8_t group, std::uint16_t times, io::TimePoint at);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compiler/frontend/source/diagnostics.hpp"
+#include "runtime/emulator/board_clock.hpp"
 
 namespace seqc::emu {
 namespace {
@@ -36,6 +37,9 @@ constexpr FaultKey kKeys[] = {
      "firmware's behaviour)"},
     {"split", FaultValue::Rate,
      "a reply reaches the host in two pieces (a USB-serial adapter's latency timer)"},
+    {"clock", FaultValue::ClockError,
+     "the controller's clock is this fast or slow (+0.8%, -1%, +120ppm): stored groups play "
+     "that much quicker or slower"},
 };
 
 std::string unknown_key_message(std::string_view key) {
@@ -177,6 +181,10 @@ Result<XArmFaults> parse_faults(std::string_view spec) {
       auto v = parse_duration(key, value);
       if (!v) return v.error();
       f.back_after = *v;
+    } else if (key == "clock") {
+      auto v = parse_clock_error(value);
+      if (!v) return v.error();
+      f.clock_ppm = *v;
     } else if (key == "reset-at") {
       auto v = parse_unsigned(key, value);
       if (!v) return v.error();
@@ -281,6 +289,7 @@ std::string describe_faults(const XArmFaults& f) {
   }
   if (f.frame_gap.count() > 0) add("frame-gap=" + format_duration(f.frame_gap));
   if (f.split > 0) add("split=" + format_rate(f.split));
+  if (f.clock_ppm != 0) add("clock=" + format_clock_error(f.clock_ppm));
   if (out.empty()) return "none";
   if (f.seed != defaults.seed) add("seed=" + std::to_string(f.seed));
   return out;

@@ -50,6 +50,10 @@ struct XArmFaults {
   // flushes part of a reply when its latency timer runs out (the second piece follows once its
   // bytes are due). Per reply.
   double split = 0;
+  // The controller's oscillator is this many parts per million fast (slow when negative):
+  // stored groups play their action times that much quicker in host time
+  // (runtime/emulator/board_clock.hpp). Not a fault of the link, so not one of any().
+  std::int32_t clock_ppm = 0;
 
   bool any() const;
 };
@@ -57,7 +61,7 @@ struct XArmFaults {
 // Every key parse_faults takes, with its kind of value and what it does, in the order `seqc
 // emulate --help` lists them. parse_faults refuses a key that is not here, and the help is made
 // from this table, so neither can name a fault the other does not know.
-enum class FaultValue { Rate, Duration, Count, Seed };
+enum class FaultValue { Rate, Duration, Count, Seed, ClockError };
 struct FaultKey {
   std::string_view key;
   FaultValue value;
@@ -67,9 +71,10 @@ std::span<const FaultKey> fault_keys();
 
 // Parses "drop=0.01,corrupt=0.01,late=0.01,late-by=400ms,dup=0.01,silent-after=100,
 // hangup-at=500,back-after=2s,reset=0.001,reset-at=300,boot-time=300ms,busy=0.01,
-// busy-for=400ms,frame-gap=20ms,split=0.1,seed=7" (any subset, any order; "" = no faults).
-// Durations take ns, us, ms or s (a bare number is milliseconds). Unknown keys, rates outside 0..1
-// and malformed numbers are errors naming the offending item.
+// busy-for=400ms,frame-gap=20ms,split=0.1,clock=+0.8%,seed=7" (any subset, any order; "" = no
+// faults). Durations take ns, us, ms or s (a bare number is milliseconds); the clock's error a
+// percent or ppm (+0.8%, -1%, +120ppm). Unknown keys, rates outside 0..1 and malformed numbers are
+// errors naming the offending item.
 Result<XArmFaults> parse_faults(std::string_view spec);
 
 // The spec form of `faults` (only non-default items), e.g. "drop=0.05,seed=7"; "none" if none.

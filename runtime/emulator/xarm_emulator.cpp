@@ -27,6 +27,7 @@ XArmEmulator::XArmEmulator(XArmConfig config)
       framer_(config.faults.frame_gap),
       line_(config.baud),
       servos_(servo_config(config)),
+      player_(config.faults.clock_ppm),
       speeds_(kGroupCount + 1, 100) {}
 
 void XArmEmulator::receive(ByteView bytes, io::TimePoint at) {

@@ -186,7 +186,7 @@ TEST(EmulateCommand, UsageErrors) {
   EXPECT_EQ(c.err_text,
             "seqc: error: --faults: unknown fault 'dorp'; did you mean 'drop'? (known: seed, "
             "drop, corrupt, late, late-by, dup, silent-after, hangup-at, back-after, reset, "
-            "reset-at, boot-time, busy, busy-for, frame-gap, split)\n");
+            "reset-at, boot-time, busy, busy-for, frame-gap, split, clock)\n");
   Child r = spawn_seqc({"emulate", "raspblock", "--faults", "drop=0.1"});
   EXPECT_EQ(wait_exit(r), 2);
   EXPECT_EQ(r.err_text,

@@ -24,6 +24,8 @@ std::string sample(FaultValue value) {
       return "3";
     case FaultValue::Seed:
       return "7";
+    case FaultValue::ClockError:
+      return "+0.8%";
   }
   return "";
 }
@@ -53,9 +55,10 @@ TEST(FaultKeys, EveryLsc6KeyParsesAndEveryFaultIsInTheHelp) {
   const std::string help = faults_help();
   for (const Lsc6OptionKey& k : lsc6_option_keys()) {
     SCOPED_TRACE(std::string(k.key));
-    const std::string item = std::string(k.key) + (k.value == "P"   ? "=0.5"
-                                                   : k.value == "N" ? "=9600"
-                                                                    : "");
+    const std::string item = std::string(k.key) + (k.value == "P"     ? "=0.5"
+                                                   : k.value == "N"   ? "=9600"
+                                                   : k.value == "ERR" ? "=-1%"
+                                                                      : "");
     Lsc6Config config;
     auto ok = apply_lsc6_options(item, config);
     EXPECT_TRUE(ok) << ok.error().message;

@@ -34,7 +34,7 @@ TEST(XArmFaultSpec, RejectsMistakes) {
   EXPECT_EQ(parse_faults("dorp=0.1").error().message,
             "unknown fault 'dorp'; did you mean 'drop'? (known: seed, drop, corrupt, late, "
             "late-by, dup, silent-after, hangup-at, back-after, reset, reset-at, boot-time, "
-            "busy, busy-for, frame-gap, split)");
+            "busy, busy-for, frame-gap, split, clock)");
   EXPECT_EQ(parse_faults("drop=1.5").error().message, "fault 'drop': rate 1.5 is outside 0..1");
   EXPECT_EQ(parse_faults("drop").error().message, "fault 'drop' needs a value (key=value)");
   EXPECT_EQ(parse_faults("late-by=soon").error().message,

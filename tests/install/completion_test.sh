@@ -39,7 +39,7 @@ expect() {
   fi
 }
 
-expect "check compile" seqc c
+expect "calibrate check compile" seqc c
 expect "upload" seqc up
 expect "bus-info" seqc bus
 expect "erase" seqc group e

@@ -21,7 +21,7 @@ expect() {
   got=$(complete_line "$2")
   [ "$got" = "$1" ] || { echo "FAIL: fish '$2': want '$1', got '$got'" >&2; fail=1; }
 }
-expect "check compile" "seqc c"
+expect "calibrate check compile" "seqc c"
 expect "--strict" "seqc check --st"
 expect "json sarif text" "seqc check --format "
 expect "erase" "seqc group e"

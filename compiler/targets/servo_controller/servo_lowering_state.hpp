@@ -33,7 +33,8 @@ namespace seqc::compiler {
 class ServoLowering final : public StepWalker {
  public:
   ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
-  ServoProgram run(const LoadedFile& main);
+  // clock_ppm: CompileOptions::clock_ppm (the actions are fitted to the stretched timeline).
+  ServoProgram run(const LoadedFile& main, std::int32_t clock_ppm = 0);
 
  private:
   // ---- files and the walk's hooks (servo_lowering.cpp) --------------------------------------
@@ -54,6 +55,7 @@ class ServoLowering final : public StepWalker {
   void mirror_step(const YamlNode& step, const YamlNode& body);
   void tolerance_step(const YamlNode& value);
   void finish(ServoProgram& program);
+  std::int32_t clock_ppm_ = 0;
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
   std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);

@@ -1,0 +1,64 @@
+#include "runtime/boards/resync_run.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace seqc::boards {
+
+std::vector<player::ScheduledFrame> resync_starts(const Board& board,
+                                                  const std::vector<backend::ResyncPiece>& pieces,
+                                                  std::uint8_t first_group) {
+  std::vector<player::ScheduledFrame> out;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const auto group = static_cast<std::uint8_t>(first_group + k);
+    Bytes bytes = board.stop_frame != nullptr ? board.stop_frame() : Bytes{};
+    const Bytes run = board.run_frame(group, 1);
+    bytes.insert(bytes.end(), run.begin(), run.end());
+    const auto ns = static_cast<std::int64_t>(std::llround(pieces[k].host_start.value() * 1e6));
+    out.push_back({io::Duration{ns}, std::move(bytes)});
+  }
+  return out;
+}
+
+ResyncRun store_and_start(const Board& board, const Line& line,
+                          const compiler::CompileOutput& output,
+                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                          const upload::UploadOptions& options, upload::UploadObserver* observer) {
+  ResyncRun r;
+  const compiler::ServoProgram* dance = output.servo_program();
+  if (dance == nullptr) return r;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    compiler::CompileOutput one;
+    compiler::ServoProgram program;
+    program.robot = dance->robot;
+    program.keyframes = pieces[k].keyframes;
+    one.program = std::move(program);
+    one.board = output.board;
+    const auto group = static_cast<std::uint8_t>(first_group + k);
+    auto plan = plan_for(board, one, group);
+    if (!plan) {
+      upload::UploadResult failed;
+      failed.status = upload::UploadStatus::BadPlan;
+      failed.message = plan.error().message;
+      r.uploads.push_back(std::move(failed));
+      return r;
+    }
+    upload::UploadOptions piece_options = options;
+    piece_options.group = group;
+    piece_options.run = false;
+    r.uploads.push_back(upload(board, line, *plan, piece_options, observer));
+    if (!r.uploads.back().ok()) return r;
+  }
+  r.starts = resync_starts(board, pieces, first_group);
+  if (options.may_run && !options.may_run(line.transport, line.clock)) {
+    r.run_refused = true;
+    return r;
+  }
+  player::PlayOptions play;
+  play.interrupted = line.interrupted;
+  if (board.stop_frame != nullptr) play.safe_stop = board.stop_frame();
+  r.play = player::play(r.starts, line.transport, line.clock, play);
+  return r;
+}
+
+}  // namespace seqc::boards

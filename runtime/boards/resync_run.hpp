@@ -1,0 +1,43 @@
+// `seqc upload --resync BARS --run`: a dance cut into pieces at bar lines
+// (compiler/targets/servo_controller/resync.hpp), piece k stored in group first_group + k through
+// the board's own uploader, then every piece started by the computer on the line's clock at its
+// host time (runtime/player: absolute deadlines). Each start is the board's stop frame followed by
+// its run frame in one write, so a piece still playing on a slow clock is cut short rather than the
+// next start ignored (the LSC-6 ignores a run of another group while one plays). Returns data only.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "compiler/compile.hpp"
+#include "compiler/targets/servo_controller/resync.hpp"
+#include "runtime/boards/board.hpp"
+#include "runtime/player/player.hpp"
+#include "runtime/upload/uploader.hpp"
+
+namespace seqc::boards {
+
+struct ResyncRun {
+  std::vector<upload::UploadResult> uploads;  // one per piece tried, in order
+  bool stored() const { return !uploads.empty() && uploads.back().ok(); }
+  std::vector<player::ScheduledFrame> starts;  // what was (or would have been) sent, and when
+  player::PlayReport play;                     // set when every piece was stored
+  bool run_refused = false;  // options.may_run said no after storing: nothing was started
+};
+
+// The starts of `pieces` (groups first_group, first_group + 1, ...) as a schedule.
+std::vector<player::ScheduledFrame> resync_starts(const Board& board,
+                                                  const std::vector<backend::ResyncPiece>& pieces,
+                                                  std::uint8_t first_group);
+
+// Requires board.plan, board.upload, board.run_frame. `output` is the compiled dance (its robot
+// is kept for every piece). Stops at the first piece that does not store. Once all are stored,
+// options.may_run (if set) is asked before the first start, as an upload asks it before its run.
+ResyncRun store_and_start(const Board& board, const Line& line,
+                          const compiler::CompileOutput& output,
+                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                          const upload::UploadOptions& options, upload::UploadObserver* observer);
+
+}  // namespace seqc::boards

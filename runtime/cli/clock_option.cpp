@@ -1,0 +1,45 @@
+#include "runtime/cli/clock_option.hpp"
+
+#include <ostream>
+
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "runtime/cli/rig_file.hpp"
+
+namespace seqc::cli {
+
+void add_clock_options(CLI::App& cmd, ClockScaleOptions& options) {
+  cmd.add_option("--clock-ppm", options.clock_ppm,
+                 "The board's clock error in ppm (`seqc calibrate clock`): the stored group's "
+                 "times are pre-scaled so it lasts the intended time");
+  cmd.add_option("--rig", options.rig,
+                 "Rig file (YAML: clock_ppm, audio_offset; docs/music.md); --clock-ppm wins");
+}
+
+ExitCode resolve_clock_ppm(Context& ctx, const ClockScaleOptions& options, std::int32_t& ppm) {
+  ppm = 0;
+  if (!options.rig.empty()) {
+    auto text = ctx.files.read(options.rig);
+    if (!text) {
+      ctx.err << "seqc: error: --rig: " << text.error().message << "\n";
+      return ExitCode::FileError;
+    }
+    compiler::SourceManager sources;
+    compiler::Diagnostics diags;
+    const std::uint32_t file = sources.add(options.rig, *text);
+    const auto rig = parse_rig(sources, file, diags);
+    ctx.err << compiler::render_all(diags, sources, false, ctx.color);
+    if (!rig) return ExitCode::InvalidInput;
+    if (rig->clock_ppm) ppm = *rig->clock_ppm;
+  }
+  if (!options.clock_ppm.empty()) {
+    auto given = parse_clock_ppm(options.clock_ppm);
+    if (!given) {
+      ctx.err << "seqc: error: --clock-ppm: " << given.error().message << "\n";
+      return ExitCode::Usage;
+    }
+    ppm = *given;
+  }
+  return ExitCode::Ok;
+}
+
+}  // namespace seqc::cli

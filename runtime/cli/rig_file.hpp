@@ -1,0 +1,39 @@
+// The rig file (`--rig rig.yaml`, docs/music.md "Long songs: the board's clock"): facts about
+// one robot's hardware that stay true from one song to the next, in a small YAML map:
+//
+//   clock_ppm: +8000      # the board's clock error, as `seqc calibrate clock` prints it
+//   audio_offset: 40ms    # the audio's delay, for the commands that play music
+//
+// Every key is optional. Unknown keys and bad values are errors with the key's location (clang's
+// form, "did you mean" for a misspelt key); all of them are reported in one run. The reading is
+// pure: the caller reads the file and renders the diagnostics.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "compiler/frontend/source/diagnostics.hpp"
+#include "compiler/frontend/source/source.hpp"
+#include "runtime/io/clock.hpp"
+#include "runtime/protocol/result.hpp"
+
+namespace seqc::cli {
+
+struct Rig {
+  std::optional<std::int32_t> clock_ppm;
+  std::optional<io::Duration> audio_offset;  // may be negative
+};
+
+// The largest clock error a rig file or --clock-ppm takes, either way (20 %).
+inline constexpr std::int32_t kMaxRigClockPpm = 200000;
+
+// "+8000", "-10000", "0": a whole number of ppm within kMaxRigClockPpm.
+Result<std::int32_t> parse_clock_ppm(std::string_view text);
+
+// Reads file `file` of `sources` as a rig file; nullopt when it has errors (in `diags`).
+std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32_t file,
+                             compiler::Diagnostics& diags);
+
+}  // namespace seqc::cli

@@ -1,0 +1,191 @@
+// CompileOptions::clock_ppm: a board whose clock is e fast gets action times pre-scaled by
+// (1 + e), every boundary multiplied on the absolute timeline and rounded once, so a long song
+// neither drifts nor gains rounding error action by action; and --resync's pieces at bar lines
+// (backend::split_at_bars). Boundaries are worked out by hand.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "compiler/targets/servo_controller/resync.hpp"
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using testing::MemoryFiles;
+using testing::program_of;
+
+CompileOutput compile_with_clock(const std::string& text, std::int32_t ppm) {
+  MemoryFiles files;
+  files.files["main.yaml"] = text;
+  CompileOptions options;
+  options.clock_ppm = ppm;
+  return compile_file("main.yaml", files, options);
+}
+
+// 240 one-second moves, back and forth.
+const char* kSecondMoves = R"(robot: xarm
+sequence:
+  - repeat: 120
+    do:
+      - move: {base: 600}
+        time: 1s
+      - move: {base: 400}
+        time: 1s
+)";
+
+TEST(ClockScaling, OneSecondActionsOnAFastClockLast1008Ms) {
+  const auto out = compile_with_clock(kSecondMoves, 8000);
+  const ServoProgram& p = program_of(out);
+  ASSERT_EQ(p.keyframes.size(), 240u);
+  for (std::size_t k = 0; k < p.keyframes.size(); ++k) {
+    SCOPED_TRACE(k);
+    // Boundary k at k x 1000 x 1.008 = k x 1008 ms.
+    EXPECT_EQ(p.keyframes[k].start_ms, k * 1008);
+    EXPECT_EQ(p.keyframes[k].time_ms, 1008);
+  }
+  EXPECT_EQ(p.keyframes[1].targets, (std::vector<lsc::ServoTarget>{{6, 400}}));
+  EXPECT_EQ(p.duration_ms(), 241920u);  // 240 x 1008
+}
+
+TEST(ClockScaling, ASlowClockShortensAndNoClockLeavesTimesAlone) {
+  const auto slow_out = compile_with_clock(kSecondMoves, -10000);
+  const ServoProgram& slow = program_of(slow_out);
+  ASSERT_EQ(slow.keyframes.size(), 240u);
+  EXPECT_EQ(slow.keyframes[239].start_ms, 239u * 990);  // 1000 x 0.99
+  EXPECT_EQ(slow.duration_ms(), 237600u);               // 240 x 990
+  const auto exact_out = compile_with_clock(kSecondMoves, 0);
+  const ServoProgram& exact = program_of(exact_out);
+  EXPECT_EQ(exact.keyframes[239].start_ms, 239000u);
+  EXPECT_EQ(exact.duration_ms(), 240000u);
+}
+
+TEST(ClockScaling, BoundariesAreRoundedOnceNotActionByAction) {
+  // A beat at 110 bpm is 6000/11 ms; on a clock +8000 ppm fast 6048/11 = 549.8181... ms.
+  // Boundary k is round(k x 6048 / 11): 550, 1100 (1099.64), 1649 (1649.45), 2199 (2199.27),
+  // 2749 (2749.09), ... 6048 at beat 11. Rounding each action (550 ms) would end at 6050.
+  const auto out = compile_with_clock(R"(robot: xarm
+tempo: 110
+sequence:
+  - repeat: 11
+    do:
+      - move: {base: 600}
+        time: 1b
+      - move: {base: 400}
+        time: 1b
+)",
+                                      8000);
+  const ServoProgram& p = program_of(out);
+  ASSERT_EQ(p.keyframes.size(), 22u);
+  EXPECT_EQ(p.keyframes[1].start_ms, 550u);
+  EXPECT_EQ(p.keyframes[2].start_ms, 1100u);
+  EXPECT_EQ(p.keyframes[3].start_ms, 1649u);
+  EXPECT_EQ(p.keyframes[4].start_ms, 2199u);
+  EXPECT_EQ(p.keyframes[5].start_ms, 2749u);
+  EXPECT_EQ(p.keyframes[2].time_ms, 549);  // 1649 - 1100
+  EXPECT_EQ(p.keyframes[11].start_ms, 6048u);
+  EXPECT_EQ(p.duration_ms(), 12096u);  // 22 beats: 2 x 6048
+}
+
+TEST(ClockScaling, CurvesStretchWithTheirEnds) {
+  // A straight second, then an eased move of 2 s: it ends at 3000 x 1.008 = 3024 ms on a clock
+  // +8000 ppm fast, and the servo is where it was meant to be at the end.
+  const auto out = compile_with_clock(R"(robot: xarm
+sequence:
+  - move: {base: 500}
+    time: 1s
+  - move: {base: 900}
+    time: 2s
+    ease: in-out
+)",
+                                      8000);
+  const ServoProgram& p = program_of(out);
+  ASSERT_FALSE(p.keyframes.empty());
+  const Keyframe& last = p.keyframes.back();
+  EXPECT_EQ(p.keyframes[0].time_ms, 1008);
+  EXPECT_GT(p.keyframes.size(), 2u) << "the curve takes several actions";
+  EXPECT_EQ(last.start_ms + last.time_ms, 3024u);
+  EXPECT_EQ(last.targets, (std::vector<lsc::ServoTarget>{{6, 900}}));
+  // The program's timeline stays the author's (plots and simulate read it in host time).
+  EXPECT_EQ(p.timeline.end, ExactMs(3000));
+}
+
+// ---- --resync: pieces at bar lines ------------------------------------------------------------
+
+// 24 one-beat moves at 120 bpm in 4/4: a bar is 2000 ms, the dance 12 s.
+const char* kSixBars = R"(robot: xarm
+tempo: 120
+meter: 4/4
+sequence:
+  - repeat: 12
+    do:
+      - move: {base: 600}
+        time: 1b
+      - move: {base: 400}
+        time: 1b
+)";
+
+TEST(Resync, EveryTwoBarsAPiece) {
+  const auto out = compile_with_clock(kSixBars, 0);
+  auto pieces = backend::split_at_bars(program_of(out), 2);
+  ASSERT_TRUE(pieces) << pieces.error().message;
+  // Bar lines 2 and 4 at 4000 and 8000 ms; bar 6 is the end, so three pieces of 8 actions.
+  ASSERT_EQ(pieces->size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_EQ((*pieces)[k].host_start, ExactMs(static_cast<std::int64_t>(k) * 4000));
+    EXPECT_EQ((*pieces)[k].board_start_ms, k * 4000);
+    ASSERT_EQ((*pieces)[k].keyframes.size(), 8u);
+    EXPECT_EQ((*pieces)[k].keyframes[0].start_ms, 0u);
+    EXPECT_EQ((*pieces)[k].keyframes[1].start_ms, 500u);
+  }
+}
+
+TEST(Resync, APreScaledPieceStartsAtItsHostTime) {
+  // At +8000 ppm bar 2 falls at 4000 x 1.008 = 4032 ms of the board's clock, which the host
+  // reaches at 4032 / 1.008 = 4000 ms.
+  const auto out = compile_with_clock(kSixBars, 8000);
+  auto pieces = backend::split_at_bars(program_of(out), 2, 8000);
+  ASSERT_TRUE(pieces) << pieces.error().message;
+  ASSERT_EQ(pieces->size(), 3u);
+  EXPECT_EQ((*pieces)[1].board_start_ms, 4032u);
+  EXPECT_EQ((*pieces)[1].host_start, ExactMs(4000));
+  EXPECT_EQ((*pieces)[2].board_start_ms, 8064u);
+  EXPECT_EQ((*pieces)[2].host_start, ExactMs(8000));
+}
+
+TEST(Resync, APieceStartsAtTheBoundaryNearestItsBarLine) {
+  // Three-beat moves (1500 ms) against 2000 ms bars: boundaries at 0, 1500, 3000, 4500. Bar 1
+  // (2000 ms) is nearest 1500, bar 2 (4000 ms) nearest 4500; bar 3 is the end (6000 ms).
+  const auto out = compile_with_clock(R"(robot: xarm
+tempo: 120
+meter: 4/4
+sequence:
+  - repeat: 2
+    do:
+      - move: {base: 600}
+        time: 3b
+      - move: {base: 400}
+        time: 3b
+)",
+                                      0);
+  auto pieces = backend::split_at_bars(program_of(out), 1);
+  ASSERT_TRUE(pieces) << pieces.error().message;
+  ASSERT_EQ(pieces->size(), 3u);
+  EXPECT_EQ((*pieces)[0].keyframes.size(), 1u);
+  EXPECT_EQ((*pieces)[1].host_start, ExactMs(1500));
+  EXPECT_EQ((*pieces)[1].keyframes.size(), 2u);
+  EXPECT_EQ((*pieces)[2].host_start, ExactMs(4500));
+  EXPECT_EQ((*pieces)[2].keyframes.size(), 1u);
+}
+
+TEST(Resync, NeedsBarLines) {
+  const auto out = compile_with_clock(kSecondMoves, 0);
+  auto pieces = backend::split_at_bars(program_of(out), 2);
+  ASSERT_FALSE(pieces);
+  EXPECT_EQ(pieces.error().message,
+            "--resync needs bar lines: give the file a tempo and a meter (or a music: block)");
+}
+
+}  // namespace
+}  // namespace seqc::compiler
