@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <map>
 #include <sstream>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "runtime/cli/app.hpp"
 #include "runtime/cli/context.hpp"
+#include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/protocol/bytes.hpp"
@@ -37,6 +39,36 @@ struct RunResult {
   int code = -1;
   std::string out;
   std::string err;
+};
+
+// Both storing dialects at once, on one ManualClock: `--port emu:xarm` is an xArm-family
+// controller and `--port emu:lsc6` an LSC-6 board, each with default settings; `Files` is how
+// the commands read files (MemoryFiles, or the disk for the project's examples).
+template <class Files>
+struct TwoBoards {
+  io::ManualClock clock;
+  emu::XArmEmulator xarm{emu::XArmConfig{}};
+  emu::Lsc6Emulator lsc6{emu::Lsc6Config{}};
+  Files files;
+  std::atomic<bool> interrupted{false};
+
+  RunResult run(std::vector<std::string> args) {
+    args.insert(args.begin(), "seqc");
+    std::vector<const char*> argv;
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    std::ostringstream out;
+    std::ostringstream err;
+    Context ctx{out, err, clock, files};
+    ctx.interrupted = &interrupted;
+    ctx.hooks.xarm = &xarm;
+    ctx.hooks.lsc6 = &lsc6;
+    ctx.hooks.emulated_clock = &clock;
+    RunResult r;
+    r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+  }
 };
 
 class DeviceHarness {

@@ -18,43 +18,14 @@
 #include "runtime/io/clock.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/protocol/bytes.hpp"
+#include "tests/cli/device_test_util.hpp"
 
 namespace seqc::cli::test {
 namespace {
 
-struct Ran {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
 // One fresh board of each kind, with nothing stored and no faults: a busy or dropped frame would
 // mean a re-send, which the dry run rightly does not show.
-struct Bench {
-  io::ManualClock clock;
-  emu::XArmEmulator xarm{emu::XArmConfig{}};
-  emu::Lsc6Emulator lsc6{emu::Lsc6Config{}};
-  io::DiskFileReader files;
-  std::atomic<bool> interrupted{false};
-
-  Ran run(std::vector<std::string> args) {
-    args.insert(args.begin(), "seqc");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out;
-    std::ostringstream err;
-    Context ctx{out, err, clock, files};
-    ctx.interrupted = &interrupted;
-    ctx.hooks.xarm = &xarm;
-    ctx.hooks.lsc6 = &lsc6;
-    ctx.hooks.emulated_clock = &clock;
-    Ran r;
-    r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-  }
-};
+using Bench = TwoBoards<io::DiskFileReader>;
 
 std::string example(const char* name) { return std::string(SEQC_SOURCE_DIR) + "/examples/" + name; }
 
@@ -91,7 +62,7 @@ void expect_one_frame_a_line(const std::string& text) {
 
 TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
   Bench dry;
-  const Ran printed = dry.run({"compile", "--dry-run", example("walk.yaml")});
+  const RunResult printed = dry.run({"compile", "--dry-run", example("walk.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
@@ -100,14 +71,14 @@ TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
   EXPECT_TRUE(dry.xarm.received_bytes().empty());  // the dry run opened no port
 
   Bench live;
-  const Ran sent = live.run({"upload", example("walk.yaml"), "--port", "emu:xarm"});
+  const RunResult sent = live.run({"upload", example("walk.yaml"), "--port", "emu:xarm"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(to_hex(live.xarm.received_bytes()), to_hex(joined(frames)));
 }
 
 TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
   Bench dry;
-  const Ran printed =
+  const RunResult printed =
       dry.run({"upload", "--dry-run", "--run", "--group", "3", example("walk.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
@@ -120,7 +91,7 @@ TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
   EXPECT_EQ(to_hex(frames[36]), "55 55 05 06 03 01 00");
 
   Bench live;
-  const Ran sent =
+  const RunResult sent =
       live.run({"upload", "--run", "--group", "3", example("walk.yaml"), "--port", "emu:xarm"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(live.xarm.playing_group(), std::optional<std::uint8_t>(3));
@@ -129,7 +100,7 @@ TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
 
 TEST(DryRunMatchesUpload, Lsc6CompileDryRunIsWhatUploadSends) {
   Bench dry;
-  const Ran printed = dry.run({"compile", "--dry-run", example("learm.yaml")});
+  const RunResult printed = dry.run({"compile", "--dry-run", example("learm.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
@@ -138,14 +109,14 @@ TEST(DryRunMatchesUpload, Lsc6CompileDryRunIsWhatUploadSends) {
   EXPECT_TRUE(dry.lsc6.received_bytes().empty());
 
   Bench live;
-  const Ran sent = live.run({"upload", example("learm.yaml"), "--port", "emu:lsc6"});
+  const RunResult sent = live.run({"upload", example("learm.yaml"), "--port", "emu:lsc6"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(to_hex(live.lsc6.received_bytes()), to_hex(joined(frames)));
 }
 
 TEST(DryRunMatchesUpload, Lsc6UploadDryRunWithRunIsWhatUploadWithRunSends) {
   Bench dry;
-  const Ran printed =
+  const RunResult printed =
       dry.run({"upload", "--dry-run", "--run", "--times", "2", example("learm.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
@@ -155,7 +126,7 @@ TEST(DryRunMatchesUpload, Lsc6UploadDryRunWithRunIsWhatUploadWithRunSends) {
   EXPECT_EQ(to_hex(frames.back()), "55 55 05 06 00 02 00");
 
   Bench live;
-  const Ran sent =
+  const RunResult sent =
       live.run({"upload", "--run", "--times", "2", example("learm.yaml"), "--port", "emu:lsc6"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(to_hex(live.lsc6.received_bytes()), to_hex(joined(frames)));

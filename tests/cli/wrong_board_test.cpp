@@ -26,31 +26,7 @@ namespace {
 
 using std::chrono::milliseconds;
 
-struct Bench {
-  io::ManualClock clock;
-  emu::XArmEmulator xarm{emu::XArmConfig{}};
-  emu::Lsc6Emulator lsc6{emu::Lsc6Config{}};
-  MemoryFiles files;
-  std::atomic<bool> interrupted{false};
-
-  RunResult run(std::vector<std::string> args) {
-    args.insert(args.begin(), "seqc");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out;
-    std::ostringstream err;
-    Context ctx{out, err, clock, files};
-    ctx.interrupted = &interrupted;
-    ctx.hooks.xarm = &xarm;
-    ctx.hooks.lsc6 = &lsc6;
-    ctx.hooks.emulated_clock = &clock;
-    RunResult r;
-    r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-  }
-};
+using Bench = TwoBoards<MemoryFiles>;
 
 constexpr const char* kXarmFile = R"(name: arm
 robot: xarm
