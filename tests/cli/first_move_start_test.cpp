@@ -75,6 +75,32 @@ TEST(FirstMoveStart, ForceStartsWithoutReading) {
   EXPECT_NE(h.received().find(hex(kRunGroup0)), std::string::npos);
 }
 
+// --resync stores every piece, then reads before starting the first: two bars at 120 bpm in 4/4
+// (2 s each) cut every bar are groups 0 and 1, both stored and neither started.
+TEST(FirstMoveStart, ResyncStoresThePiecesButStartsNoneWhenTheFirstMoveIsTooFast) {
+  DeviceHarness h(base_at(120));
+  h.files.add("bars.yaml", R"(robot: xarm
+tempo: 120
+meter: 4/4
+sequence:
+  - move: {base: 880}
+    time: 400ms
+  - wait: 3600ms
+)");
+  const RunResult r =
+      h.run({"upload", "bars.yaml", "--port", "emu:xarm", "--run", "--resync", "1"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(ends_with(r.err,
+                        "seqc: error: 'base' is at 120; reaching 880 in 0.4 s is 1900 units/s, "
+                        "above its max_speed 1562/s; slow the first move or pass --force; groups "
+                        "0-1 are stored but were not started\n"))
+      << r.err;
+  EXPECT_TRUE(h.emu.stored_group(0).has_value());
+  EXPECT_TRUE(h.emu.stored_group(1).has_value());
+  EXPECT_EQ(h.emu.playing_group(), std::nullopt);
+  EXPECT_TRUE(ends_with(h.received(), hex(kReadBase))) << h.received();
+}
+
 TEST(FirstMoveStart, TheDryRunShowsTheReadBeforeTheRun) {
   DeviceHarness h;
   h.files.add("fast.yaml", kFastFirst);
