@@ -135,12 +135,6 @@ sequence:
     time: 400ms
 )";
 
-emu::XArmConfig base_at(std::uint16_t position) {
-  emu::XArmConfig config;
-  config.initial_positions.push_back({6, position});
-  return config;
-}
-
 TEST(DevicePlay, AFirstMoveTooFastFromWhereTheServoIsIsRefused) {
   DeviceHarness h(base_at(120));
   h.files.add("fast.yaml", kFastFirst);

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runtime/cli/app.hpp"
@@ -41,6 +42,25 @@ struct RunResult {
   std::string err;
 };
 
+// `seqc ARGS` in-process, the way main() runs it, with string streams for stdout and stderr;
+// `prepare` binds the Context to the test's emulators before the command runs.
+template <class Prepare>
+RunResult run_seqc(std::vector<std::string> args, io::Clock& clock, compiler::FileReader& files,
+                   Prepare prepare) {
+  args.insert(args.begin(), "seqc");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out;
+  std::ostringstream err;
+  Context ctx{out, err, clock, files};
+  prepare(ctx);
+  RunResult r;
+  r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
 // Both storing dialects at once, on one ManualClock: `--port emu:xarm` is an xArm-family
 // controller and `--port emu:lsc6` an LSC-6 board, each with default settings; `Files` is how
 // the commands read files (MemoryFiles, or the disk for the project's examples).
@@ -53,44 +73,33 @@ struct TwoBoards {
   std::atomic<bool> interrupted{false};
 
   RunResult run(std::vector<std::string> args) {
-    args.insert(args.begin(), "seqc");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out;
-    std::ostringstream err;
-    Context ctx{out, err, clock, files};
-    ctx.interrupted = &interrupted;
-    ctx.hooks.xarm = &xarm;
-    ctx.hooks.lsc6 = &lsc6;
-    ctx.hooks.emulated_clock = &clock;
-    RunResult r;
-    r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
+    return run_seqc(std::move(args), clock, files, [this](Context& ctx) {
+      ctx.interrupted = &interrupted;
+      ctx.hooks.xarm = &xarm;
+      ctx.hooks.lsc6 = &lsc6;
+      ctx.hooks.emulated_clock = &clock;
+    });
   }
 };
+
+// An xArm emulator whose servo 6 (the base) starts at `position`, for first-move checks.
+inline emu::XArmConfig base_at(std::uint16_t position) {
+  emu::XArmConfig config;
+  config.initial_positions.push_back({6, position});
+  return config;
+}
 
 class DeviceHarness {
  public:
   explicit DeviceHarness(emu::XArmConfig config = {}) : emu(config) {}
 
   RunResult run(std::vector<std::string> args) {
-    args.insert(args.begin(), "seqc");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out;
-    std::ostringstream err;
-    Context ctx{out, err, clock, files};
-    ctx.interrupted = &interrupted;
-    ctx.hooks.xarm = &emu;
-    ctx.hooks.emulated_clock = &clock;
-    ctx.in = in;
-    RunResult r;
-    r.code = cli::run(static_cast<int>(argv.size()), argv.data(), ctx);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
+    return run_seqc(std::move(args), clock, files, [this](Context& ctx) {
+      ctx.interrupted = &interrupted;
+      ctx.hooks.xarm = &emu;
+      ctx.hooks.emulated_clock = &clock;
+      ctx.in = in;
+    });
   }
 
   std::istream* in = nullptr;  // the command's standard input, when it reads one

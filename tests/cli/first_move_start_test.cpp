@@ -27,12 +27,6 @@ constexpr const char* kReadBase = "55 55 04 15 01 06";
 // GroupRun (CMD 0x06) of group 0, once: group 00, times 01 00.
 constexpr const char* kRunGroup0 = "55 55 05 06 00 01 00";
 
-emu::XArmConfig base_at(std::uint16_t position) {
-  emu::XArmConfig config;
-  config.initial_positions.push_back({6, position});
-  return config;
-}
-
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
