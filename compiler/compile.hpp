@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "compiler/arm_geometry.hpp"
+#include "compiler/fitting/fitter.hpp"
 #include "compiler/raspblock_program.hpp"
 #include "compiler/source/diagnostics.hpp"
 #include "compiler/source/source.hpp"
@@ -83,6 +84,9 @@ struct ServoProgram {
   double fit_error = 0;
   std::uint32_t fit_error_at_ms = 0;
   std::string fit_error_servo;
+  // How the profile's controller moves a servo during an action: what fitting kept every
+  // tolerance under, and what `seqc simulate --compare` measures.
+  ControllerModel controller = ControllerModel::StraightLine;
   std::uint64_t duration_ms() const;
 };
 
