@@ -19,11 +19,14 @@
 // of end values each servo can reach; exact for one servo, a small beam of labels for several,
 // on a coarser grid of boundaries where the search would cost more than about the on-curve
 // fit's time). The one with fewer actions is kept, the on-curve one on a tie; where a search
-// stops at a shortfall, the whole stretch is fitted on the curve too and the fewer actions
-// kept, so the free fit never costs an action. No stretch begins with an action that moves no
-// servo unless every fit with the fewest actions needs one. A stretch too long to search in one
-// piece is cut where its servos move least (or at a knot), the cut pinned like a knot, and each
-// part searched alone.
+// stops at a shortfall, the whole stretch is fitted on the curve too and the better kept: one
+// no worse in both actions and worst miss, else (one saves actions, the other misses by less)
+// the one with fewer shortfalls, then fewer actions. The free fit never costs an action except
+// to miss by less where even the shortest actions miss (more misses of no larger size are not
+// worth one), and never misses where the on-curve fit does not. No stretch begins with an action
+// that moves no servo unless every fit with the fewest actions needs one. A stretch too long to
+// search in one piece is cut where its servos move least (or at a knot), the cut pinned like a
+// knot, and each part searched alone.
 //
 // Where even the shortest action cannot meet a tolerance, the result says where and by how
 // much (a shortfall), and the fit goes on with shortest actions.
@@ -41,9 +44,6 @@
 #include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
-
-// The position the controller puts out when the straight line is at `line`.
-double controller_output(ControllerModel model, double line);
 
 struct ServoLimits {
   int min = -1'000'000;

@@ -18,7 +18,8 @@ std::size_t servo_index(const compiler::ServoProgram& program, std::uint8_t id) 
 }
 
 // The controller's motion at whole milliseconds: each action moves its servos in a straight
-// line from where they are to their targets; the servos start at home.
+// line from where they are to their targets (rounded or truncated as the program's controller
+// model says); the servos start at home.
 class Motion {
  public:
   explicit Motion(const compiler::ServoProgram& p) : p_(p), from_(p.robot.servos.size()) {
@@ -38,7 +39,7 @@ class Motion {
       for (const lsc::ServoTarget& x : key.targets) {
         if (servo_index(p_, x.id) != s) continue;
         const double f = static_cast<double>(t - key.start_ms) / key.time_ms;
-        return from_[s] + (x.position - from_[s]) * f;
+        return compiler::controller_output(p_.controller, from_[s] + (x.position - from_[s]) * f);
       }
     }
     return from_[s];
@@ -108,15 +109,17 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
     Simulation::Sample sample;
     sample.time_ms = static_cast<std::uint32_t>(t);
     std::vector<double> now = from;
+    std::vector<double> shown = from;  // what the controller puts out (its model)
     if (k < program.keyframes.size()) {
       const compiler::Keyframe& key = program.keyframes[k];
       const double f = static_cast<double>(t - key.start_ms) / key.time_ms;
       for (const lsc::ServoTarget& target : key.targets) {
         const std::size_t c = column_of(target.id);
         now[c] = from[c] + (target.position - from[c]) * f;
+        shown[c] = compiler::controller_output(program.controller, now[c]);
       }
     }
-    for (double p : now) sample.positions.push_back(static_cast<int>(std::lround(p)));
+    for (double p : shown) sample.positions.push_back(static_cast<int>(std::lround(p)));
     if (sim.with_tip) {
       // From the unrounded positions; a servo the program never moves stays at home.
       sample.tip = arm_points(*program.robot.arm, [&](std::string_view name) {

@@ -1,6 +1,8 @@
 // `seqc simulate`: each servo's position over time as the controller moves it. The model: an
 // action moves every listed servo in a straight line from where it is to its target over the
-// action's time; servos start at their home position (the program cannot know better).
+// action's time, put out as the program's controller model says (the line itself, or rounded or
+// truncated to a whole unit); servos start at their home position (the program cannot know
+// better).
 #pragma once
 
 #include <array>
@@ -37,7 +39,9 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
 std::string to_csv(const Simulation& sim);
 
 // Per servo the program moves: the largest distance between the compiled motion and the
-// intended curve, checked at every millisecond, and the first instant it happens.
+// intended curve, checked at every millisecond, and the first instant it happens. The compiled
+// motion is the program's controller model (ServoProgram::controller): the straight line from
+// target to target, or that line rounded or truncated to a whole unit at every instant.
 struct Difference {
   std::string servo;
   double largest = 0;

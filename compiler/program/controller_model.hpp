@@ -14,4 +14,7 @@ enum class ControllerModel : std::uint8_t {
   Truncates,     // that line truncated to a whole unit (towards zero) at every instant
 };
 
+// The position the controller puts out when the straight line is at `line`.
+double controller_output(ControllerModel model, double line);
+
 }  // namespace seqc::compiler

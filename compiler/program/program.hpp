@@ -16,6 +16,7 @@
 
 #include "compiler/frontend/source/source.hpp"
 #include "compiler/program/arm_geometry.hpp"
+#include "compiler/program/controller_model.hpp"
 #include "compiler/program/raspblock_program.hpp"
 #include "compiler/timeline/timeline.hpp"
 #include "runtime/protocol/lsc_messages.hpp"
@@ -70,6 +71,9 @@ struct ServoProgram {
   double fit_error = 0;
   std::uint32_t fit_error_at_ms = 0;
   std::string fit_error_servo;
+  // How the profile's controller moves a servo during an action: what fitting kept every
+  // tolerance under, and what `seqc simulate --compare` measures.
+  ControllerModel controller = ControllerModel::StraightLine;
   std::uint64_t duration_ms() const;
 };
 

@@ -169,5 +169,43 @@ sequence:
   EXPECT_EQ(odd.samples.back().time_ms, 600u);
 }
 
+// --compare measures the motion the profile's controller makes. The claw is put at 500 (its
+// home, so no motion) for 200 ms, then one action moves it to 510 over 1 s, exactly the intended
+// straight line 500 + (t - 200) / 100. The straight-line controller follows it: 0 off. One that
+// rounds puts out floor(x + 0.5), 0.5 off wherever the line is half-way between units, first at
+// 250 ms (500.5, put out as 501). One that truncates puts out 500 until the line reaches 501,
+// 0.99 off first at 299 ms (500.99) and again every 100 ms after.
+TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
+  auto out = compile_text(
+      "robot: xarm\nsequence:\n  - move: {claw: 500}\n    time: 200ms\n  - move: {claw: 510}\n"
+      "    time: 1s\n");
+  compiler::ServoProgram p = program_of(out);
+  ASSERT_EQ(p.keyframes.size(), 2u);
+  ASSERT_EQ(p.keyframes[1].start_ms, 200u);
+  ASSERT_EQ(p.keyframes[1].time_ms, 1000u);
+  EXPECT_EQ(p.controller, compiler::ControllerModel::StraightLine);  // the xarm profile's
+  struct Expected {
+    compiler::ControllerModel model;
+    double largest;
+    std::uint32_t at_ms;
+  };
+  for (const Expected& e : {Expected{compiler::ControllerModel::StraightLine, 0, 0},
+                            Expected{compiler::ControllerModel::Rounds, 0.5, 250},
+                            Expected{compiler::ControllerModel::Truncates, 0.99, 299}}) {
+    p.controller = e.model;
+    const std::vector<Difference> d = compare_with_intent(p);
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].servo, "claw");
+    EXPECT_NEAR(d[0].largest, e.largest, 1e-9) << static_cast<int>(e.model);
+    EXPECT_EQ(d[0].at_ms, e.at_ms) << static_cast<int>(e.model);
+  }
+  // The CSV shows what the controller puts out: at 250 ms the line is at 500.5, which the
+  // rounding controller puts out as 501 and the truncating one as 500.
+  p.controller = compiler::ControllerModel::Rounds;
+  EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{501});
+  p.controller = compiler::ControllerModel::Truncates;
+  EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{500});
+}
+
 }  // namespace
 }  // namespace seqc::backend

@@ -141,6 +141,7 @@ void ServoLowering::finish(ServoProgram& program) {
               [](const lsc::ServoTarget& x, const lsc::ServoTarget& y) { return x.id < y.id; });
     program.keyframes.push_back(std::move(k));
   }
+  program.controller = fit_options.model;
   program.fit_error = fit.max_error;
   program.fit_error_at_ms = fit.max_error_at_ms;
   program.fit_error_servo =

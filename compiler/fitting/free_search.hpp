@@ -1,0 +1,30 @@
+// The free-end-point searches: the fewest actions through a stretch whose targets between the
+// servos' own knots may be any whole unit within tolerance and limits. For one curved servo the
+// search is exact; for several, a label per boundary holds each servo's set of reachable end
+// values, a small beam of labels that no other dominates is kept, and the boundaries tried may
+// be a coarser grid (joint_grid()) with the work capped (joint_cap()). Both look only for fits
+// with a key below `bound` (the on-curve fit's; kNoKey: any), return an empty incomplete Path
+// when there is none, and give up (Path::gave_up) past their budget.
+#pragma once
+
+#include <cstddef>
+
+#include "compiler/fitting/stretch.hpp"
+
+namespace seqc::compiler::fitting {
+
+Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t first,
+                        std::size_t last, int bound, std::size_t& work);
+
+Path free_joint_search(const Stretch& in, const SearchLimits& lim, std::size_t first,
+                       std::size_t last, int bound, std::size_t grid, std::size_t cap,
+                       std::size_t& work);
+
+// The work the joint search may spend after the on-curve search spent `on`.
+std::size_t joint_cap(std::size_t on);
+
+// Every how many milliseconds the joint search tries a boundary (knots always), from the work
+// the on-curve search spent on [first, last].
+std::size_t joint_grid(const Stretch& in, std::size_t first, std::size_t last, std::size_t on);
+
+}  // namespace seqc::compiler::fitting
