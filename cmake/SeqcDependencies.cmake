@@ -32,6 +32,13 @@ if(NOT SNDFILE_FOUND)
     "seqc needs libsndfile (sndfile), which is missing. On Debian or Ubuntu install it with:\n"
     "  sudo apt-get install libsndfile1-dev")
 endif()
+# Playing a song with the robot (`seqc play --music`; LGPL, linked dynamically).
+pkg_check_modules(PULSE_SIMPLE QUIET IMPORTED_TARGET libpulse-simple libpulse)
+if(NOT PULSE_SIMPLE_FOUND)
+  message(FATAL_ERROR
+    "seqc needs libpulse (libpulse-simple), which is missing. On Debian or Ubuntu install it with:\n"
+    "  sudo apt-get install libpulse-dev")
+endif()
 
 # GoogleTest only for the tests: `-DBUILD_TESTING=OFF` builds the tool without it.
 if(BUILD_TESTING)

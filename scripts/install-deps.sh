@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libyaml-cpp-dev libcli11-dev libfmt-dev libsqlite3-dev libgtest-dev libgmock-dev libhidapi-dev
-  libsndfile1-dev
+  libsndfile1-dev libpulse-dev pulseaudio pulseaudio-utils
   python3 python3-yaml python3-jsonschema
   dpkg-dev file groff-base zsh fish pre-commit git
   chromium python3-pil

@@ -121,6 +121,11 @@ struct Board {
   // session commands (seqc group, servo move, a show's start)
   std::string_view run_name;  // "GroupRun", "Run"
   Bytes (*run_frame)(std::uint8_t group, std::uint16_t times) = nullptr;
+  // From the last byte of its start command (run_frame, or a streamed board's first frame)
+  // arriving to the motion starting: a start timed to a song or to other performers subtracts
+  // it with the command's wire time. 0 where it has not been measured, which today is every
+  // board (docs/music.md).
+  io::Duration start_delay{0};
   // After run_frame was written: did the board start the group?
   RunOutcome (*confirm_run)(const Line&, std::uint8_t group, std::uint16_t times) = nullptr;
   std::string_view run_note;  // LSC-6: "the LSC-6 accepts a run before looking at the group: …"

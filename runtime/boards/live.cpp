@@ -77,6 +77,15 @@ LiveReport play_live(const Board& board, const compiler::CompileOutput& output, 
   if (board.safe_stop != nullptr) options.safe_stop = board.safe_stop();
   options.drain = board.measure_departure;
   options.seconds_per_byte = transport.seconds_per_byte();
+  if (hooks.start) {
+    const std::optional<LiveStart> start = hooks.start(report);
+    if (!start) {
+      report.status = LiveStatus::NotStarted;
+      return report;
+    }
+    options.start_at = start->at;
+    options.early = start->early;
+  }
   options.on_sent = [&](std::size_t i, const player::FrameTiming&) {
     if (hooks.sent) hooks.sent(i, report.frames[i].at);
   };

@@ -27,7 +27,8 @@ enum class LiveStatus {
   FrameTooBig,
   LateSchedule,
   NoBoard,
-  BadProgram
+  BadProgram,
+  NotStarted  // LiveHooks::start refused (it said why): nothing was sent
 };
 
 // The program step a live frame comes from, for the messages that name a move: its start and
@@ -51,10 +52,21 @@ struct LiveReport {
   std::string error;  // BadProgram
 };
 
+// When the first frame is due instead of when the play begins (a song's downbeat as heard), and
+// how long before their times the frames are written (the first frame's wire time and the
+// board's start delay), so the first finishes arriving then.
+struct LiveStart {
+  io::TimePoint at{0};
+  io::Duration early{0};
+};
+
 struct LiveHooks {
   std::function<void(const LiveReport&)> checked;   // after the schedule check, before the probe
   std::function<void(const LiveReport&)> starting;  // after the probe, before the first frame
   std::function<void(std::size_t index, io::Duration at)> sent;
+  // Asked just before the first frame, with the frames made; unset: start at once; nullopt:
+  // do not start (NotStarted).
+  std::function<std::optional<LiveStart>(const LiveReport&)> start;
 };
 
 LiveReport play_live(const Board& board, const compiler::CompileOutput& output, const Line& line,

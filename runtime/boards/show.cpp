@@ -1,12 +1,16 @@
 #include "runtime/boards/show.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <utility>
+
+#include "runtime/audio/playback_sync.hpp"
 
 namespace seqc::boards {
 namespace {
 
-// A short lead so the first deadline is in the future for every performer.
+// A short lead, beyond the earliest write, so the first deadline is in the future for every
+// performer.
 constexpr io::Duration kLead = std::chrono::milliseconds(20);
 
 bool stores(const Board& board) { return board.run_frame != nullptr; }
@@ -14,8 +18,10 @@ bool stores(const Board& board) { return board.run_frame != nullptr; }
 }  // namespace
 
 ShowReport perform(std::vector<Performer>& performers, io::Clock& clock,
-                   const std::atomic<bool>* interrupted, io::Duration reply_timeout) {
+                   const std::atomic<bool>* interrupted, io::Duration reply_timeout,
+                   std::optional<io::TimePoint> start_at) {
   ShowReport report;
+  report.performers.resize(performers.size());
   std::vector<player::Track> tracks;
   for (Performer& p : performers) {
     player::Track track;
@@ -37,15 +43,24 @@ ShowReport perform(std::vector<Performer>& performers, io::Clock& clock,
       track.frames = std::move(frames).value();
       if (p.board->safe_stop != nullptr) track.safe_stop = p.board->safe_stop();
     }
+    PerformerReport& mine = report.performers[tracks.size()];
+    if (!track.frames.empty()) {
+      mine.wire =
+          audio::wire_time(track.frames.front().bytes.size(), track.transport->seconds_per_byte());
+    }
+    mine.delay = p.board->start_delay;
+    track.early = mine.wire + mine.delay;
     tracks.push_back(std::move(track));
   }
 
   player::PlayOptions options;
   options.interrupted = interrupted;
-  options.lead = kLead;
+  io::Duration earliest{0};
+  for (const player::Track& t : tracks) earliest = std::max(earliest, t.early);
+  options.lead = kLead + earliest;
+  options.start_at = start_at;
   report.play = player::play(tracks, clock, options);
 
-  report.performers.resize(performers.size());
   for (std::size_t i = 0; i < performers.size(); ++i) {
     if (i < report.play.tracks.size()) report.performers[i].track = report.play.tracks[i];
   }

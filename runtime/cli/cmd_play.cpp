@@ -1,7 +1,8 @@
-// seqc play FILE [--port P] [--strict] [--allow-late] [--realtime]: streams a compiled sequence
-// to a board live, each frame sent at its time on the host's clock, nothing stored: the
-// Raspblock car board, or a servo controller without storing a group (servo_play.hpp has the
-// words, runtime/boards/live.hpp the order of the steps).
+// seqc play FILE [--port P] [--strict] [--allow-late] [--realtime] [--music [--audio-offset MS]]:
+// streams a compiled sequence to a board live, each frame sent at its time on the host's clock,
+// nothing stored: the Raspblock car board, or a servo controller without storing a group
+// (servo_play.hpp has the words, runtime/boards/live.hpp the order of the steps). With --music
+// the song of the file's `music:` block plays with it, the first frame on its downbeat.
 #include <memory>
 #include <ostream>
 #include <string>
@@ -43,6 +44,7 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--allow-late", opts->allow_late,
                 "Servo controller: play a schedule the link cannot keep (moves leave late)");
   add_trace_option(*cmd, opts->trace);
+  add_music_options(*cmd, opts->music);
   cmd->add_flag("--force", opts->force,
                 "Servo controller: start even when a servo's first move, from where it reports "
                 "it is, is faster than its max_speed");

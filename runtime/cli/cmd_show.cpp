@@ -5,9 +5,13 @@
 // read). Then everything starts at one instant
 // (boards::perform): one player, one track per performer, a stored performer's run command at
 // t = 0 and a streamed performer's frames at their times, so "one instant" is one deadline, not
-// several programs' guesses. The report gives each performer's start (how long after the common
-// deadline its first frame went out) and, for a stored one, whether the board said it started;
-// the skew between performers; and the lateness of streamed frames.
+// several programs' guesses; each is written early by its first frame's wire time, so it
+// finishes arriving then (boards/show.hpp). The report gives each performer's start (how long
+// after the common deadline its first frame finished arriving, plus its board's start delay)
+// and, for a stored one, whether the board said it started; the skew between performers; and
+// the lateness of streamed frames. With --music the performers' song (every performer with a
+// `music:` block must name the same song and downbeat) plays, and the common deadline is its
+// downbeat as heard (music_play.hpp).
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -23,6 +27,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
+#include "runtime/cli/music_play.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
@@ -112,21 +117,26 @@ bool upload_stage(Context& ctx, Stage& stage) {
   return true;
 }
 
-// "GroupRun 2 sent 0.00 ms after the start; the controller reported it started", or a streamed
-// performer's packets and their lateness.
+// "GroupRun 2 arrived 0.00 ms after the start (written 7.29 ms before it, 7.29 ms on the
+// wire); the controller reported it started", or a streamed performer's packets and their
+// lateness.
 std::string start_text(const Stage& s, const boards::PerformerReport& p) {
-  const std::string first = io::ms_text(p.track.first.value_or(io::Duration{0}), 2);
+  const io::Duration written = p.track.first.value_or(io::Duration{0});
+  const std::string first = written < io::Duration{0} ? io::ms_text(-written, 2) + " before it"
+                                                      : io::ms_text(written, 2) + " after it";
+  const std::string started = io::ms_text(p.started().value_or(io::Duration{0}), 2);
   if (!p.run) {
     const player::LatenessSummary late = player::summarize(p.track.lateness);
-    return std::to_string(p.track.sent) + " packets sent, the first " + first +
+    return std::to_string(p.track.sent) + " packets sent, the first arriving " + started +
            " after the start; lateness p50 " + io::ms_text(late.p50, 2) + ", p99 " +
            io::ms_text(late.p99, 2) + ", max " + io::ms_text(late.max, 2);
   }
   const std::string said = p.run->started == boards::Confirmation::Reported
                                ? std::string(s.board->called) + " reported it started"
                                : std::string(s.board->unconfirmed_run);
-  return std::string(s.board->run_name) + " " + std::to_string(s.performer->group) + " sent " +
-         first + " after the start; " + said;
+  return std::string(s.board->run_name) + " " + std::to_string(s.performer->group) + " arrived " +
+         started + " after the start (written " + first + ", " + io::ms_text(p.wire, 2) +
+         " on the wire); " + said;
 }
 
 ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const boards::ShowReport& r) {
@@ -149,7 +159,7 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
   io::Duration earliest = io::Duration::max(), latest = io::Duration::min();
   for (std::size_t i = 0; i < stages.size(); ++i) {
     const boards::PerformerReport& p = r.performers[i];
-    const io::Duration first = p.track.first.value_or(io::Duration{0});
+    const io::Duration first = p.started().value_or(io::Duration{0});
     earliest = std::min(earliest, first);
     latest = std::max(latest, first);
     if (p.run && !p.run->ok()) {
@@ -183,11 +193,47 @@ bool first_moves_safe(Context& ctx, std::vector<Stage>& stages) {
   return true;
 }
 
+// The performers' one song; nullptr (said) when they name different ones or none.
+const compiler::Song* show_song(Context& ctx, const compiler::ShowOutput& show) {
+  const compiler::Song* song = nullptr;
+  const compiler::Performer* owner = nullptr;
+  for (const compiler::Performer& p : show.performers) {
+    const compiler::Song* mine = nullptr;
+    if (const compiler::ServoProgram* s = p.output.servo_program(); s && s->timeline.song) {
+      mine = &*s->timeline.song;
+    } else if (const compiler::RaspblockProgram* r = p.output.raspblock_program();
+               r && r->timeline.song) {
+      mine = &*r->timeline.song;
+    }
+    if (mine == nullptr) continue;
+    if (song == nullptr) {
+      song = mine;
+      owner = &p;
+    } else if (mine->file != song->file || !(mine->downbeat == song->downbeat)) {
+      ctx.err << "seqc: error: --music: performers '" << owner->name << "' and '" << p.name
+              << "' dance to different songs or downbeats (" << song->file << ", " << mine->file
+              << "); a show plays one song\n";
+      return nullptr;
+    }
+  }
+  if (song == nullptr) {
+    ctx.err << "seqc: error: --music: no performer of show " << show.name
+            << " has a `music:` block, so there is no song to play (docs/music.md)\n";
+  }
+  return song;
+}
+
 ExitCode run_show(Context& ctx, const std::string& path, bool strict,
-                  const std::string& trace_prefix, bool force) {
+                  const std::string& trace_prefix, bool force, const MusicArgs& music_args) {
   ExitCode loaded = ExitCode::Ok;
   compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
+  MusicSession music;
+  if (music_args.music) {
+    const compiler::Song* song = show_song(ctx, show);
+    if (song == nullptr) return ExitCode::Usage;
+    if (const ExitCode e = open_music(ctx, *song, music_args, music); e != ExitCode::Ok) return e;
+  }
 
   std::vector<Stage> stages(show.performers.size());
   for (std::size_t i = 0; i < stages.size(); ++i) {
@@ -216,9 +262,37 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
     performers.push_back(
         {p.name, s.board, &*s.port, &p.output, static_cast<std::uint8_t>(p.group)});
   }
+  std::optional<io::TimePoint> start_at;
+  std::optional<audio::StartPlan> plan;
+  if (music_args.music) {
+    if (!start_music(ctx, music)) {
+      ctx.err << "seqc: nothing was started\n";
+      return ExitCode::PortUnavailable;
+    }
+    // The performers' wire times are the show's; the song's instant is the common start.
+    plan = audio::plan_start(
+        music.started->clock,
+        boards::start_timing(*stages[0].board, *music.started, music.audio_offset, 0, 0));
+    start_at = plan->downbeat_heard;
+  }
   const boards::ShowReport report =
-      boards::perform(performers, ctx.clock, ctx.interrupted, kReplyTimeout);
-  return report_show(ctx, stages, report);
+      boards::perform(performers, ctx.clock, ctx.interrupted, kReplyTimeout, start_at);
+  if (plan && report.error.empty() && ctx.verbosity >= 0) {
+    ctx.err << "seqc: music: downbeat heard at +"
+            << io::seconds_text(plan->downbeat_heard - plan->audio_started) << " (output latency "
+            << io::ms_text(plan->latency, 1) << "); each performer's start below is from it\n";
+  }
+  const ExitCode code = report_show(ctx, stages, report);
+  if (!music_args.music) return code;
+  if (code != ExitCode::Ok) return code;  // the song stops with `music`
+  if (!play_song_out(ctx, music, ctx.clock)) {
+    for (Stage& s : stages) {
+      if (s.board->stop_frame != nullptr) (void)s.port->transport->write(s.board->stop_frame());
+    }
+    ctx.err << "seqc: interrupted: stopped the song and every performer\n";
+    return ExitCode::Interrupted;
+  }
+  return ExitCode::Ok;
 }
 
 }  // namespace
@@ -229,6 +303,7 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
     bool strict = false;
     std::string trace;
     bool force = false;
+    MusicArgs music;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -241,8 +316,10 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--force", o->force,
                 "Start even if a performer's first move is too fast from where its "
                 "servos are");
-  cmd->callback(
-      [&ctx, &result, o] { result.code = run_show(ctx, o->file, o->strict, o->trace, o->force); });
+  add_music_options(*cmd, o->music);
+  cmd->callback([&ctx, &result, o] {
+    result.code = run_show(ctx, o->file, o->strict, o->trace, o->force, o->music);
+  });
 }
 
 }  // namespace seqc::cli

@@ -1,8 +1,12 @@
-// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force]] [--dry-run]
-//                  [--trace FILE] [--strict] [--retries N] [--clock-ppm N] [--rig FILE]
-//                  [--resync BARS]
+// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force] [--music
+//                  [--audio-offset MS]]] [--dry-run] [--trace FILE] [--strict] [--retries N]
+//                  [--clock-ppm N] [--rig FILE] [--resync BARS]
 // Compiles FILE, stores it in an action group of the board the file is for (runtime/boards)
-// and, with --run, starts it. An invalid file sends nothing and opens no port.
+// and, with --run, starts it. An invalid file sends nothing and opens no port. With --music the
+// song of its `music:` block is decoded and the sound server reached before the port is opened;
+// the group is stored without starting, then the song is played and the group started on its
+// downbeat as heard (music_play.hpp); seqc stays until the song ends, and Ctrl-C stops the
+// group and the song together.
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -22,6 +26,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
+#include "runtime/cli/music_play.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
@@ -43,6 +48,7 @@ struct UploadArgs {
   bool force = false;  // start even if a first move is too fast from where the servos are
   ClockScaleOptions clock;
   unsigned resync = 0;  // bars a piece; 0 = one group
+  MusicArgs music;
 };
 
 // Why the upload failed, and what was done to leave the group in a known state.
@@ -136,10 +142,59 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
   return ExitCode::Ok;
 }
 
+// The stored group started on the song's downbeat, then the song played to its end.
+ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& board,
+                      const boards::Line& line, MusicSession& music) {
+  if (!start_music(ctx, music)) {
+    ctx.err << "seqc: group " << a.group << " is stored but was not started\n";
+    return ExitCode::PortUnavailable;
+  }
+  const auto times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
+  const boards::MusicRunReport r = boards::run_on_downbeat(
+      board, line, static_cast<std::uint8_t>(a.group), times, *music.started, music.audio_offset);
+  switch (r.play.end) {
+    case player::PlayEnd::Completed:
+      break;
+    case player::PlayEnd::Interrupted:
+      music.output->stop();
+      ctx.err << "seqc: interrupted before group " << a.group
+              << " started: stopped the song; group " << a.group << " is stored\n";
+      return ExitCode::Interrupted;
+    case player::PlayEnd::WriteFailed:
+      music.output->stop();
+      ctx.err << "seqc: error: " << r.play.error << "; stopped the song\n";
+      return ExitCode::DeviceFailure;
+  }
+  if (ctx.verbosity >= 0) {
+    ctx.err << "seqc: " << sync_text(music, r.start, std::string(board.run_name)) << "\n";
+  }
+  if (r.run && !r.run->ok()) {
+    const BoardError e =
+        outcome_text(*r.run, line.transport.describe(), line.timeout, board.called);
+    ctx.err << "seqc: error: " << e.message << "\n";
+    music.output->stop();
+    return e.code;
+  }
+  if (ctx.verbosity >= 0) {
+    const std::string said = r.run && r.run->started == boards::Confirmation::Reported
+                                 ? std::string(board.called) + " reported it started"
+                                 : std::string(board.unconfirmed_run);
+    ctx.err << "seqc: group " << a.group << " started on the downbeat; " << said
+            << "; playing the song to its end (Ctrl-C stops both)\n";
+  }
+  if (!play_song_out(ctx, music, ctx.clock)) {
+    // The same stop the player sends after an early end.
+    if (board.stop_frame != nullptr) (void)line.transport.write(board.stop_frame());
+    ctx.err << "seqc: interrupted: stopped the song and group " << a.group << "\n";
+    return ExitCode::Interrupted;
+  }
+  return ExitCode::Ok;
+}
+
 ExitCode run_upload(Context& ctx, const UploadArgs& a) {
-  if (a.resync > 0 && (!a.run || a.dry_run)) {
-    ctx.err << "seqc: error: --resync needs --run (the computer starts each piece) and no "
-               "--dry-run\n";
+  if (a.resync > 0 && (!a.run || a.dry_run || a.music.music)) {
+    ctx.err << "seqc: error: --resync needs --run (the computer starts each piece), and no "
+               "--dry-run or --music\n";
     return ExitCode::Usage;
   }
   std::int32_t ppm = 0;
@@ -163,7 +218,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   upload::UploadOptions options;
   options.group = group;
   options.retries = a.retries;
-  options.run = a.run;
+  // With --music the run is sent on the downbeat, after the upload (a dry run still shows it).
+  options.run = a.run && (!a.music.music || a.dry_run);
   options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
   // The robot may be anywhere: before the run, read the servos where the board can and keep
   // the group stored but not started if a first move from there is too fast.
@@ -188,6 +244,13 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
       ctx.err << "seqc: dry run: " << plural(plan.actions, "action") << " for group " << a.group
               << "; nothing was sent\n";
     return ExitCode::Ok;
+  }
+
+  MusicSession music;
+  if (a.music.music) {
+    if (const ExitCode e = open_music(ctx, c.output, a.file, a.music, music); e != ExitCode::Ok) {
+      return e;
+    }
   }
 
   std::ofstream trace_file;
@@ -253,9 +316,23 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
             << " is stored but was not started\n";
     return ExitCode::InvalidInput;
   }
+  if (ctx.verbosity >= 0) {
+    ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
+            << " into group " << a.group << " (" << detail << ")\n";
+  }
+  if (a.run && a.music.music) {
+    // On the downbeat the run is the computer's to send: the first-move read comes first.
+    const compiler::ServoProgram* program = c.output.servo_program();
+    if (!a.force && program != nullptr) {
+      if (const auto fast = boards::first_move_too_fast(board, line, *program)) {
+        ctx.err << "seqc: error: " << first_move_text(*fast) << "; group " << a.group
+                << " is stored but was not started\n";
+        return ExitCode::InvalidInput;
+      }
+    }
+    return run_to_music(ctx, a, board, line, music);
+  }
   if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it
-  ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
-          << " into group " << a.group << " (" << detail << ")\n";
   if (a.run) {
     const std::string times =
         a.forever ? "looping until stopped" : plural(static_cast<std::size_t>(a.times), "time");
@@ -299,6 +376,7 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--force", a->force,
                 "With --run: start even if a first move is too fast from where the servos are")
       ->needs(run);
+  add_music_options(*cmd, a->music, run);
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
   cmd->add_option("--trace", a->trace,
                   "Write every byte sent and received, with times, to this file (docs/trace.md)");

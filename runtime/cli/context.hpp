@@ -7,6 +7,8 @@
 #include <iosfwd>
 
 #include "compiler/frontend/source/source.hpp"
+#include "runtime/audio/audio_files.hpp"
+#include "runtime/audio/audio_output.hpp"
 #include "runtime/boards/hooks.hpp"
 #include "runtime/io/clock.hpp"
 
@@ -37,6 +39,9 @@ struct Context {
   bool color = false;  // diagnostics in colour (--color, NO_COLOR, err_is_terminal)
   // Decodes a choreography's `music:` song for the commands that check it; null: not checked.
   compiler::SongReader* songs = nullptr;
+  // --music: where a song is decoded (null: libsndfile on the disk) and played (null: no audio).
+  audio::AudioReader* audio_files = nullptr;
+  audio::AudioOutputFactory* audio_output = nullptr;
 };
 
 }  // namespace seqc::cli

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "runtime/audio/pulse_output.hpp"
 #include "runtime/audio/sndfile_audio.hpp"
 #include "runtime/cli/app.hpp"
 #include "runtime/cli/song_audio.hpp"
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   seqc::audio::SndfileAudioReader audio;
   seqc::cli::AudioSongReader songs(audio);
   ctx.songs = &songs;
+  ctx.audio_files = &audio;
+  seqc::audio::PulseAudioOutputFactory speakers(clock, "seqc");
+  ctx.audio_output = &speakers;
   const char* no_color = std::getenv("NO_COLOR");  // https://no-color.org: set and non-empty
   ctx.no_color_env = no_color != nullptr && *no_color != '\0';
   struct winsize ws {};

@@ -71,6 +71,8 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
     case boards::LiveStatus::BadProgram:
       ctx.err << "seqc: error: internal: " << r.error << "\n";
       return ExitCode::Internal;
+    case boards::LiveStatus::NotStarted:  // the start hook said why
+      return ExitCode::PortUnavailable;
     case boards::LiveStatus::FrameTooBig:
       ctx.err << "seqc: error: move " << *r.too_big + 1 << " is a "
               << r.frames[*r.too_big].bytes.size() << "-byte frame, and " << t.describe()
@@ -141,7 +143,8 @@ ExitCode word_stream(Context& ctx, const boards::LiveReport& r) {
 
 // Plays and words it; the lines that belong before the first frame are said from the hooks.
 ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
-                       const boards::Board& board, const boards::Line& line, const PlayArgs& args) {
+                       const boards::Board& board, const boards::Line& line, const PlayArgs& args,
+                       MusicSession* music = nullptr) {
   const io::Transport& t = line.transport;
   const bool moves = board.style == boards::LiveStyle::Moves;
   std::optional<PlayProgress> progress;
@@ -171,9 +174,45 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
                      std::chrono::milliseconds(r.length_ms), r.frames.size());
   };
   hooks.sent = [&](std::size_t i, io::Duration at) { progress->on_sent(i, at); };
+  std::optional<audio::StartPlan> plan;
+  io::Duration wire{0};
+  if (music != nullptr) {
+    hooks.start = [&](const boards::LiveReport& r) -> std::optional<boards::LiveStart> {
+      if (!start_music(ctx, *music)) return std::nullopt;
+      const std::size_t bytes = r.frames.empty() ? 0 : r.frames[0].bytes.size();
+      const audio::StartTiming timing = boards::start_timing(
+          board, *music->started, music->audio_offset, bytes, line.transport.seconds_per_byte());
+      plan = audio::plan_start(music->started->clock, timing);
+      wire = timing.wire;
+      return boards::LiveStart{plan->downbeat_heard, timing.wire + timing.board_delay};
+    };
+  }
   const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);
   if (progress) progress->finish();
-  return moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, r);
+  if (r.status == boards::LiveStatus::NotStarted) return ExitCode::PortUnavailable;
+  if (music != nullptr && plan && ctx.verbosity >= 0) {
+    std::optional<io::TimePoint> written;
+    if (!r.play.tracks.empty() && r.play.tracks[0].first) {
+      written = r.play.started + *r.play.tracks[0].first;
+    }
+    ctx.err << "seqc: "
+            << sync_text(*music, boards::synced_start(*plan, wire, board.start_delay, written),
+                         moves ? "the first move" : "the first frame")
+            << "\n";
+  }
+  const ExitCode code =
+      moves ? word_moves(ctx, compiled, r, line, args, board) : word_stream(ctx, r);
+  if (music == nullptr || !music->output) return code;
+  if (code != ExitCode::Ok) {
+    music->output->stop();
+    return code;
+  }
+  if (ctx.verbosity >= 0) ctx.err << "seqc: playing the song to its end (Ctrl-C stops it)\n";
+  if (!play_song_out(ctx, *music, ctx.clock)) {
+    ctx.err << "seqc: interrupted: stopped the song\n";
+    return ExitCode::Interrupted;
+  }
+  return ExitCode::Ok;
 }
 
 }  // namespace
@@ -183,6 +222,13 @@ ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
   const boards::Board& board = boards::board_for(compiled);
   Trace trace;
   if (const ExitCode c = trace.open(ctx, args.trace); c != ExitCode::Ok) return c;
+  MusicSession music;
+  if (args.music.music) {
+    if (const ExitCode e = open_music(ctx, compiled, args.file, args.music, music);
+        e != ExitCode::Ok) {
+      return e;
+    }
+  }
   const boards::PortRequest request{args.port, &board};
   boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
   if (!opened.port) {
@@ -199,7 +245,8 @@ ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
       return ExitCode::InvalidInput;
     }
   }
-  const ExitCode code = play_and_word(ctx, compiled, board, line, args);
+  const ExitCode code =
+      play_and_word(ctx, compiled, board, line, args, args.music.music ? &music : nullptr);
   if (const auto got = boards::received(port); got && ctx.verbosity >= 0) {
     ctx.err << "seqc: " << port.transport->describe() << " received " << got->packets
             << " packets, " << got->rejected << " rejected\n";

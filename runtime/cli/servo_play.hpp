@@ -14,6 +14,7 @@
 #include "runtime/boards/board.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
+#include "runtime/cli/music_play.hpp"
 
 namespace seqc::cli {
 
@@ -26,11 +27,15 @@ struct PlayArgs {
   bool allow_late = false;  // play a schedule the link cannot keep, with a warning
   std::string trace;        // --trace FILE ("" = none)
   bool force = false;       // start even when a servo's first move is too fast from where it is
+  MusicArgs music;          // --music, --audio-offset
 };
 
 // Opens the port `args` names for the board `compiled` is for, plays it live and says how it
-// went. Where the servos report their positions, they are read first and a first move faster
-// than a servo's max_speed from there is refused (InvalidInput, nothing moves) unless
+// went. With args.music the song is decoded and the sound server reached first, the song
+// started just before the first frame, and the first frame timed to finish arriving (plus the
+// board's start delay) on its downbeat as heard; the song then plays to its end (Ctrl-C stops
+// it and the robot). Where the servos report their positions, they are read first and a first move
+// faster than a servo's max_speed from there is refused (InvalidInput, nothing moves) unless
 // args.force (boards/first_move.hpp).
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled, const PlayArgs& args);
 

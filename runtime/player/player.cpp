@@ -74,7 +74,7 @@ ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double s
 
 PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOptions& options) {
   PlayReport report;
-  report.started = clock.now() + options.lead;
+  report.started = options.start_at ? *options.start_at : clock.now() + options.lead;
   report.tracks.resize(tracks.size());
   std::size_t total = 0;
   for (const Track& t : tracks) total += t.frames.size();
@@ -83,9 +83,10 @@ PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOp
   for (;;) {
     // The earliest frame due; ties go to the lower track.
     std::optional<std::size_t> pick;
+    auto due = [&](std::size_t t) { return tracks[t].frames[next[t]].at - tracks[t].early; };
     for (std::size_t t = 0; t < tracks.size(); ++t) {
       if (next[t] >= tracks[t].frames.size()) continue;
-      if (!pick || tracks[t].frames[next[t]].at < tracks[*pick].frames[next[*pick]].at) pick = t;
+      if (!pick || due(t) < due(*pick)) pick = t;
     }
     if (!pick) break;
     const std::size_t t = *pick;
@@ -93,7 +94,7 @@ PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOp
     const Track& track = tracks[t];
     TrackReport& mine = report.tracks[t];
     const ScheduledFrame& frame = track.frames[i];
-    const io::TimePoint deadline = report.started + frame.at;
+    const io::TimePoint deadline = report.started + frame.at - track.early;
     if (!wait_until(clock, deadline, options)) {
       report.end = PlayEnd::Interrupted;
       send_safe_stops(tracks, report);
@@ -141,6 +142,7 @@ PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transp
   tracks[0].safe_stop = options.safe_stop;
   tracks[0].drain = options.drain;
   tracks[0].seconds_per_byte = options.seconds_per_byte;
+  tracks[0].early = options.early;
   return play(tracks, clock, options);
 }
 

@@ -2,8 +2,10 @@
 // play them as they arrive (the Raspblock car's stream, live moves on a servo controller), to one
 // transport or to several at once (one Track each), all on one clock.
 //
-// Frame i is written when the injected clock reaches start + at_i, where start is the clock's
-// time when play() begins plus options.lead. Deadlines are absolute, so a late wake-up or a slow
+// Frame i is written when the injected clock reaches start + at_i - early, where start is the
+// clock's time when play() begins plus options.lead (or options.start_at), and early is its
+// track's: how long before its time a frame must be written to finish arriving at its time (its
+// wire time, and the board's start delay). Deadlines are absolute, so a late wake-up or a slow
 // write delays only the frames already due, never the ones after them: lateness does not
 // accumulate. With several tracks the frames are merged by deadline; frames due at the same time
 // go in track order, then frame order, so a show's performers start in the order they are listed.
@@ -51,6 +53,10 @@ struct PlayOptions {
   // The common start is this long after play() begins: time to be asleep before the first
   // deadline, so the first frames are not late by the setup.
   io::Duration lead{0};
+  // The common start at this instant instead (a song's downbeat as heard); lead is then unused.
+  std::optional<io::TimePoint> start_at;
+  // Single-transport play(): as Track::early.
+  io::Duration early{0};
   // Called after each frame is written (progress display, measurements); `index` is the frame's
   // position within its own track.
   std::function<void(std::size_t index, const FrameTiming& timing)> on_sent;
@@ -67,6 +73,8 @@ struct Track {
   std::optional<Bytes> safe_stop;      // written to this transport after an early end
   bool drain = false;                  // as PlayOptions::drain, for this transport
   double seconds_per_byte = 0;
+  // Each frame is written this long before its `at`, so it finishes arriving then.
+  io::Duration early{0};
 };
 
 struct TrackReport {
@@ -74,6 +82,7 @@ struct TrackReport {
   std::vector<io::Duration> lateness;       // one per frame written, in order
   std::vector<io::Duration> left_lateness;  // with drain: one per frame written
   std::optional<io::Duration> first;        // when its first write began, after the start
+                                            // (negative for a track written early)
   bool stop_sent = false;                   // its safe_stop was written after an early end
   std::string stop_error;                   // why it could not be, if it was tried and failed
 };

@@ -99,10 +99,15 @@ class DeviceHarness {
       ctx.hooks.xarm = &emu;
       ctx.hooks.emulated_clock = &clock;
       ctx.in = in;
+      ctx.audio_files = audio_files;
+      ctx.audio_output = audio_output;
     });
   }
 
   std::istream* in = nullptr;  // the command's standard input, when it reads one
+  // --music: where songs are decoded and played (null: none given).
+  audio::AudioReader* audio_files = nullptr;
+  audio::AudioOutputFactory* audio_output = nullptr;
 
   // What the emulated controller received since the last mark() (or ever), as lowercase hex.
   std::string received() const {

@@ -9,10 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
 
 namespace seqc::cli::test {
@@ -55,11 +57,63 @@ TEST(Show, InProcessOnBothEmulatorsUploadsThenStartsTogether) {
   ASSERT_NE(started, std::string::npos) << err;
   EXPECT_LT(uploaded, started);
   // On a manual clock every frame leaves exactly at its deadline.
-  EXPECT_NE(err.find("seqc: arm: GroupRun 2 sent 0.00 ms after the start"), std::string::npos)
+  EXPECT_NE(err.find("seqc: arm: GroupRun 2 arrived 0.00 ms after the start (written 0.00 ms "
+                     "after it, 0.00 ms on the wire)"),
+            std::string::npos)
       << err;
   EXPECT_NE(err.find("seqc: car: "), std::string::npos) << err;
   EXPECT_NE(err.find("seqc: start skew between performers: 0.00 ms"), std::string::npos) << err;
   EXPECT_GT(h.clock.now() - before, std::chrono::seconds(2));  // the car's stream was played
+}
+
+// Every song is 2 s of quiet at 8 kHz.
+class QuietSongs final : public audio::AudioReader {
+ public:
+  Result<audio::MonoAudio> read(const std::string&) override {
+    return audio::MonoAudio{std::vector<float>(16000, 0.1f), 8000};
+  }
+};
+
+TEST(Show, WithMusicEveryoneStartsOnTheDownbeatAsHeard) {
+  emu::XArmConfig at_9600;
+  at_9600.baud = 9600;
+  DeviceHarness h(at_9600);
+  QuietSongs songs;
+  audio::ManualAudioOutputFactory speakers(h.clock, std::chrono::milliseconds(50));
+  h.audio_files = &songs;
+  h.audio_output = &speakers;
+  const std::string dir = std::string(SEQC_SOURCE_DIR) + "/";
+  h.files.add("duet.yaml",
+              "show: duet\nperformers:\n  arm: {file: arm.yaml, port: emu:xarm, group: 2}\n"
+              "  car: {file: " +
+                  dir + "tests/golden/raspblock/small.yaml, port: emu:raspblock}\n");
+  h.files.add("arm.yaml",
+              "robot: xarm\nmusic:\n  file: song.wav\n  downbeat: 0.750s\n  tempo: 120\n"
+              "  meter: 4/4\nsequence:\n  - move: {base: 400}\n    time: 1b\n");
+  h.files.add(dir + "tests/golden/raspblock/small.yaml",
+              slurp_file(dir + "tests/golden/raspblock/small.yaml"));
+  const RunResult r = h.run({"show", "duet.yaml", "--music"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_NE(speakers.last(), nullptr);
+  ASSERT_TRUE(speakers.last()->started_at().has_value());
+  // 50 ms of latency + the downbeat at 750 ms: GroupRun 2 finishes arriving 800 ms after the
+  // song's start, written 7.29 ms (7 bytes at 9600 baud) before.
+  std::optional<io::TimePoint> arrived;
+  for (const emu::ReceivedFrame& f : h.emu.received()) {
+    if (to_hex(f.raw) == hex("55 55 05 06 02 01 00")) arrived = f.at;
+  }
+  ASSERT_TRUE(arrived.has_value()) << r.err;
+  const double arrived_ms =
+      std::chrono::duration<double, std::milli>(*arrived - *speakers.last()->started_at()).count();
+  EXPECT_NEAR(arrived_ms, 800.0, 1e-5);
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.800 s (output latency 50.0 ms)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("seqc: arm: GroupRun 2 arrived 0.00 ms after the start (written 7.29 ms "
+                       "before it, 7.29 ms on the wire)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(speakers.last()->stopped());
 }
 
 TEST(Show, NothingStartsWhenAPerformerIsBroken) {

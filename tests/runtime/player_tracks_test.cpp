@@ -1,6 +1,7 @@
 // The player with several tracks on one ManualClock: frames of every track go out at the common
-// start + at, merged by deadline with ties in track order; `lead` moves the start; an early end
-// writes every track's safe stop. No test here waits in real time.
+// start + at (less the track's `early`), merged by deadline with ties in track order; `lead` or
+// `start_at` moves the start; an early end writes every track's safe stop. No test here waits
+// in real time.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -95,6 +96,29 @@ TEST(PlayerTracks, FramesOfEveryTrackGoOutInDeadlineOrderTiesInTrackOrder) {
   EXPECT_EQ(report.tracks[0].first, std::optional<io::Duration>(milliseconds(0)));
   EXPECT_EQ(report.tracks[1].first, std::optional<io::Duration>(milliseconds(10)));
   EXPECT_FALSE(report.failed_track.has_value());
+}
+
+TEST(PlayerTracks, AnEarlyTrackIsWrittenThatLongBeforeItsTimesFromAGivenStart) {
+  io::ManualClock clock(milliseconds(1000));
+  Log log;
+  NamedLink a("a", clock, log), b("b", clock, log);
+  std::vector<Track> tracks = {track(a, {0, 20}, 0x10), track(b, {0, 20}, 0x20)};
+  tracks[1].early = milliseconds(7);  // b's frames take 7 ms to arrive
+  PlayOptions options;
+  options.start_at = milliseconds(1500);  // not now + lead
+  const PlayReport report = play(tracks, clock, options);
+  EXPECT_EQ(report.started, milliseconds(1500));
+  ASSERT_EQ(log.entries.size(), 4u);
+  // b at 1500 - 7 = 1493 and 1513; a at 1500 and 1520; merged by when each is written.
+  const std::vector<std::string> links = {"b", "a", "b", "a"};
+  const std::vector<int> at_ms = {1493, 1500, 1513, 1520};
+  for (std::size_t i = 0; i < log.entries.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(log.entries[i].link, links[i]);
+    EXPECT_EQ(log.entries[i].at, milliseconds(at_ms[i]));
+  }
+  EXPECT_EQ(report.tracks[1].first, std::optional<io::Duration>(milliseconds(-7)));
+  EXPECT_EQ(report.tracks[1].lateness[0], io::Duration{0});
 }
 
 TEST(PlayerTracks, LeadMovesTheCommonStart) {

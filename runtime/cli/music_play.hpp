@@ -1,0 +1,68 @@
+// The song beside the robot: `--music` and `--audio-offset MS` on `seqc play` and `seqc upload
+// --run`, and a show whose performer has `music:`. The song of the file's `music:` block is
+// decoded (runtime/audio), the sound server reached before anything is sent to a board, and the
+// song started just before the robot, whose start boards::music_start times to the downbeat as
+// heard. The report is one line on stderr: when the downbeat is heard, from the audio's start,
+// and how far from it the robot started as seqc measured it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "compiler/compile.hpp"
+#include "runtime/audio/audio_output.hpp"
+#include "runtime/boards/music_start.hpp"
+#include "runtime/cli/context.hpp"
+#include "runtime/cli/exit_codes.hpp"
+
+namespace seqc::cli {
+
+struct MusicArgs {
+  bool music = false;
+  double audio_offset_ms = 0;  // --audio-offset: what no audio API sees
+};
+
+// --music and --audio-offset; `needs`: an option --music needs (upload's --run), or null.
+void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs = nullptr);
+
+// A song decoded and its output open, not yet playing; the output is stopped when this goes.
+class MusicSession {
+ public:
+  MusicSession() = default;
+  MusicSession(MusicSession&&) = default;
+  MusicSession& operator=(MusicSession&&) = default;
+  ~MusicSession() {
+    if (output) output->stop();
+  }
+  std::string file;
+  audio::MonoAudio song;
+  io::Duration downbeat{0};
+  io::Duration audio_offset{0};
+  std::unique_ptr<audio::AudioOutput> output;
+  std::optional<boards::SongStart> started;
+};
+
+// The song of `song` (a file's or a show's `music:`): decoded, and the sound server reached.
+// An error is said on ctx.err and its exit status returned.
+ExitCode open_music(Context& ctx, const compiler::Song& song, const MusicArgs& args,
+                    MusicSession& out);
+// The compiled file's song, or an error when it has no `music:` block.
+ExitCode open_music(Context& ctx, const compiler::CompileOutput& compiled, const std::string& path,
+                    const MusicArgs& args, MusicSession& out);
+
+// Starts the song; false (said on ctx.err) when the output refuses.
+bool start_music(Context& ctx, MusicSession& music);
+
+// "music: downbeat heard at +0.820 s (output latency 50.0 ms, --audio-offset 20 ms); GroupRun
+// arrived 0.02 ms after it"
+std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
+                      const std::string& command);
+
+// Waits on `clock` (the robot's line's) for the song to end; on Ctrl-C stops it and returns
+// false.
+bool play_song_out(Context& ctx, MusicSession& music, io::Clock& clock);
+
+}  // namespace seqc::cli

@@ -1,0 +1,150 @@
+// `seqc upload --run --music` and `seqc play --music` in-process: the emulated xArm controller
+// at 9600 baud and a manual audio output (50 ms of latency) on one manual clock, so the instant
+// the start command's last byte reaches the controller is exact. Every instant is worked out by
+// hand in the comment beside it.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "runtime/audio/manual_output.hpp"
+#include "tests/cli/device_test_util.hpp"
+
+namespace seqc::cli::test {
+namespace {
+
+using std::chrono::milliseconds;
+
+// Every song is 2 s of quiet at 8 kHz; the paths asked for are kept.
+class QuietSongs final : public audio::AudioReader {
+ public:
+  Result<audio::MonoAudio> read(const std::string& path) override {
+    asked.push_back(path);
+    if (path.find("missing") != std::string::npos) return make_error(path + ": no such file");
+    return audio::MonoAudio{std::vector<float>(16000, 0.1f), 8000};
+  }
+  std::vector<std::string> asked;
+};
+
+emu::XArmConfig at_9600() {
+  emu::XArmConfig c;
+  c.baud = 9600;
+  return c;
+}
+
+struct MusicHarness : DeviceHarness {
+  MusicHarness() : DeviceHarness(at_9600()) {
+    audio_files = &songs;
+    audio_output = &speakers;
+    files.add("dance.yaml",
+              "robot: xarm\n"
+              "music:\n"
+              "  file: song.wav\n"
+              "  downbeat: 0.750s\n"
+              "  tempo: 120\n"
+              "  meter: 4/4\n"
+              "sequence:\n"
+              "  - move: {base: 400}\n"
+              "    time: 1b\n"
+              "  - move: {base: 600}\n"
+              "    time: 1b\n");
+  }
+  // When the frame `hex` reached the controller, from the song's start.
+  std::optional<double> arrival_ms(const std::string& frame) const {
+    const ManualStart start = speakers.last() ? speakers.last()->started_at() : std::nullopt;
+    if (!start) return std::nullopt;
+    for (const emu::ReceivedFrame& f : emu.received()) {
+      if (to_hex(f.raw) == hex(frame)) {
+        return std::chrono::duration<double, std::milli>(f.at - *start).count();
+      }
+    }
+    return std::nullopt;
+  }
+  using ManualStart = std::optional<io::TimePoint>;
+  QuietSongs songs;
+  audio::ManualAudioOutputFactory speakers{clock, milliseconds(50)};
+};
+
+TEST(DeviceMusic, UploadRunStartsTheGroupOnTheDownbeatAsHeard) {
+  MusicHarness h;
+  const RunResult r = h.run(
+      {"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music", "--audio-offset", "20"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(h.songs.asked.size(), 1u);
+  EXPECT_EQ(h.songs.asked[0], "song.wav");
+  // 50 ms of latency + the downbeat at 750 ms + 20 ms of offset = 820 ms after the song's start:
+  // GroupRun 0 (7 bytes, 7.291667 ms at 9600 baud) finishes arriving then.
+  const auto at = h.arrival_ms("55 55 05 06 00 01 00");
+  ASSERT_TRUE(at.has_value()) << r.err;
+  EXPECT_NEAR(*at, 820.0, 1e-5);
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.820 s (output latency 50.0 ms, "
+                       "--audio-offset 20 ms); robot started on it (GroupRun "
+                       "written 0.00 ms after its time, 7.29 ms on the wire)"),
+            std::string::npos)
+      << r.err;
+  // The song played to its end (2 s + 50 ms) and its output was stopped.
+  ASSERT_NE(h.speakers.last(), nullptr);
+  EXPECT_TRUE(h.speakers.last()->stopped());
+  EXPECT_GE(h.clock.now() - *h.speakers.last()->started_at(), milliseconds(2050));
+}
+
+TEST(DeviceMusic, PlayStartsTheFirstMoveOnTheDownbeatAsHeard) {
+  MusicHarness h;
+  const RunResult r = h.run({"play", "dance.yaml", "--port", "emu:xarm", "--music", "--force"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The first move: MultiServoMove, 1 servo, 500 ms (1 beat at 120), base (id 6) to 400:
+  // 55 55 08 03 01 f4 01 06 90 01, 10 bytes (10.416667 ms on the wire). It finishes arriving
+  // 50 + 750 = 800 ms after the song's start.
+  const auto at = h.arrival_ms("55 55 08 03 01 f4 01 06 90 01");
+  ASSERT_TRUE(at.has_value()) << r.err;
+  EXPECT_NEAR(*at, 800.0, 1e-5);
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.800 s (output latency 50.0 ms); robot "
+                       "started on it"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(DeviceMusic, QuietStillStartsTheGroupOnTheDownbeat) {
+  MusicHarness h;
+  const RunResult r =
+      h.run({"-q", "upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  // 50 ms of latency + 750 ms: GroupRun 0 finishes arriving 800 ms after the song's start.
+  const auto at = h.arrival_ms("55 55 05 06 00 01 00");
+  ASSERT_TRUE(at.has_value());
+  EXPECT_NEAR(*at, 800.0, 1e-5);
+}
+
+TEST(DeviceMusic, NoSoundServerIsAnErrorBeforeAnythingIsSent) {
+  MusicHarness h;
+  h.speakers.fail_open("cannot connect to the sound server: Connection refused");
+  const RunResult r = h.run({"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music"});
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("seqc: error: --music: cannot connect to the sound server: Connection "
+                       "refused; nothing was sent"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(h.received(), "");
+}
+
+TEST(DeviceMusic, AFileWithoutMusicHasNoSongToPlay) {
+  MusicHarness h;
+  h.files.add("plain.yaml", "robot: xarm\nsequence:\n  - move: {base: 400}\n    time: 1s\n");
+  const RunResult r = h.run({"upload", "plain.yaml", "--port", "emu:xarm", "--run", "--music"});
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("seqc: error: --music: plain.yaml has no `music:` block"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(h.received(), "");
+}
+
+TEST(DeviceMusic, MusicNeedsRunOnUpload) {
+  MusicHarness h;
+  const RunResult r = h.run({"upload", "dance.yaml", "--port", "emu:xarm", "--music"});
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(h.received(), "");
+}
+
+}  // namespace
+}  // namespace seqc::cli::test

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Runs a command with a PulseAudio server it can reach: the one already running (PULSE_SERVER or
+# the user's socket), else a private server with a null sink (44.1 kHz) on a socket in a
+# temporary folder, exported as PULSE_SERVER and stopped afterwards. CI runs as root with no
+# session, so the private server is started with --system=false (it warns that it runs as
+# root). Exit status 77 (a skipped test) when PulseAudio is not installed.
+set -euo pipefail
+if ! command -v pactl >/dev/null || ! command -v pulseaudio >/dev/null; then
+  echo "with_pulse: pulseaudio and pactl are needed (scripts/install-deps.sh)" >&2
+  exit 77
+fi
+if pactl info >/dev/null 2>&1; then
+  exec "$@"
+fi
+dir=$(mktemp -d)
+export XDG_RUNTIME_DIR="$dir" HOME="$dir"
+pulseaudio --daemonize=no --exit-idle-time=-1 --system=false -n --use-pid-file=no \
+  --log-target=stderr --log-level=error \
+  --load="module-null-sink sink_name=seqc_null rate=44100 norewinds=1" \
+  --load="module-native-protocol-unix socket=$dir/native auth-anonymous=1" \
+  2> >(grep -v "not intended to be run as root" >&2) &
+server=$!
+cleanup() {
+  kill "$server" 2>/dev/null || true
+  wait "$server" 2>/dev/null || true
+  rm -rf "$dir"
+}
+trap cleanup EXIT
+export PULSE_SERVER="unix:$dir/native"
+for _ in $(seq 200); do
+  pactl info >/dev/null 2>&1 && break
+  sleep 0.05
+done
+pactl set-default-sink seqc_null >/dev/null
+"$@"
