@@ -1,6 +1,7 @@
 #include "compiler/formats/plot_svg.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -26,6 +27,65 @@ using plot::time_axis;
 
 constexpr double kTop = 74, kLane = 84, kGap = 12;
 constexpr double kAxis = 40;
+constexpr double kPanel = 300, kPanelTop = 34, kPanelGap = 60;  // the tip's panels
+
+using Mm = std::array<double, 3>;
+
+// One view of the tip's path: `h` and `v` take a point in mm to the panel's horizontal and
+// vertical coordinates (mm); the same scale on both axes, so a straight line looks straight.
+template <typename H, typename V>
+std::string tip_panel(double left, double top, double width, const std::string& title,
+                      const std::string& h_name, const std::string& v_name,
+                      const std::vector<Mm>& path, const std::vector<std::vector<Mm>>& lines, H h,
+                      V v) {
+  double h0 = INFINITY, h1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+  auto grow = [&](const Mm& p) {
+    h0 = std::min(h0, h(p)), h1 = std::max(h1, h(p));
+    v0 = std::min(v0, v(p)), v1 = std::max(v1, v(p));
+  };
+  for (const Mm& p : path) grow(p);
+  for (const auto& l : lines) {
+    for (const Mm& p : l) grow(p);
+  }
+  // A square window in mm around the path, at least 100 mm across, with a margin.
+  const double span = std::max({h1 - h0, v1 - v0, 100.0}) * 1.1;
+  const double hc = (h0 + h1) / 2, vc = (v0 + v1) / 2;
+  const double size = std::min(width, kPanel);
+  auto x = [&](double mm) { return left + (mm - (hc - span / 2)) / span * size; };
+  auto y = [&](double mm) { return top + size - (mm - (vc - span / 2)) / span * size; };
+  std::string out = "<g class=\"tip-view\"><title>" + svg::escape(title) + "</title>\n";
+  out += svg::text(left, top - 10, title, "font-weight=\"bold\"");
+  out += svg::rect(left, top, size, size, "fill=\"none\" stroke=\"#d1d5db\"");
+  const double step = svg::nice_step(span, 5);
+  for (double mm = std::ceil((hc - span / 2) / step) * step; mm <= hc + span / 2; mm += step) {
+    out += svg::line(x(mm), top, x(mm), top + size, "stroke=\"#f3f4f6\"");
+    out += svg::text(x(mm), top + size + 14, num(mm + 0.0),
+                     "text-anchor=\"middle\" "
+                     "fill=\"#6b7280\" font-size=\"9\"");
+  }
+  for (double mm = std::ceil((vc - span / 2) / step) * step; mm <= vc + span / 2; mm += step) {
+    out += svg::line(left, y(mm), left + size, y(mm), "stroke=\"#f3f4f6\"");
+    out += svg::text(left - 4, y(mm) + 3, num(mm + 0.0),
+                     "text-anchor=\"end\" "
+                     "fill=\"#6b7280\" font-size=\"9\"");
+  }
+  out += svg::text(left + size / 2, top + size + 28, h_name + " (mm)",
+                   "text-anchor=\"middle\" fill=\"#4b5563\"");
+  out += svg::text(left - 34, top + size / 2, v_name + " (mm)",
+                   "text-anchor=\"middle\" fill=\"#4b5563\" transform=\"rotate(-90 " +
+                       num(left - 34) + " " + num(top + size / 2) + ")\"");
+  std::vector<double> xs, ys;
+  for (const Mm& p : path) xs.push_back(x(h(p))), ys.push_back(y(v(p)));
+  out += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
+  for (const auto& l : lines) {
+    xs.clear(), ys.clear();
+    for (const Mm& p : l) xs.push_back(x(h(p))), ys.push_back(y(v(p)));
+    out += svg::polylines(xs, ys,
+                          "fill=\"none\" stroke=\"#2563eb\" stroke-width=\"1.4\" "
+                          "stroke-dasharray=\"5 3\"");
+  }
+  return out + "</g>\n";
+}
 
 }  // namespace
 
@@ -39,7 +99,11 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
   const Simulation sim = simulate(program, step, true);
   const std::size_t lanes = sim.columns.size();
   const double song_lane = options.song != nullptr ? plot::kSongLane + kGap : 0;
-  const double height = kTop + static_cast<double>(lanes) * (kLane + kGap) + song_lane + kAxis + 12;
+  // The tip's path, from above and from the side, when the file placed the tip in millimetres.
+  const bool tip_views = sim.with_tip && !program.timeline.tip_moves.empty();
+  const double lanes_height =
+      kTop + static_cast<double>(lanes) * (kLane + kGap) + song_lane + kAxis + 12;
+  const double height = lanes_height + (tip_views ? kPanelTop + kPanel + kPanelGap : 0);
   const bool pwm = program.robot.profile.rfind("lsc", 0) == 0;
   const std::string unit = pwm ? "us" : "units";
   const double lanes_bottom = kTop + static_cast<double>(lanes) * (kLane + kGap) - kGap;
@@ -115,6 +179,39 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
   }
   body += markers(program.timeline, f, kTop, bottom);
   body += time_axis(f, bottom + 8);
+  if (tip_views) {
+    // The controller's motion, as `simulate` computes it, and each `path: line` move's line,
+    // sampled so that the side view (distance from the base axis against height) shows the
+    // curve a straight line makes there.
+    std::vector<Mm> path;
+    for (const Simulation::Sample& s : sim.samples) {
+      if (f.inside(s.time_ms)) path.push_back(s.tip);
+    }
+    std::vector<std::vector<Mm>> lines;
+    for (const compiler::TimelineTipMove& m : program.timeline.tip_moves) {
+      if (!m.line || m.end_ms < f.from || m.start_ms > f.to) continue;
+      std::vector<Mm> l;
+      for (int i = 0; i <= 64; ++i) {
+        const double u = i / 64.0;
+        l.push_back({m.from[0] + (m.to[0] - m.from[0]) * u, m.from[1] + (m.to[1] - m.from[1]) * u,
+                     m.from[2] + (m.to[2] - m.from[2]) * u});
+      }
+      lines.push_back(std::move(l));
+    }
+    const double top = lanes_height + kPanelTop;
+    const double half = (kWidth - kLeft - kRight) / 2;
+    body += svg::text(12, top - 10, "the tip", "font-weight=\"bold\"");
+    body += svg::text(12, top + 6, "solid: as the", "fill=\"#6b7280\"");
+    body += svg::text(12, top + 20, "controller moves;", "fill=\"#6b7280\"");
+    body += svg::text(12, top + 34, "dashed: path: line", "fill=\"#6b7280\"");
+    body += tip_panel(
+        kLeft, top, half - 40, "from above", "x", "y", path, lines,
+        [](const Mm& p) { return p[0]; }, [](const Mm& p) { return p[1]; });
+    body += tip_panel(
+        kLeft + half + 20, top, half - 40, "from the side", "r (from the base axis)", "z", path,
+        lines, [](const Mm& p) { return std::hypot(p[0], p[1]); },
+        [](const Mm& p) { return p[2]; });
+  }
   return svg::document(kWidth, height, options.title, body);
 }
 

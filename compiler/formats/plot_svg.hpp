@@ -7,7 +7,9 @@
 // moves it; the beat and bar grid when the file has a tempo (bar numbers on the axis);
 // sections, `at:` cues and tempo changes as labelled markers; every warning (speed,
 // acceleration, fit) as a marker at its time whose <title> is the message. With a song, its
-// waveform and the beats found in it in a lane under the servos, the bar grid over it.
+// waveform and the beats found in it in a lane under the servos, the bar grid over it. When the
+// file placed an arm's tip (Timeline::tip_moves), two panels of the tip's path in mm below the
+// lanes, from above and from the side, with each `path: line` move's intended line dashed.
 //
 // Raspblock: the gimbal and servo outputs over time on the same time axis, each lane with its
 // values (500, 1500, 2500 us), under the same bar grid and markers; and the car's path seen from

@@ -7,19 +7,24 @@ namespace seqc::backend {
 
 ArmPoints arm_points(const compiler::ArmGeometry& arm,
                      const std::function<double(std::string_view)>& position) {
-  auto radians = [&](const compiler::ArmJoint& j) {
-    return j.sign * (position(j.servo) - j.zero) * arm.degrees_per_unit * std::numbers::pi / 180;
+  return arm_points(arm,
+                    std::array<double, 4>{position(arm.base.servo), position(arm.shoulder.servo),
+                                          position(arm.elbow.servo), position(arm.wrist.servo)});
+}
+
+ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints) {
+  auto radians = [&](const compiler::ArmJoint& j, double position) {
+    return j.sign * (position - j.zero) * arm.degrees_per_unit * std::numbers::pi / 180;
   };
-  const double base = radians(arm.base);
-  const double s = radians(arm.shoulder);
-  const double se = s + radians(arm.elbow);
-  const double sew = se + radians(arm.wrist);
+  const double base = radians(arm.base, joints[0]);
+  const double s = radians(arm.shoulder, joints[1]);
+  const double se = s + radians(arm.elbow, joints[2]);
+  const double sew = se + radians(arm.wrist, joints[3]);
   ArmPoints out;
   out.base_degrees = base * 180 / std::numbers::pi;
   // Each point in the arm's plane (r out from the base axis, z up), then turned with the base.
-  auto place = [base](double r, double z) {
-    return std::array<double, 3>{r * std::cos(base), r * std::sin(base), z};
-  };
+  const double cb = std::cos(base), sb = std::sin(base);
+  auto place = [cb, sb](double r, double z) { return std::array<double, 3>{r * cb, r * sb, z}; };
   double r = 0, z = arm.base_height;
   out.shoulder = place(r, z);
   r += arm.upper_arm * std::sin(s), z += arm.upper_arm * std::cos(s);

@@ -30,4 +30,8 @@ struct ArmPoints {
 ArmPoints arm_points(const compiler::ArmGeometry& arm,
                      const std::function<double(std::string_view)>& position);
 
+// The same points from the positions of the base, shoulder, elbow and wrist servos in that
+// order: the form for callers that evaluate the tip at every millisecond of a move.
+ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints);
+
 }  // namespace seqc::backend

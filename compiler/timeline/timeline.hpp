@@ -14,6 +14,7 @@
 // full Segment.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -64,6 +65,15 @@ struct TimelineWarning {
   std::string message;
 };
 
+// A move that placed an arm's tip (`move: {tip: ...}`), for pictures of the tip's path: its
+// time, where the tip was meant to start and end (mm) and whether it was to go in a straight
+// line between them (`path: line`; otherwise the joints' own curves decide the path).
+struct TimelineTipMove {
+  double start_ms = 0, end_ms = 0;
+  std::array<double, 3> from{}, to{};
+  bool line = false;
+};
+
 class Timeline {
  public:
   void resize(std::size_t servos) { servos_.resize(servos); }
@@ -91,6 +101,7 @@ class Timeline {
 
   std::vector<TimelineMarker> markers;
   std::vector<TimelineWarning> warnings;
+  std::vector<TimelineTipMove> tip_moves;
   ExactMs end;  // when the last step ends
   // Where beats and bars fall (the file's tempo and meter and every change of them), for a
   // beat/bar grid.

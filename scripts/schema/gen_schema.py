@@ -207,7 +207,7 @@ definitions["robotObject"] = robot_object
 
 # Steps of a servo controller file: every key, and per verb the keys it allows.
 SERVO_VERBS = {
-    "move": ["move", "time", "ease", "steps", "tolerance", "elbow", "at"],
+    "move": ["move", "time", "ease", "steps", "tolerance", "elbow", "path", "at"],
     "wait": ["wait", "at"],
     "through": ["through", "tolerance", "at"],
     "together": ["together", "at"],
@@ -227,22 +227,39 @@ STEP_KEYS = {
                 properties={
                     "tip": doc("Tip", "Where the claw's tip goes, `[x, y, z]` in millimetres "
                                "(`[150mm, 0mm, 80mm]`); with a sign on any coordinate, from "
-                               "where the tip is (`[+20mm, 0mm, 0mm]`). Needs the arm's "
-                               "geometry.", type="array", minItems=3, maxItems=3,
+                               "where the tip is (`[+20mm, 0mm, 0mm]`); named, always absolute "
+                               "(`{x: 150mm, y: -80mm, z: 40mm}`). Needs the arm's geometry.",
+                               type=["array", "object"], minItems=3, maxItems=3,
                                items={"type": "string", "pattern": r"^[+-]?[0-9.]+mm$",
                                       "patternErrorMessage": "a length in millimetres: 150mm, "
-                                                             "+20mm"}),
+                                                             "+20mm"},
+                               required=["x", "y", "z"], additionalProperties=False,
+                               properties={c: doc(c, f"The tip's {c} in millimetres; a sign "
+                                                  "is only its sign.", type="string",
+                                                  pattern=r"^[+-]?[0-9.]+mm$",
+                                                  patternErrorMessage="a length in millimetres: "
+                                                                      "150mm, -80mm")
+                                           for c in ("x", "y", "z")}),
                     "pitch": doc("Pitch", "The hand's angle with `tip`: 0deg up, 90deg level, "
                                  "180deg down (default: as it is).", type="string",
                                  pattern=r"^[+-]?[0-9.]+deg$",
                                  patternErrorMessage="an angle in degrees: 135deg")}),
     "elbow": doc("Elbow", "With a `tip` move: `up` (the default) or `down`, which of the two "
                  "ways the arm reaches the point.", type="string", enum=["up", "down"]),
+    "path": doc("Path", "With a `tip` move: `line` takes the tip in a straight line from where "
+                "it is, within `tolerance` (in mm, default 1mm) at every millisecond.",
+                type="string", enum=["line"]),
     "time": ref("servoTime"),
     "ease": ref("ease"),
     "steps": doc("Steps", "Cut the move into this many equal actions instead of fitting it "
                  "(each at least 20 ms).", type="integer", minimum=1, maximum=1020),
-    "tolerance": ref("tolerance"),
+    "tolerance": doc("Tolerance", "The servos' tolerance (device units or degrees), or with "
+                     "`path: line` the claw tip's, in millimetres (`0.5mm`).",
+                     anyOf=[ref("tolerance"),
+                            doc("Tip tolerance", "With `path: line`: how far the claw's tip may "
+                                "stray from the line, in millimetres (`0.5mm`).", type="string",
+                                pattern=r"^[0-9]*\.?[0-9]+mm$",
+                                patternErrorMessage="a distance in millimetres: 1mm")]),
     "at": ref("at"),
     "wait": doc("Wait", "Hold every servo where it is for this long (in a `together` track: "
                 "that track's servos).", **{"$ref": "#/definitions/servoTime"}),

@@ -187,6 +187,28 @@ TEST(Plot, SmallProgramGolden) {
   EXPECT_EQ(r.out.find("href"), std::string::npos);  // nothing external
 }
 
+TEST(Plot, TipPanelsShowTheLineAndTheMotion) {
+  const SeqcRun r = seqc(kSource, "plot tests/plot/tip-line.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_golden(seqc::testing::kGolden / "plot/tip-line.svg", r.out);
+  EXPECT_NE(r.out.find("<title>from above</title>"), std::string::npos);
+  EXPECT_NE(r.out.find("<title>from the side</title>"), std::string::npos);
+  EXPECT_NE(r.out.find(">x (mm)</text>"), std::string::npos);
+  EXPECT_NE(r.out.find(">z (mm)</text>"), std::string::npos);
+  // One dashed line per panel for the one `path: line` move.
+  const std::size_t panels = r.out.find("class=\"tip-view\"");
+  ASSERT_NE(panels, std::string::npos);
+  std::size_t dashed = 0;
+  for (std::size_t at = r.out.find("stroke-dasharray=\"5 3\"", panels); at != std::string::npos;
+       at = r.out.find("stroke-dasharray=\"5 3\"", at + 1)) {
+    ++dashed;
+  }
+  EXPECT_EQ(dashed, 2u);
+  // A file that never places the tip in millimetres has no panels.
+  const SeqcRun small = seqc(kSource, "plot tests/plot/small.yaml");
+  EXPECT_EQ(small.out.find("tip-view"), std::string::npos);
+}
+
 TEST(Plot, TheReadmePictureIsCurrent) {
   const SeqcRun r = seqc(kSource, "plot examples/waltz.yaml");
   EXPECT_EQ(r.status, 0) << r.err;

@@ -190,5 +190,44 @@ sequence:
                 "move the arm to absolute positions first"});
 }
 
+TEST(ArmTip, NamedTipIsAbsoluteWithNegativeCoordinates) {
+  // y = -80 is to the right: the base turns atan2(-80, 150) = -28.07 degrees, 500 - 28.07 / 0.24
+  // = 383.04, so 383; with pitch 135 the point is reached within rounding.
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: {x: 150mm, y: -80mm, z: 40mm}, pitch: 135deg}
+    time: 1s
+)");
+  ASSERT_TRUE(messages(out).empty()) << ::testing::PrintToString(messages(out));
+  const std::map<int, int> pos = final_positions(compiled(out));
+  EXPECT_EQ(pos.at(6), 383);
+  EXPECT_LE(distance(forward(pos).at, {150, -80, 40}), kRoundingMm);
+  // The same point in the list form is relative (a sign makes it so): from home's tip at
+  // [0, 0, 415] it would be [150, -80, 455], out of reach, so the forms differ.
+  EXPECT_FALSE(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [150mm, -80mm, 40mm], pitch: 135deg}
+    time: 1s
+)"))
+                   .empty());
+}
+
+TEST(ArmTip, NamedTipNamesItsMistakes) {
+  EXPECT_EQ(messages(compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: {x: 150mm, yy: -80mm, z: 40mm}, pitch: 135deg}
+    time: 1s
+)")),
+            (std::vector<std::string>{
+                "5:28 error: unknown key 'yy' in 'tip'; did you mean 'y'?",
+                "5:17 error: 'tip' needs 'y' as well, e.g. 'tip: {x: 150mm, y: -80mm, z: 40mm}'"}));
+}
+
 }  // namespace
 }  // namespace seqc::compiler

@@ -31,7 +31,7 @@ const StepTable kServoSteps = {
     {"move", "wait", "through", "mirror", "tolerance"},
     {},
     {"move", "wait", "through", "repeat", "include", "mirror", "section", "together", "tempo",
-     "meter", "tolerance", "time", "ease", "steps", "elbow", "do", "with", "at"},
+     "meter", "tolerance", "time", "ease", "steps", "elbow", "path", "do", "with", "at"},
     "a step needs one of: move, wait, through, repeat, include, mirror, section, together, "
     "tempo, meter, tolerance",
     "'move: home' or 'wait: 1s'",
@@ -219,7 +219,8 @@ void ServoLowering::own_step(const YamlNode& verb, const YamlNode& step) {
   if (name == "move") {
     // Every mistake of the step is reported, so unknown keys do not stop the checks.
     const bool keys_ok = reporter_.check_keys(
-        step, {"move", "time", "ease", "steps", "tolerance", "elbow", "at"}, "in a move step");
+        step, {"move", "time", "ease", "steps", "tolerance", "elbow", "path", "at"},
+        "in a move step");
     if (apply_at(step)) move_step(step, value, keys_ok);
   } else if (name == "wait") {
     reporter_.check_keys(step, {"wait", "at"}, "in a wait step");

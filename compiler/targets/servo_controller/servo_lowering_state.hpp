@@ -9,6 +9,7 @@
 // runs each track from the block's start, and a servo may move in one track of each block only.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -77,8 +78,15 @@ class ServoLowering final : public StepWalker {
   // A move's `tip:` (servo_tip.cpp): appends to `entries` (the move's other servos) the joint
   // positions that put the claw's tip there, with the move's `pitch:` and the step's `elbow:`;
   // false after reporting.
+  // `placed` gets the point, pitch and elbow it solved for (a `path: line` move's end).
+  struct TipTarget {
+    std::array<double, 3> point{};
+    double pitch = 0;
+    bool elbow_up = true;
+    std::array<std::size_t, 4> joints{};  // base, shoulder, elbow, wrist servos
+  };
   bool tip_entries(const YamlNode& step, const YamlNode& target,
-                   std::vector<PositionEntry>& entries);
+                   std::vector<PositionEntry>& entries, TipTarget& placed);
   void wait_step(const YamlNode& step, const YamlNode& value);
   void through_step(const YamlNode& step, const YamlNode& waypoints);
   // The positions a move's entries reach, by servo (nullopt: not named), from the positions in
@@ -105,6 +113,15 @@ class ServoLowering final : public StepWalker {
                         const std::optional<Reporter::Note>& note,
                         std::vector<KinematicFinding>& findings);
   void report_kinematics(const std::vector<KinematicFinding>& findings);
+  // A `path: line` move (servo_tip.cpp): the straight pieces of the joints that keep the tip
+  // within `tolerance_mm` of the line from where it is to `placed`, and of the move's other
+  // servos (`targets`, by servo) that keep them within `tolerance_units` of their eased curves,
+  // added to the timeline from `start` to `end`; the final positions go to `pos_`. False after
+  // reporting.
+  bool tip_line(const YamlNode& step, const TipTarget& placed,
+                const std::vector<std::optional<int>>& targets, ExactMs start, ExactMs end,
+                const Easing& ease, double tolerance_mm, double tolerance_units,
+                std::vector<KinematicFinding>& findings);
   // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
   // short from the far end at max_speed. `targets`: the move's positions, by servo.
   void check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time, Location at);

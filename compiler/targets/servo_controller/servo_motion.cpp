@@ -7,6 +7,7 @@
 
 #include "compiler/frontend/source/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
+#include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "runtime/protocol/group_download.hpp"
@@ -83,19 +84,35 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   std::optional<Reporter::Note> note;
   const std::vector<PositionEntry>* entries = nullptr;
   bool ok = true;
-  if (target.is_map() && target.find("tip") != nullptr) {
+  TipTarget placed;
+  const YamlNode* path = step.find("path");
+  const bool line = path != nullptr && path->is_scalar() && path->scalar == "line";
+  if (path != nullptr && !line) {
+    reporter_.error(path->location,
+                    "'path' is 'line' (the tip in a straight line); leave it out for the "
+                    "joints' own curves");
+    ok = false;
+  }
+  const bool has_tip = target.is_map() && target.find("tip") != nullptr;
+  if (path != nullptr && !has_tip) {
+    reporter_.error(path->location,
+                    "'path' is the claw tip's and needs a 'tip' in the move, e.g. 'move: {tip: "
+                    "[150mm, 0mm, 80mm]}'");
+    ok = false;
+  }
+  if (has_tip) {
     // The other servos parse as usual; tip and pitch are the inverse kinematics' own.
     YamlNode rest = target;
     std::erase_if(rest.entries, [](const YamlEntry& e) {
       return e.first.scalar == "tip" || e.first.scalar == "pitch";
     });
     inline_entries = parse_positions(rest, "in this move");
-    ok = tip_entries(step, target, inline_entries);
+    ok = tip_entries(step, target, inline_entries, placed) && ok;
     entries = &inline_entries;
   } else {
     entries =
         scopes_.move_entries(target, "servo", entries_parser(), inline_entries, note, reporter_);
-    ok = entries != nullptr;
+    ok = entries != nullptr && ok;
     if (const YamlNode* e = step.find("elbow")) {
       reporter_.error(e->location,
                       "'elbow' chooses how the arm reaches a 'tip' and needs one in "
@@ -126,9 +143,41 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
     ok = ok && steps.has_value();
   }
   std::optional<double> step_tolerance;
+  double tolerance_mm = 1;  // a line's, of the tip
   if (const YamlNode* t = step.find("tolerance")) {
-    step_tolerance = parse_tolerance(*t);
-    ok = ok && step_tolerance.has_value();
+    const bool mm = t->is_scalar() && t->scalar.size() > 2 &&
+                    t->scalar.compare(t->scalar.size() - 2, 2, "mm") == 0;
+    if (line && mm) {
+      double v = 0;
+      if (!parse_decimal(std::string_view(t->scalar).substr(0, t->scalar.size() - 2), v) ||
+          v <= 0) {
+        reporter_.error(t->location,
+                        "a line's 'tolerance' is a positive distance of the tip in "
+                        "millimetres, e.g. 'tolerance: 1mm'");
+        ok = false;
+      }
+      tolerance_mm = v;
+    } else if (line) {
+      reporter_.error(t->location,
+                      "a line's 'tolerance' is the tip's distance from the line, "
+                      "in millimetres, e.g. 'tolerance: 1mm'");
+      ok = false;
+    } else if (mm) {
+      reporter_.error(t->location,
+                      "a tolerance in millimetres is the tip's, for a 'path: line' "
+                      "move; give the servos' in device units or degrees, e.g. "
+                      "'tolerance: 1'");
+      ok = false;
+    } else {
+      step_tolerance = parse_tolerance(*t);
+      ok = ok && step_tolerance.has_value();
+    }
+  }
+  if (line && steps_node != nullptr) {
+    reporter_.error(steps_node->location,
+                    "a 'path: line' move chooses its own actions to follow the line; leave out "
+                    "'steps'");
+    ok = false;
   }
 
   std::vector<std::optional<int>> targets = pos_;
@@ -156,7 +205,9 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   // expansion), or none given: a straight move is exact and an eased one is fitted.
   const std::uint64_t t = *rounded;
   std::uint64_t n = 0;
-  if (steps) {
+  if (line) {
+    // The line's own actions (tip_line below).
+  } else if (steps) {
     n = static_cast<std::uint64_t>(*steps);
   } else if (!ease.is_linear() && scopes_.resolution_ms()) {
     n = std::max<std::uint64_t>(1, t / *scopes_.resolution_ms());
@@ -185,6 +236,24 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   const ExactMs end = now_ + *total;
   check_first_move(targets, *total, step.location);
   std::vector<KinematicFinding> findings;
+  if (line) {
+    if (tip_line(step, placed, targets, start, end, ease, tolerance_mm, tol, findings)) {
+      report_kinematics(findings);
+      now_ = end;
+    }
+    return;
+  }
+  if (has_tip) {
+    // Where the tip was (its end when the joints were unknown) and where it goes, for plots.
+    TimelineTipMove m{start.value(), end.value(), placed.point, placed.point, false};
+    if (std::all_of(placed.joints.begin(), placed.joints.end(),
+                    [&](std::size_t j) { return pos_[j].has_value(); })) {
+      m.from = backend::arm_points(*robot_.info.arm, [&](std::string_view name) {
+                 return static_cast<double>(*pos_[robot_.names.find(name)->second]);
+               }).tip;
+    }
+    timeline_.tip_moves.push_back(m);
+  }
   for (std::size_t servo = 0; servo < targets.size(); ++servo) {
     if (!targets[servo]) continue;
     if (!claim(servo, step.location)) return;

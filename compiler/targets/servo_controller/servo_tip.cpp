@@ -1,6 +1,7 @@
 // A move's `tip:` in millimetres: the joint positions inverse kinematics gives for the claw's tip
 // (targets/servo_controller/arm_ik.hpp), rounded to whole units and checked against the servos'
 // limits, so that the move goes on as an ordinary move of the joint servos.
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,6 +10,8 @@
 #include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/arm_ik.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
+#include "compiler/targets/servo_controller/tip_line.hpp"
+#include "runtime/protocol/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -34,7 +37,7 @@ std::string point_text(const std::array<double, 3>& p) {
 }  // namespace
 
 bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
-                                std::vector<PositionEntry>& entries) {
+                                std::vector<PositionEntry>& entries, TipTarget& placed) {
   const YamlNode& tip = *target.find("tip");
   if (!robot_.info.arm) {
     reporter_.error(tip.location, "'tip' needs the arm's geometry, and robot '" +
@@ -46,10 +49,35 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
   bool ok = true;
   std::array<double, 3> point{};
   bool relative = false;
-  if (!tip.is_sequence() || tip.items.size() != 3) {
+  if (tip.is_map()) {
+    // The named form is always absolute: a sign is only the coordinate's sign.
+    if (!reporter_.check_keys(tip, {"x", "y", "z"}, "in 'tip'")) ok = false;
+    const char* names[] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const YamlNode* item = tip.find(names[i]);
+      if (item == nullptr) {
+        reporter_.error(tip.location, std::string("'tip' needs '") + names[i] +
+                                          "' as well, e.g. 'tip: {x: 150mm, y: -80mm, z: 40mm}'");
+        ok = false;
+        continue;
+      }
+      bool sign = false;
+      const std::optional<double> v =
+          item->is_scalar() ? parse_length(item->scalar, sign) : std::nullopt;
+      if (!v) {
+        reporter_.error(item->location,
+                        "a tip coordinate is a length in millimetres such as 150mm or -80mm");
+        ok = false;
+        continue;
+      }
+      point[i] = *v;
+    }
+  } else if (!tip.is_sequence() || tip.items.size() != 3) {
     reporter_.error(tip.location,
                     "'tip' takes [x, y, z] in millimetres, e.g. 'tip: [150mm, 0mm, 80mm]', or "
-                    "with signs to move from where the tip is, e.g. 'tip: [+20mm, 0mm, 0mm]'");
+                    "with signs to move from where the tip is, e.g. 'tip: [+20mm, 0mm, 0mm]', "
+                    "or names them for an absolute point, e.g. 'tip: {x: 150mm, y: -80mm, z: "
+                    "40mm}'");
     ok = false;
   } else {
     for (std::size_t i = 0; i < 3; ++i) {
@@ -117,12 +145,14 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
   if (!ok) return false;
 
   // Where the tip is now: needed to move from it, and for the pitch it keeps.
-  if (relative || !pitch) {
+  const YamlNode* path = step.find("path");
+  const bool line = path != nullptr && path->is_scalar() && path->scalar == "line";
+  if (relative || !pitch || line) {
     for (std::size_t j = 0; j < 4; ++j) {
       if (pos_[joint_servo[j]]) continue;
       reporter_.error(tip.location, "'" + joints[j]->servo +
                                         "' has no known position yet, so the tip's " +
-                                        (relative ? "position" : "pitch") +
+                                        (relative || line ? "position" : "pitch") +
                                         " is unknown; move the arm to absolute positions first");
       return false;
     }
@@ -190,7 +220,159 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
     e.at = tip.location;
     entries.push_back(std::move(e));
   }
+  placed.point = point;
+  placed.pitch = *pitch;
+  placed.elbow_up = elbow_up;
+  for (std::size_t j = 0; j < 4; ++j) placed.joints[j] = joint_servo[j];
   return ok;
+}
+
+bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
+                             const std::vector<std::optional<int>>& targets, ExactMs start,
+                             ExactMs end, const Easing& ease, double tolerance_mm,
+                             double tolerance_units, std::vector<KinematicFinding>& findings) {
+  const ArmGeometry& arm = *robot_.info.arm;
+  const ArmJoint* joints[] = {&arm.base, &arm.shoulder, &arm.elbow, &arm.wrist};
+  backend::TipLineRequest request;
+  request.arm = arm;
+  double pitch_from = 0;
+  for (std::size_t j = 0; j < 4; ++j) {
+    const std::size_t servo = placed.joints[j];
+    request.from[j] = *pos_[servo];
+    request.min[j] = robot_.info.servos[servo].min;
+    request.max[j] = robot_.info.servos[servo].max;
+    if (j > 0)
+      pitch_from += joints[j]->sign * (*pos_[servo] - joints[j]->zero) * arm.degrees_per_unit;
+  }
+  request.to = placed.point;
+  request.pitch_from = pitch_from;
+  request.pitch_to = placed.pitch;
+  request.elbow_up = placed.elbow_up;
+  request.ease = ease;
+  request.start_ms = static_cast<std::uint32_t>(std::max<std::int64_t>(0, start.round()));
+  request.end_ms = static_cast<std::uint32_t>(std::max<std::int64_t>(0, end.round()));
+  request.tolerance_mm = tolerance_mm;
+  request.min_action_ms = lsc::kMinActionMs;
+  request.max_action_ms = lsc::kMaxActionMs;
+  if (robot_.profile) request.model = robot_.profile->controller;
+  // The move's other servos, on the line's actions.
+  std::vector<std::size_t> others;
+  for (std::size_t servo = 0; servo < targets.size(); ++servo) {
+    if (!targets[servo] ||
+        std::find(placed.joints.begin(), placed.joints.end(), servo) != placed.joints.end()) {
+      continue;
+    }
+    Segment seg;
+    seg.kind = ease.is_linear() ? CurveKind::Linear : CurveKind::Eased;
+    seg.easing = ease;
+    seg.start = start;
+    seg.end = end;
+    seg.from = pos_[servo] ? *pos_[servo] : *targets[servo];
+    seg.to = *targets[servo];
+    if (seg.kind == CurveKind::Eased && !check_overshoot(servo, seg, step.location, std::nullopt)) {
+      return false;
+    }
+    others.push_back(servo);
+    request.others.push_back({seg.from, seg.to, tolerance_units});
+  }
+  const backend::TipLineResult fit = backend::fit_tip_line(request);
+
+  if (const auto& p = fit.problem) {
+    using Kind = backend::TipLineProblem::Kind;
+    const Location at = step.find("path")->location;
+    const std::string where =
+        fmt::format("at {:.0f}% of the line, {}", p->fraction * 100, point_text(p->point));
+    switch (p->kind) {
+      case Kind::BelowTable:
+        reporter_.error(
+            at, fmt::format("this line goes {:.1f} mm below the table {}", -p->point[2], where));
+        break;
+      case Kind::OutOfReach:
+        reporter_.error(
+            at, p->needed > p->reach
+                    ? fmt::format("this line leaves the arm's reach {} at pitch {:g}deg: the "
+                                  "wrist would be {:.0f} mm from the shoulder, {:.0f} mm beyond "
+                                  "the {:g} mm the arm spans",
+                                  where, std::round(p->pitch * 10) / 10, p->needed,
+                                  p->needed - p->reach, p->reach)
+                    : fmt::format("this line passes too near the base {} at pitch {:g}deg: the "
+                                  "wrist would be {:.0f} mm from the shoulder, nearer than the "
+                                  "arm can fold ({:g} mm)",
+                                  where, std::round(p->pitch * 10) / 10, p->needed, p->reach));
+        break;
+      case Kind::JointLimit: {
+        const ServoInfo& servo = robot_.info.servos[placed.joints[p->joint]];
+        const bool above = p->units > servo.max;
+        reporter_.error(
+            at,
+            fmt::format("this line needs '{}' at {} ({:.1f}deg) {}, {} {} its {} {}", servo.name,
+                        p->units, p->angle, where, p->over, above ? "above" : "below",
+                        above ? "max" : "min", above ? servo.max : servo.min));
+        break;
+      }
+      case Kind::Rounding:
+        reporter_.error(
+            at, fmt::format(
+                    "rounding the joints to whole units puts the tip at least {:.2f} mm "
+                    "from the line's end, {}, more than the tolerance of {:g}mm{}",
+                    p->error, point_text(p->point), tolerance_mm,
+                    p->suggest > 0
+                        ? fmt::format("; give a larger one, e.g. 'tolerance: {:g}mm'", p->suggest)
+                        : ""));
+        break;
+      case Kind::Tolerance:
+        reporter_.error(
+            at,
+            fmt::format(
+                "no actions of at least {}ms keep the tip within {:g}mm of this line "
+                "beyond {:.0f}% of it, {} (rounding the joints to whole units moves "
+                "the tip too far){}",
+                lsc::kMinActionMs, tolerance_mm, p->fraction * 100, point_text(p->point),
+                p->suggest > 0
+                    ? fmt::format("; give a larger tolerance, e.g. 'tolerance: {:g}mm'", p->suggest)
+                    : ""));
+        break;
+    }
+    return false;
+  }
+
+  // Ordinary straight pieces of every servo of the move, kept as they are (keep_boundaries):
+  // the fitter makes each one action, whole units at whole milliseconds, so what runs is what
+  // was checked here.
+  for (std::size_t j = 0; j < 4 + others.size(); ++j) {
+    const std::size_t servo = j < 4 ? placed.joints[j] : others[j - 4];
+    auto target = [&](const backend::TipLineAction& a) {
+      return j < 4 ? a.targets[j] : a.others[j - 4];
+    };
+    if (!claim(servo, step.location)) return false;
+    double prev = j < 4 ? request.from[j] : request.others[j - 4].from;
+    Segment fastest;
+    for (std::size_t k = 0; k < fit.actions.size(); ++k) {
+      Segment piece;
+      piece.kind = CurveKind::Linear;
+      piece.keep_boundaries = true;
+      piece.start = k == 0 ? start : ExactMs::ratio(fit.actions[k - 1].end_ms, 1);
+      piece.end = k + 1 == fit.actions.size() ? end : ExactMs::ratio(fit.actions[k].end_ms, 1);
+      piece.from = prev;
+      piece.to = target(fit.actions[k]);
+      piece.tolerance = tolerance_units;
+      piece.at = step.location;
+      prev = piece.to;
+      const double ms = piece.end.value() - piece.start.value();
+      if (k == 0 ||
+          std::abs(piece.to - piece.from) / ms >
+              std::abs(fastest.to - fastest.from) / (fastest.end.value() - fastest.start.value())) {
+        fastest = piece;
+      }
+      add_segment(servo, piece);
+    }
+    check_kinematics(servo, fastest, std::nan(""), std::nullopt, findings);
+    pos_[servo] = target(fit.actions.back());
+  }
+  count_actions(fit.actions.size(), step.location);
+  timeline_.tip_moves.push_back(
+      {start.value(), end.value(), fit.from, placed.point, /*line=*/true});
+  return true;
 }
 
 }  // namespace seqc::compiler

@@ -1,0 +1,236 @@
+// `path: line` tip moves on the xArm: the compiled actions, sampled at every millisecond as the
+// controller moves them (each servo in a straight line from its previous target to the new one
+// over the action's time), keep the tip within the tolerance of the straight line, by forward
+// kinematics written out here from the documented conventions (not the compiler's); and the
+// lines it refuses, with where along the line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <numbers>
+#include <string>
+
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using testing::compile_text;
+using testing::messages;
+using testing::program_of;
+
+// The xArm profile: 0.24 degrees per unit; links 72 (table to shoulder), 97, 96 and 150 mm;
+// every joint's zero at 500, the base (id 6) turning +1, shoulder 5, elbow 4, wrist 3 -1.
+constexpr double kDegPerUnit = 0.24;
+
+using Vec = std::array<double, 3>;
+
+Vec forward(const std::map<int, double>& pos) {
+  const double rad = kDegPerUnit * std::numbers::pi / 180;
+  const double base = (pos.at(6) - 500) * rad;
+  const double s = -(pos.at(5) - 500) * rad;
+  const double e = -(pos.at(4) - 500) * rad;
+  const double w = -(pos.at(3) - 500) * rad;
+  const double r = 97 * std::sin(s) + 96 * std::sin(s + e) + 150 * std::sin(s + e + w);
+  const double z = 72 + 97 * std::cos(s) + 96 * std::cos(s + e) + 150 * std::cos(s + e + w);
+  return {r * std::cos(base), r * std::sin(base), z};
+}
+
+double distance(const Vec& a, const Vec& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+// Every servo's position at millisecond t as the controller moves it: from its previous target
+// to the action's target in a straight line over the action's time.
+struct Sampler {
+  explicit Sampler(const ServoProgram& p) : program(p) {}
+  std::map<int, double> at(std::uint32_t t) const {
+    std::map<int, double> target, pos;
+    for (const Keyframe& k : program.keyframes) {
+      if (k.start_ms >= t) break;
+      const double f = std::min(1.0, static_cast<double>(t - k.start_ms) / k.time_ms);
+      for (const auto& s : k.targets) {
+        const double from = target.count(s.id) ? target[s.id] : s.position;
+        pos[s.id] = from + (s.position - from) * f;
+        target[s.id] = s.position;
+      }
+    }
+    return pos;
+  }
+  std::size_t actions_between(std::uint32_t a, std::uint32_t b) const {
+    std::size_t n = 0;
+    for (const Keyframe& k : program.keyframes) n += k.start_ms >= a && k.start_ms < b;
+    return n;
+  }
+  const ServoProgram& program;
+};
+
+double quad_in_out(double t) { return t < 0.5 ? 2 * t * t : 1 - 2 * (1 - t) * (1 - t); }
+
+struct LineCheck {
+  double worst = 0;
+  std::uint32_t worst_at = 0;
+  std::size_t actions = 0;
+};
+
+// The tip against the line from where it is at `a` to `to`, eased by `ease`, every millisecond.
+template <typename Ease>
+LineCheck check_line(const ServoProgram& p, std::uint32_t a, std::uint32_t b, const Vec& to,
+                     Ease ease) {
+  const Sampler s(p);
+  const Vec from = forward(s.at(a));
+  LineCheck c;
+  for (std::uint32_t t = a; t <= b; ++t) {
+    const double f = ease(static_cast<double>(t - a) / (b - a));
+    const Vec want = {from[0] + (to[0] - from[0]) * f, from[1] + (to[1] - from[1]) * f,
+                      from[2] + (to[2] - from[2]) * f};
+    const double d = distance(forward(s.at(t)), want);
+    if (d > c.worst) c.worst = d, c.worst_at = t;
+  }
+  c.actions = s.actions_between(a, b);
+  return c;
+}
+
+constexpr const char* kStart = R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [200mm, 0mm, 120mm], pitch: 135deg, claw: 300}
+    time: 1s
+)";
+
+TEST(TipLine, EasedLineIsFollowedWithinTheDefaultMillimetreEveryMillisecond) {
+  const auto out =
+      compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 100mm, 60mm], claw: 600}
+    time: 1s
+    path: line
+    ease: in-out
+)");
+  ASSERT_TRUE(messages(out).empty()) << ::testing::PrintToString(messages(out));
+  const ServoProgram& p = program_of(out);
+  const LineCheck c = check_line(p, 2000, 3000, {200, 100, 60}, quad_in_out);
+  std::cout << "line 1 mm: worst " << c.worst << " mm at " << c.worst_at << " ms, " << c.actions
+            << " actions\n";
+  EXPECT_LE(c.worst, 1.0 + 1e-9);
+  // The claw follows its own quad in-out from 300 to 600 within its 1 unit.
+  const Sampler s(p);
+  for (std::uint32_t t = 2000; t <= 3000; ++t) {
+    EXPECT_NEAR(s.at(t).at(1), 300 + 300 * quad_in_out((t - 2000) / 1000.0), 1.0 + 1e-9) << t;
+  }
+  // A straight joint move cannot do it: the tip would bow away from the line (the joints' own
+  // curves), which is why the line needs several actions.
+  EXPECT_GT(c.actions, 1u);
+  // Every action lasts at least the controller's 20 ms.
+  for (const Keyframe& k : p.keyframes) EXPECT_GE(k.time_ms, 20);
+}
+
+TEST(TipLine, ToleranceInMillimetresIsTheTips) {
+  const std::string fine = std::string(kStart) + R"(  - move: {tip: [150mm, 80mm, 40mm]}
+    time: 800ms
+    path: line
+    tolerance: 0.5mm
+)";
+  const std::string loose = std::string(kStart) + R"(  - move: {tip: [150mm, 80mm, 40mm]}
+    time: 800ms
+    path: line
+    tolerance: 3mm
+)";
+  const auto f = compile_text(fine);
+  const auto l = compile_text(loose);
+  ASSERT_TRUE(messages(f).empty()) << ::testing::PrintToString(messages(f));
+  ASSERT_TRUE(messages(l).empty()) << ::testing::PrintToString(messages(l));
+  auto linear = [](double t) { return t; };
+  const LineCheck cf = check_line(program_of(f), 2000, 2800, {150, 80, 40}, linear);
+  const LineCheck cl = check_line(program_of(l), 2000, 2800, {150, 80, 40}, linear);
+  std::cout << "line 0.5 mm: worst " << cf.worst << " mm, " << cf.actions
+            << " actions; 3 mm: " << cl.worst << " mm, " << cl.actions << " actions\n";
+  EXPECT_LE(cf.worst, 0.5 + 1e-9);
+  EXPECT_LE(cl.worst, 3.0 + 1e-9);
+  EXPECT_LT(cl.actions, cf.actions);
+}
+
+TEST(TipLine, RoundingThatCannotMeetTheToleranceSaysByHowMuch) {
+  const auto out = compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 100mm, 60mm]}
+    time: 1s
+    path: line
+    tolerance: 0.01mm
+)");
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
+  // Half a unit is 0.12 degrees; at 0.01 mm the whole-unit joints cannot meet the line's end.
+  EXPECT_NE(m[0].find("9:11 error: rounding the joints to whole units puts the tip at least "),
+            std::string::npos)
+      << m[0];
+  EXPECT_NE(m[0].find("from the line's end, [200mm, 100mm, 60mm], more than the tolerance of "
+                      "0.01mm; give a larger one, e.g. 'tolerance: "),
+            std::string::npos)
+      << m[0];
+}
+
+TEST(TipLine, BelowTheTableAlongTheLineSaysWhere) {
+  // back-in, (c + 1)t^3 - ct^2 with c = 1.70158, first runs backwards: it is lowest at
+  // t = 2c / (3(c + 1)) = 0.42, where it is -0.100. Up from z = 10 to z = 120 (110 mm) it dips
+  // 11 mm below the start, to z = -1, "at -10% of the line".
+  const auto out = compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 0mm, 10mm]}
+    time: 1s
+  - move: {tip: [200mm, 0mm, 120mm]}
+    time: 1s
+    path: line
+    ease: back-in
+)");
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
+  EXPECT_NE(m[0].find("11:11 error: this line goes 1.0 mm below the table at -10% of the line, "
+                      "[200mm, 0mm, -1mm]"),
+            std::string::npos)
+      << m[0];
+}
+
+TEST(TipLine, JointLimitAlongTheLineSaysWhichJointAndWhere) {
+  // From [-50, 150, 100] to [-50, -150, 100] (relative moves: an absolute list point has no
+  // negative coordinate) the line passes behind the base: at its middle, [-50, 0, 100], the base
+  // must face 180 degrees, 500 + 180 / 0.24 = 1250, 250 above its max 1000. Both ends are at
+  // atan2(150, -50) = +-108.4 degrees, 500 +- 451.7: within 0..1000.
+  const auto out = compile_text(std::string(kStart) + R"(  - move: {tip: [-250mm, +150mm, -20mm]}
+    time: 1s
+  - move: {tip: [+0mm, -300mm, 0mm]}
+    time: 1s
+    path: line
+)");
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
+  // The line starts where the whole-unit joints put the tip, within about 2 mm of [-50, 150,
+  // 100] (half a unit per joint), so its middle, and the base there, are a few units off.
+  const std::string head = "11:11 error: this line needs 'base' at ";
+  ASSERT_EQ(m[0].rfind(head, 0), 0u) << m[0];
+  const int units = std::stoi(m[0].substr(head.size()));
+  EXPECT_NEAR(units, 1250, 3) << m[0];
+  EXPECT_NE(m[0].find("deg) at 50% of the line, [-50mm, 0mm, "), std::string::npos) << m[0];
+  EXPECT_NE(m[0].find(", " + std::to_string(units - 1000) + " above its max 1000"),
+            std::string::npos)
+      << m[0];
+}
+
+TEST(TipLine, PathNeedsATipAndMillimetreTolerance) {
+  const auto a = compile_text(std::string(kStart) + R"(  - move: {claw: 400}
+    time: 1s
+    path: line
+)");
+  ASSERT_EQ(messages(a).size(), 1u);
+  EXPECT_NE(messages(a)[0].find("9:11 error: 'path' is the claw tip's and needs a 'tip'"),
+            std::string::npos);
+  const auto b = compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 50mm, 100mm]}
+    time: 1s
+    path: line
+    tolerance: 2
+)");
+  ASSERT_EQ(messages(b).size(), 1u);
+  EXPECT_NE(messages(b)[0].find("10:16 error: a line's 'tolerance' is the tip's distance"),
+            std::string::npos)
+      << messages(b)[0];
+}
+
+}  // namespace
+}  // namespace seqc::compiler
