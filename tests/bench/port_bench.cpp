@@ -2,7 +2,7 @@
 // repetitions (default 20), printed with p50 and max against its target:
 //
 //   busy port   a pseudo-terminal held by SerialTransport in this process (flock + TIOCEXCL,
-//               exactly as a first seqc holds it); then `seqc upload examples/walk.yaml --port
+//               exactly as a first seqc holds it); then `seqc upload tests/data/walk-joints.yaml --port
 //               <that pty>` is started with posix_spawn and waited for. Measured: steady_clock
 //               from just before posix_spawn to waitpid's return, so process start, dynamic
 //               linking and compiling walk.yaml are included. Exit status must be 3 (port
@@ -61,7 +61,7 @@ void report(const char* name, Figure f, double target_ms) {
 
 Figure busy_port(int runs) {
   Figure f;
-  const std::string walk = std::string(SEQC_SOURCE_DIR) + "/examples/walk.yaml";
+  const std::string walk = std::string(SEQC_SOURCE_DIR) + "/tests/data/walk-joints.yaml";
   for (int i = 0; i < runs; ++i) {
     Pty pty;
     io::SteadyClock clock;

@@ -57,7 +57,7 @@ upload::UploadOptions options(bool run) {
 }
 
 TEST(BoardsDryRun, XarmFramesAreWhatTheControllerReceives) {
-  const Case walk("walk.yaml");
+  const Case walk("../tests/data/walk-joints.yaml");
   ASSERT_EQ(walk.board.key, "xarm");
   for (const bool run : {false, true}) {
     const DryRun dry = dry_run(walk.board, walk.plan, options(run));
@@ -76,7 +76,7 @@ TEST(BoardsDryRun, XarmFramesAreWhatTheControllerReceives) {
 }
 
 TEST(BoardsDryRun, XarmTextCommentsEveryFrame) {
-  const Case walk("walk.yaml");
+  const Case walk("../tests/data/walk-joints.yaml");
   const DryRun dry = dry_run(walk.board, walk.plan, options(true));
   const std::vector<std::string> text = lines(dry.text);
   ASSERT_EQ(text.size(), 37u);

@@ -52,7 +52,7 @@ TEST(BoardsPlayLive, TheCarGetsItsStream) {
 }
 
 TEST(BoardsPlayLive, AnXarmIsAskedForItsBatteryFirstAndPlayedToTheEnd) {
-  const compiler::CompileOutput walk = compile_example("walk.yaml");
+  const compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   const Board& board = board_for(walk);
   io::ManualClock host;
   io::ManualClock emulated;
@@ -97,7 +97,7 @@ TEST(BoardsPlayLive, TheLsc6GetsItsMovesWithoutAProbe) {
 }
 
 TEST(BoardsPlayLive, NoAnswerToTheProbeSendsNoMove) {
-  const compiler::CompileOutput walk = compile_example("walk.yaml");
+  const compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   io::ManualClock clock;
   AcknowledgingTransport nobody(clock, silent);
   const LiveReport r =

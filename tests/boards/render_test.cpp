@@ -20,7 +20,7 @@ compiler::CompileOutput compile_example(const char* name) {
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
 TEST(BoardRender, XarmListingCountsBlocks) {
-  const compiler::CompileOutput walk = compile_example("walk.yaml");
+  const compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   auto listing = board_for(walk).render(walk, Emit::Listing, 0);
   ASSERT_TRUE(listing.ok()) << listing.error().message;
   EXPECT_EQ(first_line(*listing).substr(0, 54),
@@ -28,7 +28,7 @@ TEST(BoardRender, XarmListingCountsBlocks) {
 }
 
 TEST(BoardRender, XarmHexIsOneFramePerLine) {
-  const compiler::CompileOutput walk = compile_example("walk.yaml");
+  const compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   auto hex = board_for(walk).render(walk, Emit::Hex, 0);
   ASSERT_TRUE(hex.ok());
   EXPECT_EQ(std::count(hex->begin(), hex->end(), '\n'), 31);

@@ -22,7 +22,7 @@ compiler::CompileOutput compile_example(const char* name) {
 }
 
 struct Stage {
-  compiler::CompileOutput walk = compile_example("walk.yaml");
+  compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   compiler::CompileOutput car = compile_example("car-dance.yaml");
   io::ManualClock host;
   io::ManualClock emulated;
@@ -133,7 +133,7 @@ class TimedLink final : public io::Transport {
 };
 
 TEST(BoardsShow, EachPerformerStartsWhenItsStartFinishesArriving) {
-  compiler::CompileOutput walk = compile_example("walk.yaml");
+  compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");
   compiler::CompileOutput car = compile_example("car-dance.yaml");
   io::ManualClock clock;
   OpenedPort arm_port;

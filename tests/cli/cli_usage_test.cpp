@@ -17,21 +17,21 @@ using seqc::testing::seqc;
 using seqc::testing::SeqcRun;
 
 TEST(Usage, MistypedSubcommandSuggestsTheClosest) {
-  const SeqcRun r = seqc(kSource, "chekc examples/walk.yaml");
+  const SeqcRun r = seqc(kSource, "chekc tests/data/walk-joints.yaml");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.out, "");
   expect_golden(kCliGolden / "usage-unknown-command.stderr", r.err);
 }
 
 TEST(Usage, MistypedOptionSuggestsTheClosestOfThatSubcommand) {
-  const SeqcRun r = seqc(kSource, "check --strct examples/walk.yaml");
+  const SeqcRun r = seqc(kSource, "check --strct tests/data/walk-joints.yaml");
   EXPECT_EQ(r.status, 2);
   expect_golden(kCliGolden / "usage-unknown-option.stderr", r.err);
   // A nested subcommand, and a global option after the subcommand.
   EXPECT_EQ(seqc(kSource, "group rn 3").err,
             "seqc: error: unknown group command 'rn'; did you mean 'run'?\n"
             "seqc: run 'seqc help' for the list of commands and options\n");
-  EXPECT_EQ(seqc(kSource, "upload examples/walk.yaml --quite").err,
+  EXPECT_EQ(seqc(kSource, "upload tests/data/walk-joints.yaml --quite").err,
             "seqc: error: unknown option '--quite' for 'seqc upload'; did you mean '--quiet'?\n"
             "seqc: run 'seqc help' for the list of commands and options\n");
   // Nothing close: no suggestion.
@@ -73,18 +73,18 @@ TEST(Usage, VersionComesFromTheProjectVersion) {
 }
 
 TEST(Usage, QuietLeavesOnlyDataAndVerboseAddsDetail) {
-  const SeqcRun normal = seqc(kSource, "upload examples/walk.yaml --port emu:xarm");
+  const SeqcRun normal = seqc(kSource, "upload tests/data/walk-joints.yaml --port emu:xarm");
   ASSERT_EQ(normal.status, 0) << normal.err;
   EXPECT_NE(normal.err.find("seqc: the controller acknowledged 27 actions"), std::string::npos);
   EXPECT_EQ(normal.err.find("upload: 29 actions into group 0"), std::string::npos);
 
-  const SeqcRun quiet = seqc(kSource, "-q upload examples/walk.yaml --port emu:xarm");
+  const SeqcRun quiet = seqc(kSource, "-q upload tests/data/walk-joints.yaml --port emu:xarm");
   EXPECT_EQ(quiet.status, 0);
   EXPECT_EQ(quiet.out, "");
   EXPECT_EQ(quiet.err, "");
-  EXPECT_EQ(seqc(kSource, "upload examples/walk.yaml --port emu:xarm --quiet").err, "");
+  EXPECT_EQ(seqc(kSource, "upload tests/data/walk-joints.yaml --port emu:xarm --quiet").err, "");
 
-  const SeqcRun verbose = seqc(kSource, "upload examples/walk.yaml --port emu:xarm -v");
+  const SeqcRun verbose = seqc(kSource, "upload tests/data/walk-joints.yaml --port emu:xarm -v");
   EXPECT_NE(verbose.err.find("upload: 27 actions into group 0 on emu:xarm"), std::string::npos)
       << verbose.err;
   // Errors are never quiet.
@@ -115,7 +115,7 @@ TEST(Usage, ColorOnlyWhenAskedOrOnATerminal) {
 }
 
 TEST(Usage, DashIsStdinForFilesAndStdoutForOutput) {
-  const SeqcRun in = seqc(kSource, "check -", (kSource / "examples/walk.yaml").string());
+  const SeqcRun in = seqc(kSource, "check -", (kSource / "tests/data/walk-joints.yaml").string());
   EXPECT_EQ(in.status, 0) << in.err;
   EXPECT_EQ(in.out.rfind("<stdin>: 27/1020 actions", 0), 0u) << in.out;
   const SeqcRun bad =
@@ -123,20 +123,20 @@ TEST(Usage, DashIsStdinForFilesAndStdoutForOutput) {
   EXPECT_EQ(bad.status, 1);
   EXPECT_EQ(bad.err.rfind("<stdin>:5:11: error: unknown pose 'raech'", 0), 0u) << bad.err;
 
-  const SeqcRun to_stdout = seqc(kSource, "compile examples/walk.yaml -o -");
+  const SeqcRun to_stdout = seqc(kSource, "compile tests/data/walk-joints.yaml -o -");
   EXPECT_EQ(to_stdout.status, 0);
-  EXPECT_EQ(to_stdout.out, seqc(kSource, "compile examples/walk.yaml").out);
+  EXPECT_EQ(to_stdout.out, seqc(kSource, "compile tests/data/walk-joints.yaml").out);
   EXPECT_EQ(seqc(kSource, "simulate examples/wave.yaml -o -").out,
             seqc(kSource, "simulate examples/wave.yaml").out);
   EXPECT_EQ(
-      seqc(kSource, "compile - --emit listing", (kSource / "examples/walk.yaml").string()).status,
+      seqc(kSource, "compile - --emit listing", (kSource / "tests/data/walk-joints.yaml").string()).status,
       0);
 }
 
 TEST(Usage, DryRunFramesDecodeBack) {
   // Through a real pipe, as the documentation shows it.
   const std::string cmd = "cd '" + kSource.string() +
-                          "' && '" SEQC_BIN "' compile --dry-run examples/walk.yaml | '" SEQC_BIN
+                          "' && '" SEQC_BIN "' compile --dry-run tests/data/walk-joints.yaml | '" SEQC_BIN
                           "' decode -";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
@@ -152,11 +152,11 @@ TEST(Usage, DryRunFramesDecodeBack) {
 TEST(CheckFormats, JsonGolden) {
   const SeqcRun r = seqc(kSource,
                          "check --format json tests/golden/bad-error-in-include.yaml "
-                         "tests/golden/bad-duplicate-key.yaml examples/walk.yaml");
+                         "tests/golden/bad-duplicate-key.yaml tests/data/walk-joints.yaml");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err, "");
   expect_golden(kCliGolden / "check-format.json", r.out);
-  const SeqcRun clean = seqc(kSource, "check --format json examples/walk.yaml");
+  const SeqcRun clean = seqc(kSource, "check --format json tests/data/walk-joints.yaml");
   EXPECT_EQ(clean.status, 0);
   EXPECT_EQ(clean.out, "[]\n");
 }
@@ -216,13 +216,13 @@ TEST(Plot, TheReadmePictureIsCurrent) {
 }
 
 TEST(Plot, WindowAndErrors) {
-  const SeqcRun window = seqc(kSource, "plot examples/walk.yaml --from 2s --to 4s");
+  const SeqcRun window = seqc(kSource, "plot tests/data/walk-joints.yaml --from 2s --to 4s");
   EXPECT_EQ(window.status, 0);
   EXPECT_NE(window.out.find(">2 s</text>"), std::string::npos);
   EXPECT_NE(window.out.find(">4 s</text>"), std::string::npos);
   EXPECT_EQ(window.out.find(">6 s</text>"), std::string::npos);
-  EXPECT_EQ(seqc(kSource, "plot examples/walk.yaml --from 4s --to 2s").status, 2);
-  EXPECT_EQ(seqc(kSource, "plot examples/walk.yaml --from 2b").err,
+  EXPECT_EQ(seqc(kSource, "plot tests/data/walk-joints.yaml --from 4s --to 2s").status, 2);
+  EXPECT_EQ(seqc(kSource, "plot tests/data/walk-joints.yaml --from 2b").err,
             "seqc: error: --from 2b: give a time in ms or s, e.g. 1.5s\n");
   EXPECT_EQ(seqc(kSource, "plot tests/golden/bad-unknown-pose.yaml").status, 1);
 }

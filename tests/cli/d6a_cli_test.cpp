@@ -90,7 +90,7 @@ TEST_F(D6aCli, AnExampleExportsTheActionsItsLanguageSays) {
   // walk.yaml begins `move: home, time: 1s` then `move: ready, time: 800ms` (claw 300,
   // wrist_roll 500, wrist_pitch 300, elbow 650, shoulder 400, base 500).
   const SeqcRun r =
-      seqc(kSource, "export examples/walk.yaml -o '" + (dir_ / "walk.d6a").string() + "'");
+      seqc(kSource, "export tests/data/walk-joints.yaml -o '" + (dir_ / "walk.d6a").string() + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const Rows rows = read_table(dir_ / "walk.d6a");
   ASSERT_EQ(rows.size(), 27u);
@@ -99,10 +99,10 @@ TEST_F(D6aCli, AnExampleExportsTheActionsItsLanguageSays) {
 }
 
 TEST_F(D6aCli, ForeignFilesAreClearErrors) {
-  const SeqcRun r = seqc(kSource, "import examples/walk.yaml");
+  const SeqcRun r = seqc(kSource, "import tests/data/walk-joints.yaml");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err,
-            "seqc: error: examples/walk.yaml: not a SQLite database (a .d6a file is one; this file "
+            "seqc: error: tests/data/walk-joints.yaml: not a SQLite database (a .d6a file is one; this file "
             "does not start with \"SQLite format 3\")\n");
   const SeqcRun car = seqc(kSource, "export examples/car-dance.yaml -o -");
   EXPECT_EQ(car.status, 1);

@@ -56,7 +56,7 @@ std::string dry_run_decoded(const std::string& file, int& status) {
 TEST(Decode, ADryRunReadsBackThroughAPipe) {
   // Both dialects: the xArm's walk and the LSC-6 arm; every frame decodes, nothing is flagged.
   int status = -1;
-  const std::string walk = dry_run_decoded("examples/walk.yaml", status);
+  const std::string walk = dry_run_decoded("tests/data/walk-joints.yaml", status);
   EXPECT_EQ(status, 0) << walk;
   // probe, stop, barrier, steps 1-3, 29 actions, step 5, barrier
   EXPECT_NE(walk.find("# 35 frame(s), 27 action(s), 8 s total, 0 issue(s)"), std::string::npos)

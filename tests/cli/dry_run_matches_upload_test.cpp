@@ -62,7 +62,7 @@ void expect_one_frame_a_line(const std::string& text) {
 
 TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
   Bench dry;
-  const RunResult printed = dry.run({"compile", "--dry-run", example("walk.yaml")});
+  const RunResult printed = dry.run({"compile", "--dry-run", example("../tests/data/walk-joints.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
@@ -71,7 +71,7 @@ TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
   EXPECT_TRUE(dry.xarm.received_bytes().empty());  // the dry run opened no port
 
   Bench live;
-  const RunResult sent = live.run({"upload", example("walk.yaml"), "--port", "emu:xarm"});
+  const RunResult sent = live.run({"upload", example("../tests/data/walk-joints.yaml"), "--port", "emu:xarm"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(to_hex(live.xarm.received_bytes()), to_hex(joined(frames)));
 }
@@ -79,7 +79,7 @@ TEST(DryRunMatchesUpload, XarmCompileDryRunIsWhatUploadSends) {
 TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
   Bench dry;
   const RunResult printed =
-      dry.run({"upload", "--dry-run", "--run", "--group", "3", example("walk.yaml")});
+      dry.run({"upload", "--dry-run", "--run", "--group", "3", example("../tests/data/walk-joints.yaml")});
   ASSERT_EQ(printed.code, 0) << printed.err;
   expect_one_frame_a_line(printed.out);
   const std::vector<Bytes> frames = frames_of(printed.out);
@@ -92,7 +92,7 @@ TEST(DryRunMatchesUpload, XarmUploadDryRunWithRunIsWhatUploadWithRunSends) {
 
   Bench live;
   const RunResult sent =
-      live.run({"upload", "--run", "--group", "3", example("walk.yaml"), "--port", "emu:xarm"});
+      live.run({"upload", "--run", "--group", "3", example("../tests/data/walk-joints.yaml"), "--port", "emu:xarm"});
   ASSERT_EQ(sent.code, 0) << sent.err;
   EXPECT_EQ(live.xarm.playing_group(), std::optional<std::uint8_t>(3));
   EXPECT_EQ(to_hex(live.xarm.received_bytes()), to_hex(joined(frames)));

@@ -18,7 +18,7 @@ namespace seqc::testing {
 namespace {
 
 // Written so that `{tmp}` in a case's arguments is that case's own scratch folder.
-constexpr const char* kValid = "examples/walk.yaml";
+constexpr const char* kValid = "tests/data/walk-joints.yaml";
 constexpr const char* kInvalid = "tests/golden/bad-unknown-pose.yaml";
 constexpr const char* kMissing = "no-such-file.yaml";
 constexpr const char* kSilent = "'emu:xarm?drop=1'";  // a controller that answers nothing

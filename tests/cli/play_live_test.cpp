@@ -51,7 +51,7 @@ TEST(PlayLive, TheExamplesLeaveOnTimeAt9600Baud) {
     EXPECT_EQ(r.err.find("cannot keep this schedule"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("late by p50 0.0 ms, p99 0.0 ms, max 0.0 ms"), std::string::npos) << r.err;
   }
-  SeqcRun unpaced = seqc(kSource, "play examples/walk.yaml --port emu:xarm?baud=0");
+  SeqcRun unpaced = seqc(kSource, "play tests/data/walk-joints.yaml --port emu:xarm?baud=0");
   EXPECT_EQ(unpaced.status, 0) << unpaced.err;
 }
 

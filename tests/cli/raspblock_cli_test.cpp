@@ -131,7 +131,7 @@ TEST(RaspblockCli, UploadExplanationForABoardWithoutStorage) {
             "seqc: error: small.yaml is for the Raspblock board, which has no storage: it cannot "
             "keep a sequence to run later, only follow one streamed to it live\n"
             "  hint: play it with `seqc play small.yaml --port PORT` (e.g. --port /dev/ttyAMA0)\n");
-  auto arm = compiler::compile_file((kSource / "examples/walk.yaml").string(), files);
+  auto arm = compiler::compile_file((kSource / "tests/data/walk-joints.yaml").string(), files);
   std::ostringstream none;
   EXPECT_FALSE(explain_no_storage(arm, "walk.yaml", none));
   EXPECT_EQ(none.str(), "");

@@ -37,10 +37,10 @@ TEST(Show, InProcessOnBothEmulatorsUploadsThenStartsTogether) {
               "performers:\n"
               "  arm: {file: " +
                   dir +
-                  "examples/walk.yaml, port: emu:xarm, group: 2}\n"
+                  "tests/data/walk-joints.yaml, port: emu:xarm, group: 2}\n"
                   "  car: {file: " +
                   dir + "tests/golden/raspblock/small.yaml, port: emu:raspblock}\n");
-  h.files.add(dir + "examples/walk.yaml", slurp_file(dir + "examples/walk.yaml"));
+  h.files.add(dir + "tests/data/walk-joints.yaml", slurp_file(dir + "tests/data/walk-joints.yaml"));
   h.files.add(dir + "tests/golden/raspblock/small.yaml",
               slurp_file(dir + "tests/golden/raspblock/small.yaml"));
   const io::TimePoint before = h.clock.now();
@@ -218,7 +218,7 @@ TEST(Show, AcrossProcessesOnPseudoTerminals) {
   const std::string src = SEQC_SOURCE_DIR;
   std::ofstream(tmp / "duet.yaml")
       << "show: duet\nperformers:\n  arm: {file: " << src
-      << "/examples/walk.yaml, port: " << arm_pty << "}\n  car: {file: " << src
+      << "/tests/data/walk-joints.yaml, port: " << arm_pty << "}\n  car: {file: " << src
       << "/tests/golden/raspblock/small.yaml, port: " << car_pty << "@115200}\n";
   const std::string cmd = "'" SEQC_BIN "' show '" + (tmp / "duet.yaml").string() + "' 2>'" +
                           (tmp / "show.stderr").string() + "'";

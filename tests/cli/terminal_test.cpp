@@ -111,7 +111,7 @@ TEST(Terminal, DiagnosticsAreColouredUnlessNoColor) {
 TEST(Terminal, UploadProgressFitsTheWindow) {
   for (int columns : {60, 100}) {
     const TerminalRun r =
-        on_terminal({"upload", "examples/walk.yaml", "--port", "emu:xarm"}, columns);
+        on_terminal({"upload", "tests/data/walk-joints.yaml", "--port", "emu:xarm"}, columns);
     ASSERT_EQ(r.status, 0) << r.screen;
     std::size_t bars = 0;
     for (const std::string& line : drawn_lines(r.screen)) {

@@ -22,7 +22,7 @@ extern char** environ;
 namespace seqc::e2e {
 
 inline const std::string kSeqc = SEQC_BIN;
-inline const std::string kWalk = std::string(SEQC_SOURCE_DIR) + "/examples/walk.yaml";
+inline const std::string kWalk = std::string(SEQC_SOURCE_DIR) + "/tests/data/walk-joints.yaml";
 
 inline pid_t spawn(const std::vector<std::string>& args, const std::string& out,
                    const std::string& err) {

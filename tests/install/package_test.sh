@@ -50,10 +50,10 @@ seqc="$root/usr/bin/seqc"
 file "$seqc" | grep -q "stripped" || true
 "$seqc" check "$root/usr/share/doc/seqc/examples/walk.yaml" >"$work/check.out" ||
   fail "installed seqc cannot check the installed example"
-grep -q "27/1020 actions" "$work/check.out" || fail "check said: $(cat "$work/check.out")"
+grep -q "43/1020 actions" "$work/check.out" || fail "check said: $(cat "$work/check.out")"
 "$seqc" upload "$root/usr/share/doc/seqc/examples/walk.yaml" --port emu:xarm --run \
   2>"$work/upload.err" || fail "upload to emu:xarm failed: $(cat "$work/upload.err")"
-grep -q "acknowledged 27 actions" "$work/upload.err" || fail "upload said: $(cat "$work/upload.err")"
+grep -q "acknowledged 43 actions" "$work/upload.err" || fail "upload said: $(cat "$work/upload.err")"
 grep -q 'TAG+="uaccess"' "$root/usr/lib/udev/rules.d/70-seqc.rules" || fail "rule lacks uaccess"
 zcat "$root/usr/share/man/man1/seqc.1.gz" | head -3 | grep -q '^.TH SEQC 1' || fail "man page"
 

@@ -18,7 +18,7 @@ mkdir "$work/hooks"
 cp "$src/.pre-commit-hooks.yaml" "$work/hooks/"
 git -C "$work/hooks" init -q && git -C "$work/hooks" add . && git -C "$work/hooks" commit -qm hooks
 cd "$work/choreo" && git init -q
-cp "$src/examples/walk.yaml" good.yaml
+cp "$src/tests/data/walk-joints.yaml" good.yaml
 printf 'robot: xarm\nsequence:\n  - move: home\n    tme: 1s\n' >bad.yaml
 git add .
 out=$(pre-commit try-repo "$work/hooks" seqc-check --all-files 2>&1)
