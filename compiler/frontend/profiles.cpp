@@ -28,6 +28,28 @@ const ArmGeometry& xarm_arm() {
                                   .claw = "claw"};
   return arm;
 }
+// The LeArm's links: upper arm 10.43 cm, forearm 8.9 cm and wrist-pitch axis to the gripper's
+// tip 17.7 cm are the constants of Hiwonder's own LeArm kinematics (LINKAGE_2..4 in the
+// Kinematics.hpp of its 2024 LeArm controller firmware). That firmware measures heights from its
+// own origin 28.9 mm below the shoulder axis, not from the table, so the base height is a public
+// measurement of the arm instead: 85 mm from the base plate to the shoulder axis (the LeArm's
+// arm_attributes.yaml in github.com/thomazach/LeArm). The same firmware's servo map is the
+// xArm's (6 base, 5 shoulder, 4 elbow, 3 wrist pitch, 2 wrist roll, 1 gripper) and its joint
+// angles are 90 degrees (1500 us) with the arm straight up: a longer pulse turns the base
+// counter-clockwise and tilts the shoulder forward, and tilts the elbow and the wrist back.
+const ArmGeometry& learm_arm() {
+  static const ArmGeometry arm = {.base_height = 85,
+                                  .upper_arm = 104.3,
+                                  .forearm = 89,
+                                  .hand = 177,
+                                  .base = {"base", 1500, 1},
+                                  .shoulder = {"shoulder", 1500, 1},
+                                  .elbow = {"elbow", 1500, -1},
+                                  .wrist = {"wrist_pitch", 1500, -1},
+                                  .degrees_per_unit = 1,  // robot_from_profile sets the profile's
+                                  .claw = "claw"};
+  return arm;
+}
 const std::vector<RobotProfile>& profiles() {
   // One row per profile reads better than one field per line.
   // clang-format off
@@ -54,6 +76,15 @@ const std::vector<RobotProfile>& profiles() {
       // uploads use that board's own dialect.
       {"lsc-6", RobotKind::ServoController, "lsc6", 1, 6, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},
        "ch", kRatedDegreesPerSecond * 2000.0 / 180.0, lsc6::kMaxActions},
+      // The LeArm: the LSC-6 board with the arm's servos named as on the xArm, and its geometry.
+      {"learm", RobotKind::ServoController, "lsc6", 1, 6, 500, 2500, 1500, 500.0, 2000.0 / 180.0,
+       {{"claw", 1},
+        {"wrist_roll", 2},
+        {"wrist_pitch", 3},
+        {"elbow", 4},
+        {"shoulder", 5},
+        {"base", 6}},
+       "ch", kRatedDegreesPerSecond * 2000.0 / 180.0, lsc6::kMaxActions, &learm_arm()},
       // Yahboom Raspblock car board: servos 1-4 at 500-2500 us; its gimbal and rocker are
       // outputs of the board itself (targets/raspblock/raspblock_lowering.cpp).
       {"raspblock", RobotKind::Raspblock, "raspblock", 1, 4, 500, 2500, 1500, 500.0, 2000.0 / 180.0, {},

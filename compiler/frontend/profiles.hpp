@@ -1,4 +1,4 @@
-// Built-in robot profiles: what `robot: xarm` (or lsc-16, lsc-32, lsc-6) means before the file's
+// Built-in robot profiles: what `robot: xarm` (or bus, lsc-16, lsc-32, lsc-6, learm, raspblock) means before the file's
 // own servo definitions are applied.
 //
 // This table is where a new robot kind plugs in: add a RobotKind (program/program.hpp), a profile

@@ -40,7 +40,7 @@ struct ServoInfo {
 };
 
 struct RobotInfo {
-  std::string profile;  // "xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "raspblock"
+  std::string profile;  // "xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "learm", "raspblock"
   std::string board;    // the board that runs it (RobotProfile::board): "xarm", "lsc6", ...
   RobotKind kind = RobotKind::ServoController;
   std::vector<ServoInfo> servos;  // in id order

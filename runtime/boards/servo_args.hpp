@@ -21,7 +21,7 @@
 
 namespace seqc::boards {
 
-// The servos a `--robot PROFILE` names (xarm, lsc-16, lsc-32, lsc-6); nullopt for "" (no profile:
+// The servos a `--robot PROFILE` names (xarm, bus, lsc-16, lsc-32, lsc-6, learm); nullopt for "" (no profile:
 // servos are plain ids 0..255 and positions plain 0..65535 values).
 Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile);
 

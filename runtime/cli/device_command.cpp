@@ -27,7 +27,7 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
   options.robot_option = cmd.get_option_no_throw("--robot");
   if (options.robot_option == nullptr) {
     cmd.add_option("--robot", options.robot,
-                   "Robot profile; lsc-6 selects the LSC-6 board's own dialect");
+                   "Robot profile; lsc-6 and learm select the LSC-6 board's own dialect");
   }
   cmd.add_option("--port", options.port, "Port, as for `seqc upload` (default: the connected one)");
   cmd.add_option("--timeout", options.timeout, "How long to wait for each reply")
@@ -37,8 +37,8 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
   cmd.add_option("--robot", profile,
-                 "Robot profile (xarm, bus, lsc-16, lsc-32, lsc-6): allows servo names; lsc-6 "
-                 "selects the LSC-6 board's own dialect");
+                 "Robot profile (xarm, bus, lsc-16, lsc-32, lsc-6, learm): allows servo names; lsc-6 "
+                 "and learm select the LSC-6 board's own dialect");
 }
 
 void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {

@@ -36,6 +36,9 @@ PROFILES = {
                "0-180deg, home 1500"),
     "lsc-6": (1, 6, 500, 2500, 1500, "LSC-6 / LeArm PWM channels 1-6 (ch1..ch6), 500-2500 us "
               "over 0-180deg, home 1500; a group holds 255 actions"),
+    "learm": (1, 6, 500, 2500, 1500, "the LeArm on its LSC-6 board: servos 1-6 (claw, wrist_roll, "
+              "wrist_pitch, elbow, shoulder, base) with the arm's geometry built in, 500-2500 us "
+              "over 0-180deg, home 1500; a group holds 255 actions"),
     "raspblock": (1, 4, 500, 2500, 1500, "the Yahboom Raspblock car board: rocker (drive), "
                   "gimbal (pan, tilt) and servos 1-4, streamed live"),
 }
@@ -199,7 +202,7 @@ robot_object = doc(
            for p in PROFILES])
 robot_object["defaultSnippets"] = [{
     "label": "robot definition", "description": "a profile with named servos and a mirror table",
-    "body": {"profile": "${1|lsc-16,lsc-32,lsc-6,xarm|}",
+    "body": {"profile": "${1|lsc-16,lsc-32,lsc-6,learm,xarm|}",
              "servos": {"${2:left_arm}": {"id": 0, "min": 600, "max": 2400},
                         "${3:right_arm}": {"id": 1, "min": 600, "max": 2400}},
              "mirror": {"${2:left_arm}": "${3:right_arm}"}}}]
@@ -418,8 +421,8 @@ pid = doc("PID", "Raspblock only: PID settings sent once before the first step; 
                          for k in PID}})
 
 TOP = {
-    "robot": doc("Robot", "The robot this file is for: a built-in profile (`xarm`, `lsc-16`, "
-                 "`lsc-32`, `lsc-6`, `raspblock`) or `{profile, servos, mirror}`.",
+    "robot": doc("Robot", "The robot this file is for: a built-in profile (`xarm`, `bus`, "
+                 "`lsc-16`, `lsc-32`, `lsc-6`, `learm`, `raspblock`) or `{profile, servos, mirror}`.",
                  type=["string", "object"],
                  allOf=[{"if": {"type": "string"}, "then": ref("profile")},
                         {"if": {"type": "object"}, "then": ref("robotObject")}],

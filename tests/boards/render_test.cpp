@@ -40,7 +40,7 @@ TEST(BoardRender, Lsc6ListingNamesItsDialect) {
   auto listing = board_for(learm).render(learm, Emit::Listing, 0);
   ASSERT_TRUE(listing.ok()) << listing.error().message;
   EXPECT_EQ(first_line(*listing).substr(0, 60),
-            "# robot lsc-6, group 0: 36 actions (LSC-6 dialect), 36 frame");
+            "# robot learm, group 0: 36 actions (LSC-6 dialect), 36 frame");
 }
 
 TEST(BoardRender, TheCarHasAStreamNotAGroup) {

@@ -51,7 +51,7 @@ TEST(WrongBoard, XarmFileOnAnLsc6SaysItIsAnLsc6) {
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err,
             "seqc: error: this is an LSC-6 board; the file is for xarm: use a file with `robot: "
-            "lsc-6` for this board, or give --port the port the xArm / LSC-16 / LSC-32 is on\n"
+            "lsc-6` (or learm) for this board, or give --port the port the xArm / LSC-16 / LSC-32 is on\n"
             "seqc: the board on emu:lsc6 ignores GetBatteryVoltage and answers a DownloadAction "
             "with 55 55 02 19: it speaks the LSC-6 dialect\n"
             "seqc: group 0 is unchanged\n");
@@ -114,7 +114,7 @@ TEST(WrongBoard, AShowPerformerOnTheOtherBoardIsNamedAndNothingStarts) {
   RunResult r = b.run({"show", "duo.yaml"});
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("seqc: error: arm: this is an LSC-6 board; the file is for xarm: use a "
-                       "file with `robot: lsc-6` for this board, or give --port the port the "
+                       "file with `robot: lsc-6` (or learm) for this board, or give --port the port the "
                        "xArm / LSC-16 / LSC-32 is on\n"
                        "seqc: arm: the board on emu:lsc6 ignores GetBatteryVoltage and answers "
                        "a DownloadAction with 55 55 02 19: it speaks the LSC-6 dialect\n"),

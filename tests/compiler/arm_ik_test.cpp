@@ -229,5 +229,31 @@ sequence:
                 "5:17 error: 'tip' needs 'y' as well, e.g. 'tip: {x: 150mm, y: -80mm, z: 40mm}'"}));
 }
 
+// The LeArm's built-in geometry: 2000 us over 180 degrees, zeros at 1500; the base and the
+// shoulder turn +1 and the elbow and wrist -1; links 85 (table to shoulder), 104.3, 89, 177 mm.
+TEST(ArmTip, LearmTipIsReachedWithItsOwnSignsAndUnits) {
+  const auto out = compile_text(R"(robot: learm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [120mm, 90mm, 60mm], pitch: 150deg}
+    time: 1s
+)");
+  std::map<int, int> pos = final_positions(compiled(out));
+  const double rad = std::numbers::pi / 180, per = 0.09;
+  const double base = (pos[6] - 1500) * per * rad;
+  const double s = (pos[5] - 1500) * per * rad;
+  const double e = -(pos[4] - 1500) * per * rad;
+  const double w = -(pos[3] - 1500) * per * rad;
+  const double r = 104.3 * std::sin(s) + 89 * std::sin(s + e) + 177 * std::sin(s + e + w);
+  const double z = 85 + 104.3 * std::cos(s) + 89 * std::cos(s + e) + 177 * std::cos(s + e + w);
+  // Half a unit is 0.045 degrees, at most (370.3 + 370.3 + 266 + 177) mm from the tip.
+  const double rounding = 0.5 * per * rad * (370.3 + 370.3 + 266 + 177);
+  EXPECT_LE(distance({r * std::cos(base), r * std::sin(base), z}, {120, 90, 60}), rounding);
+  EXPECT_NEAR((s + e + w) / rad, 150, 3 * 0.5 * per);
+  // atan2(90, 120) = 36.87 degrees counter-clockwise: 1500 + 36.87 / 0.09 = 1909.7 us.
+  EXPECT_NEAR(pos[6], 1910, 1);
+}
+
 }  // namespace
 }  // namespace seqc::compiler

@@ -183,7 +183,7 @@ TEST(D6a, RowsThatCannotBeActionsAreErrorsWithTheirRow) {
   EXPECT_EQ(
       compiler::choreography_from_d6a(*table, {"bad", "bad.d6a", "raspblock"}).error().message,
       "--robot raspblock: not a servo controller profile (xarm, bus, lsc-16, lsc-32, lsc-6, "
-      "raspblock)");
+      "learm, raspblock)");
 }
 
 }  // namespace

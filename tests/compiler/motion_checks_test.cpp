@@ -324,10 +324,10 @@ sequence:
 TEST(MotionChecks, UnknownRobotsAndEasingsListTheValidNames) {
   EXPECT_EQ(messages(compile_text("robot: r2d2\nsequence: []\n")),
             std::vector<std::string>{"1:8 error: unknown robot 'r2d2' (robots: xarm, bus, lsc-16, "
-                                     "lsc-32, lsc-6, raspblock)"});
+                                     "lsc-32, lsc-6, learm, raspblock)"});
   EXPECT_EQ(messages(compile_text("robot: xarn\nsequence: []\n")),
             std::vector<std::string>{"1:8 error: unknown robot 'xarn'; did you mean 'xarm'? "
-                                     "(robots: xarm, bus, lsc-16, lsc-32, lsc-6, raspblock)"});
+                                     "(robots: xarm, bus, lsc-16, lsc-32, lsc-6, learm, raspblock)"});
   const std::string easings =
       "(easings: linear, in, out, in-out; back, bounce, circ, cubic, elastic, expo, quad, quart, "
       "quint, sine, each with -in, -out or -in-out; cubic-bezier(x1, y1, x2, y2))";

@@ -125,7 +125,7 @@ TEST(RaspblockValidation, UnknownRobotSuggestsRaspblock) {
       messages(out),
       (std::vector<std::string>{
           "1:8 error: unknown robot 'raspblok'; did you mean 'raspblock'? (robots: xarm, bus, "
-          "lsc-16, lsc-32, lsc-6, raspblock)"}));
+          "lsc-16, lsc-32, lsc-6, learm, raspblock)"}));
 }
 
 TEST(RaspblockValidation, AStreamBeyondTheLinkIsAnErrorSayingWhereAndHowMuch) {

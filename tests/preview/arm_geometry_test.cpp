@@ -65,6 +65,51 @@ TEST(ArmGeometry, XarmHasTheBuiltInNumbers) {
   EXPECT_DOUBLE_EQ(arm.degrees_per_unit, 240.0 / 1000.0);  // LX-15D: 1000 units over 240 deg
 }
 
+// The LeArm's: Hiwonder's firmware lengths (104.3, 89, 177 mm), a measured 85 mm base, PWM
+// units (2000 us over 180 deg, so 0.09 deg per unit) and joints at zero at 1500 us.
+TEST(ArmGeometry, LearmHasTheBuiltInNumbers) {
+  const auto out =
+      compile_text("robot: learm\nsequence:\n  - move: {claw: 1600}\n    time: 1s\n");
+  const compiler::ServoProgram& p = program_of(out);
+  ASSERT_TRUE(p.robot.arm.has_value()) << diagnostics_of(out);
+  const compiler::ArmGeometry& arm = *p.robot.arm;
+  EXPECT_EQ(arm.base_height, 85);
+  EXPECT_EQ(arm.upper_arm, 104.3);
+  EXPECT_EQ(arm.forearm, 89);
+  EXPECT_EQ(arm.hand, 177);
+  EXPECT_EQ(arm.base, (compiler::ArmJoint{"base", 1500, 1}));
+  EXPECT_EQ(arm.shoulder, (compiler::ArmJoint{"shoulder", 1500, 1}));
+  EXPECT_EQ(arm.elbow, (compiler::ArmJoint{"elbow", 1500, -1}));
+  EXPECT_EQ(arm.wrist, (compiler::ArmJoint{"wrist_pitch", 1500, -1}));
+  EXPECT_EQ(arm.claw, "claw");
+  EXPECT_DOUBLE_EQ(arm.degrees_per_unit, 180.0 / 2000.0);
+  EXPECT_EQ(p.robot.board, "lsc6");  // uploads in the LSC-6 board's dialect
+  EXPECT_EQ(p.robot.servos.size(), 6u);
+
+  auto at = [&](const std::map<std::string, double>& positions) {
+    return arm_points(arm,
+                      [&](std::string_view name) {
+                        auto it = positions.find(std::string(name));
+                        return it == positions.end() ? 1500.0 : it->second;
+                      })
+        .tip;
+  };
+  expect_tip(at({}), 0, 0, 85 + 104.3 + 89 + 177);
+  // The firmware's reset pose (servos 3, 4, 5 at 644, 511, 1255 us), by the formula: s =
+  // (1255 - 1500) x 0.09 = -22.05 deg, e = -(511 - 1500) x 0.09 = 89.01 deg, w = -(644 - 1500) x
+  // 0.09 = 77.04 deg.
+  const double s = -22.05 * kDeg, e = 89.01 * kDeg, w = 77.04 * kDeg;
+  const double r = 104.3 * std::sin(s) + 89 * std::sin(s + e) + 177 * std::sin(s + e + w);
+  const double z = 85 + 104.3 * std::cos(s) + 89 * std::cos(s + e) + 177 * std::cos(s + e + w);
+  const auto reset = at({{"wrist_pitch", 644}, {"elbow", 511}, {"shoulder", 1255}});
+  expect_tip(reset, r, 0, z);
+  // The firmware gives that pose as the point 150 mm out and 20 mm above its origin, which is
+  // 28.9 mm below the shoulder: the signs above put the tip there within a few millimetres
+  // (its pulses are rounded to whole microseconds and its own lengths to tenths of a mm).
+  EXPECT_NEAR(reset[0], 150, 4);
+  EXPECT_NEAR(reset[2], 20 + (85 - 28.9), 4);
+}
+
 TEST(ArmGeometry, AllAnglesZeroPointsStraightUp) {
   expect_tip(tip(xarm(), {}), 0, 0, 72 + 97 + 96 + 150);
 }
