@@ -49,12 +49,13 @@ TEST(WrongBoard, XarmFileOnAnLsc6SaysItIsAnLsc6) {
   RunResult r = b.run({"upload", "arm.yaml", "--port", "emu:lsc6"});
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_EQ(r.err,
-            "seqc: error: this is an LSC-6 board; the file is for xarm: use a file with `robot: "
-            "lsc-6` (or learm) for this board, or give --port the port the xArm / LSC-16 / LSC-32 is on\n"
-            "seqc: the board on emu:lsc6 ignores GetBatteryVoltage and answers a DownloadAction "
-            "with 55 55 02 19: it speaks the LSC-6 dialect\n"
-            "seqc: group 0 is unchanged\n");
+  EXPECT_EQ(
+      r.err,
+      "seqc: error: this is an LSC-6 board; the file is for xarm: use a file with `robot: "
+      "lsc-6` (or learm) for this board, or give --port the port the xArm / LSC-16 / LSC-32 is on\n"
+      "seqc: the board on emu:lsc6 ignores GetBatteryVoltage and answers a DownloadAction "
+      "with 55 55 02 19: it speaks the LSC-6 dialect\n"
+      "seqc: group 0 is unchanged\n");
   // Five battery questions, unanswered, then the LSC-6 question: DownloadAction (19) into group
   // 0 with total 1 and index 255 (ff), no servos (N 0), time 0: LEN = 6 data bytes + 2 = 08.
   std::string battery;
@@ -113,12 +114,13 @@ TEST(WrongBoard, AShowPerformerOnTheOtherBoardIsNamedAndNothingStarts) {
   b.files.add("arm.yaml", kXarmFile);
   RunResult r = b.run({"show", "duo.yaml"});
   EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.err.find("seqc: error: arm: this is an LSC-6 board; the file is for xarm: use a "
-                       "file with `robot: lsc-6` (or learm) for this board, or give --port the port the "
-                       "xArm / LSC-16 / LSC-32 is on\n"
-                       "seqc: arm: the board on emu:lsc6 ignores GetBatteryVoltage and answers "
-                       "a DownloadAction with 55 55 02 19: it speaks the LSC-6 dialect\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("seqc: error: arm: this is an LSC-6 board; the file is for xarm: use a "
+                 "file with `robot: lsc-6` (or learm) for this board, or give --port the port the "
+                 "xArm / LSC-16 / LSC-32 is on\n"
+                 "seqc: arm: the board on emu:lsc6 ignores GetBatteryVoltage and answers "
+                 "a DownloadAction with 55 55 02 19: it speaks the LSC-6 dialect\n"),
+      std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("seqc: nothing was started\n"), std::string::npos) << r.err;
   EXPECT_EQ(b.lsc6.stored_count(0), 0);

@@ -68,8 +68,7 @@ TEST(ArmGeometry, XarmHasTheBuiltInNumbers) {
 // The LeArm's: Hiwonder's firmware lengths (104.3, 89, 177 mm), a measured 85 mm base, PWM
 // units (2000 us over 180 deg, so 0.09 deg per unit) and joints at zero at 1500 us.
 TEST(ArmGeometry, LearmHasTheBuiltInNumbers) {
-  const auto out =
-      compile_text("robot: learm\nsequence:\n  - move: {claw: 1600}\n    time: 1s\n");
+  const auto out = compile_text("robot: learm\nsequence:\n  - move: {claw: 1600}\n    time: 1s\n");
   const compiler::ServoProgram& p = program_of(out);
   ASSERT_TRUE(p.robot.arm.has_value()) << diagnostics_of(out);
   const compiler::ArmGeometry& arm = *p.robot.arm;
