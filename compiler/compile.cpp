@@ -55,7 +55,8 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
       break;
     }
     case RobotKind::ServoController: {
-      ServoProgram program = lower_servo_program(*robot, file, loader, reporter, options.clock_ppm);
+      ServoProgram program = lower_servo_program(*robot, file, loader, reporter,
+                                                 {options.clock_ppm, options.free_end_points});
       check_music(program.timeline, options, reporter);
       if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
       break;

@@ -28,6 +28,10 @@ struct CompileOptions {
   // is multiplied by (1 + ppm / 1e6) and then rounded, once (docs/music.md, "Long songs").
   // Only stored servo groups are scaled: a streamed program is timed by the host.
   std::int32_t clock_ppm = 0;
+  // Fitting may end an action anywhere within tolerance between knots (docs/language.md,
+  // "Curves, tolerance and fitting"); false keeps every target on the rounded curve, the fit
+  // before free end points, so that the two can be compared (fit_bench).
+  bool free_end_points = true;
 };
 
 struct CompileOutput {

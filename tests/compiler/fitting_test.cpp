@@ -402,6 +402,22 @@ TEST(Fitting, FreeEndPointsSaveAnActionOnAHandWorkedCurve) {
   EXPECT_EQ(fit_timeline(tl, on_curve).actions.size(), 3u);
 }
 
+// The same curve compiled from a file: CompileOptions::free_end_points chooses between the two
+// fits (fit_bench compares them on the examples this way).
+TEST(Fitting, CompileOptionsChooseTheFreeOrTheOnCurveFit) {
+  testing::MemoryFiles files;
+  files.files["main.yaml"] =
+      "robot: xarm\nsequence:\n  - move: {base: 0}\n    time: 1s\n  - move: {base: 18}\n"
+      "    time: 60ms\n    ease: quad-in\n";
+  CompileOptions options;
+  const CompileOutput free = compile_file("main.yaml", files, options);
+  options.free_end_points = false;
+  const CompileOutput on_curve = compile_file("main.yaml", files, options);
+  // The first move, then the curve's two actions (free) or three (on the curve).
+  EXPECT_EQ(testing::program_of(free).keyframes.size(), 3u);
+  EXPECT_EQ(testing::program_of(on_curve).keyframes.size(), 4u);
+}
+
 // Random single curves and servos moving together: the fit never has more actions than the
 // on-curve fit alone (it keeps the better of the two).
 TEST(Fitting, NeverMoreActionsThanTheOnCurveFit) {

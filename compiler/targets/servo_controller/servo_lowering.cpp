@@ -45,8 +45,8 @@ ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& r
       robot_(robot),
       pos_(robot.info.servos.size()) {}
 
-ServoProgram ServoLowering::run(const LoadedFile& main, std::int32_t clock_ppm) {
-  clock_ppm_ = clock_ppm;
+ServoProgram ServoLowering::run(const LoadedFile& main, const ServoFitting& fitting) {
+  fitting_ = fitting;
   run_file(main, true);
   ServoProgram program;
   program.robot = robot_.info;
@@ -70,14 +70,15 @@ void ServoLowering::finish(ServoProgram& program) {
   }
   FitOptions fit_options;
   if (robot_.profile != nullptr) fit_options.model = robot_.profile->controller;
+  fit_options.free_end_points = fitting_.free_end_points;
   for (const ServoInfo& s : robot_.info.servos) fit_options.limits.push_back({s.min, s.max});
   // A board clock e fast plays a board millisecond in 1 / (1 + e) host ms: the author's
   // instants are stretched by (1 + e) before the fit rounds each boundary once, so the error
   // never accumulates action by action.
   FitResult fit =
-      clock_ppm_ == 0
+      fitting_.clock_ppm == 0
           ? fit_timeline(timeline_, fit_options)
-          : fit_timeline(timeline_.stretched(1000000 + std::int64_t{clock_ppm_}, 1000000),
+          : fit_timeline(timeline_.stretched(1000000 + std::int64_t{fitting_.clock_ppm}, 1000000),
                          fit_options);
   const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
   if (needed > capacity()) {
@@ -366,8 +367,8 @@ void ServoLowering::tolerance_step(const YamlNode& value) {
 }
 
 ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                                 Reporter& reporter, std::int32_t clock_ppm) {
-  return ServoLowering(robot, loader, reporter).run(main, clock_ppm);
+                                 Reporter& reporter, const ServoFitting& fitting) {
+  return ServoLowering(robot, loader, reporter).run(main, fitting);
 }
 
 }  // namespace seqc::compiler

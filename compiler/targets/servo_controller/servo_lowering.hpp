@@ -10,10 +10,17 @@
 
 namespace seqc::compiler {
 
+// How the timeline is fitted into actions (CompileOptions' fields of the same names).
+struct ServoFitting {
+  // The timeline is fitted stretched by (1 + clock_ppm / 1e6); the program's timeline stays the
+  // author's.
+  std::int32_t clock_ppm = 0;
+  bool free_end_points = true;  // FitOptions::free_end_points
+};
+
 // The program is returned even when errors were reported (the caller decides); keyframes stop
-// at the group's 1,020-action budget. With `clock_ppm` the timeline is fitted stretched by
-// (1 + clock_ppm / 1e6) (CompileOptions::clock_ppm); the program's timeline stays the author's.
+// at the group's 1,020-action budget.
 ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                                 Reporter& reporter, std::int32_t clock_ppm = 0);
+                                 Reporter& reporter, const ServoFitting& fitting = {});
 
 }  // namespace seqc::compiler

@@ -26,6 +26,7 @@
 #include "compiler/frontend/scope_chain.hpp"
 #include "compiler/frontend/step_walk.hpp"
 #include "compiler/program/program.hpp"
+#include "compiler/targets/servo_controller/servo_lowering.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/timeline.hpp"
 
@@ -34,8 +35,7 @@ namespace seqc::compiler {
 class ServoLowering final : public StepWalker {
  public:
   ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
-  // clock_ppm: CompileOptions::clock_ppm (the actions are fitted to the stretched timeline).
-  ServoProgram run(const LoadedFile& main, std::int32_t clock_ppm = 0);
+  ServoProgram run(const LoadedFile& main, const ServoFitting& fitting = {});
 
  private:
   // ---- files and the walk's hooks (servo_lowering.cpp) --------------------------------------
@@ -56,7 +56,7 @@ class ServoLowering final : public StepWalker {
   void mirror_step(const YamlNode& step, const YamlNode& body);
   void tolerance_step(const YamlNode& value);
   void finish(ServoProgram& program);
-  std::int32_t clock_ppm_ = 0;
+  ServoFitting fitting_;
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
   std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);
