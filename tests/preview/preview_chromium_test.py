@@ -12,7 +12,7 @@ closed port and a resolver that finds no host), at several `#t=` instants:
   layout the page documents (formats/preview_html.hpp): the view's corner at page pixel
   (8, 80), 0.4 px per mm, r = 0 at x = 200 and z = 0 at y = 300 inside it; r is the tip's
   distance out along the base's direction, the base angle being (base - 500) * 0.24 degrees on
-  the xArm;
+  the xArm and (base - 1500) * 0.09 degrees on the LeArm (2000 us over 180 degrees);
 - the file names no URL and loads nothing (no src/href, @import, url(); a song is embedded as
   a data: URL).
 It also prints the page's size and load time (Chromium started to `seqc-state` dumped) for the
@@ -109,7 +109,16 @@ def check_car(label, state, sim, ms):
         problems.append(f"{label}: car {car} on the page, {want} by the model")
 
 
-def check_tip_pixel(label, png, state):
+# Each arm profile's base: its position at angle 0 and degrees per unit.
+BASE_TURN = {"xarm": (500, 0.24), "learm": (1500, 0.09)}
+
+
+def profile_of(path):
+    m = re.search(r"^(?:robot:|  profile:)\s*([\w-]+)\s*$", open(path).read(), re.MULTILINE)
+    return m.group(1) if m else None
+
+
+def check_tip_pixel(label, png, state, profile):
     image = Image.open(png).convert("RGB")
     w, h = image.size
     px = image.load()
@@ -122,7 +131,11 @@ def check_tip_pixel(label, png, state):
     cx = sum(p[0] for p in spots) / len(spots) + 0.5
     cy = sum(p[1] for p in spots) / len(spots) + 0.5
     x, y, z = state["tip"]
-    base = math.radians((state["servos"].get("base", 500) - 500) * 0.24)
+    if profile not in BASE_TURN:
+        problems.append(f"{label}: an arm on profile {profile}, whose base this test does not know")
+        return
+    zero, degrees = BASE_TURN[profile]
+    base = math.radians((state["servos"].get("base", zero) - zero) * degrees)
     r = x * math.cos(base) + y * math.sin(base)
     want_x, want_y = 8 + 200 + 0.4 * r, 80 + 300 - 0.4 * z
     print(f"{label}: tip dot at ({cx:.1f}, {cy:.1f}), expected ({want_x:.1f}, {want_y:.1f})")
@@ -204,7 +217,7 @@ with tempfile.TemporaryDirectory() as tmp:
             problems.append(f"{path}: looks blank or broken ({white:.1%} white, {ink:.2%} ink)")
         state = state_at(tmp, html, ms / 1000)
         if state and "tip" in state:
-            check_tip_pixel(f"{path} t={ms / 1000}", png, state)
+            check_tip_pixel(f"{path} t={ms / 1000}", png, state, profile_of(path))
     if longest:
         end, path, html = longest
         began = time.monotonic()
