@@ -71,6 +71,12 @@ struct ServoProgram {
   double fit_error = 0;
   std::uint32_t fit_error_at_ms = 0;
   std::string fit_error_servo;
+  // With `path: line` moves: the largest distance (mm) between the claw's tip, by forward
+  // kinematics of the joints as the controller moves them, and the line's point, over every
+  // millisecond of every line, and where; nullopt without a line. The joints' own pieces of a
+  // line are straight between whole units, so fit_error says nothing of them.
+  std::optional<double> tip_error_mm;
+  std::uint32_t tip_error_at_ms = 0;
   // How the profile's controller moves a servo during an action: what fitting kept every
   // tolerance under, and what `seqc simulate --compare` measures.
   ControllerModel controller = ControllerModel::StraightLine;

@@ -60,6 +60,24 @@ bool Timeline::Span::same(const Segment& s) const {
 }
 
 void Timeline::add(std::size_t servo, const Segment& s) {
+  const std::uint32_t index = span_for(s);
+  servos_[servo].push_back({index, static_cast<float>(s.from), static_cast<float>(s.to),
+                            static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+}
+
+void Timeline::replace(std::size_t servo, std::size_t first, std::size_t count,
+                       const std::vector<Segment>& with) {
+  std::vector<Piece> pieces;
+  for (const Segment& s : with) {
+    pieces.push_back({span_for(s), static_cast<float>(s.from), static_cast<float>(s.to),
+                      static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+  }
+  std::vector<Piece>& v = servos_[servo];
+  const auto at = v.begin() + static_cast<std::ptrdiff_t>(first);
+  v.insert(v.erase(at, at + static_cast<std::ptrdiff_t>(count)), pieces.begin(), pieces.end());
+}
+
+std::uint32_t Timeline::span_for(const Segment& s) {
   // The servos of a step are added one after another (with `steps`, piece after piece), so
   // the span they share is among the last few.
   std::uint32_t index = static_cast<std::uint32_t>(spans_.size());
@@ -74,8 +92,7 @@ void Timeline::add(std::size_t servo, const Segment& s) {
     spans_.push_back({s.start, s.end, s.easing, static_cast<float>(s.tolerance), s.kind,
                       s.keep_boundaries, s.at});
   }
-  servos_[servo].push_back({index, static_cast<float>(s.from), static_cast<float>(s.to),
-                            static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+  return index;
 }
 
 Timeline Timeline::stretched(std::int64_t num, std::int64_t den) const {

@@ -80,6 +80,10 @@ class Timeline {
   std::size_t servo_count() const { return servos_.size(); }
   // Appends to `servo`'s segments (after its last one).
   void add(std::size_t servo, const Segment& segment);
+  // Puts `with` in place of `servo`'s segments [first, first + count), which it must cover in
+  // time as they did: how a `path: line` is fitted again once every track is known.
+  void replace(std::size_t servo, std::size_t first, std::size_t count,
+               const std::vector<Segment>& with);
   std::size_t count(std::size_t servo) const { return servos_[servo].size(); }
   Segment segment(std::size_t servo, std::size_t i) const;
   Instant start_of(std::size_t servo, std::size_t i) const {
@@ -123,6 +127,8 @@ class Timeline {
     std::uint32_t span = 0;
     float from = 0, to = 0, slope_from = 0, slope_to = 0;
   };
+  // The span `s` shares with the servos added just before it (a new one if none).
+  std::uint32_t span_for(const Segment& s);
   std::vector<Span> spans_;
   std::vector<std::vector<Piece>> servos_;
 };

@@ -1,6 +1,7 @@
 // seqc check FILE... [--strict] [--format text|json|sarif]: with text (the default)
 // diagnostics on stderr and one summary line per file on stdout: for a stored group its budget
-// ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)"), for a
+// ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)", with
+// `path: line` moves "... and 0.99 mm (tip at 2.379 s)"), for a
 // streamed program its packets and duration, else its mistakes. With json or sarif, one
 // document on stdout holding every file's diagnostics (check_formats.hpp) and nothing else.
 #include <string>
@@ -76,16 +77,26 @@ std::string summary(const Unit& u, bool strict) {
   }
   if (const compiler::ServoProgram* p = u.compiled.output.servo_program()) {
     // The group's budget: actions used, duration, and the largest distance between the
-    // compiled motion and the intended curve, with where it is.
-    const std::string where =
+    // compiled motion and the intended curve, with where it is: in units of the servos' own
+    // curves, and in mm of the tip on `path: line` moves (whose joints' pieces are exact, so
+    // the units alone would say 0 of them). The units are left out beside the tip's mm when
+    // they are 0.
+    const std::string units =
         p->fit_error > 0
-            ? fmt::format(" ({} at {:.3f} s)", p->fit_error_servo, p->fit_error_at_ms / 1000.0)
-            : "";
-    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {} units{}{}\n", u.label,
+            ? fmt::format("{} units ({} at {:.3f} s)", compiler::format_units(p->fit_error),
+                          p->fit_error_servo, p->fit_error_at_ms / 1000.0)
+            : "0 units";
+    std::string fit = units;
+    if (p->tip_error_mm) {
+      const std::string tip =
+          fmt::format("{} mm (tip at {:.3f} s)", compiler::format_units(*p->tip_error_mm),
+                      p->tip_error_at_ms / 1000.0);
+      fit = p->fit_error > 0 ? units + " and " + tip : tip;
+    }
+    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {}{}\n", u.label,
                        p->keyframes.size(),
                        compiler::group_capacity(compiler::find_profile(p->robot.profile)),
-                       static_cast<double>(p->duration_ms()) / 1000.0,
-                       compiler::format_units(p->fit_error), where, warned);
+                       static_cast<double>(p->duration_ms()) / 1000.0, fit, warned);
   }
   const std::size_t errors = d.error_count() + (strict ? d.warning_count() : 0);
   const std::size_t warnings = strict ? 0 : d.warning_count();

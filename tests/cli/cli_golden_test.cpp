@@ -108,9 +108,19 @@ TEST(Help, GoldenForSeqcAndItsSubcommands) {
 
 TEST(Check, SummarisesEveryFileAndFailsIfAnyIsBad) {
   SeqcRun r = seqc(
-      kSource, "check tests/data/walk-joints.yaml tests/golden/bad-unknown-pose.yaml examples/wave.yaml");
+      kSource,
+      "check tests/data/walk-joints.yaml tests/golden/bad-unknown-pose.yaml examples/wave.yaml");
   EXPECT_EQ(r.status, 1);
   expect_golden(kCliGolden / "check-several.stdout", r.out);
+}
+
+// A file whose only curves are `path: line` moves gives its fit as the tip's distance in mm (its
+// joints' pieces are exact: "0 units" would say nothing); one with eased joints as well gives
+// both; one without a line keeps the units alone (check-several.stdout).
+TEST(Check, LineMovesGiveTheTipsErrorInMillimetres) {
+  SeqcRun r = seqc(kSource, "check tests/data/tip-lines.yaml examples/walk.yaml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_golden(kCliGolden / "check-tip-lines.stdout", r.out);
 }
 
 TEST(Check, UnreadableFileIsAFileError) {

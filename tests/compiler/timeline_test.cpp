@@ -118,5 +118,43 @@ TEST(Timeline, SegmentsAndHolds) {
   EXPECT_DOUBLE_EQ(h.value(25), 100 * (3 * 0.0625 - 2 * 0.015625));
 }
 
+TEST(Timeline, ReplacePutsPiecesInPlaceOfSegments) {
+  // Servo 0: 0..100 straight 0 -> 100, 100..300 eased 100 -> 300, 300..400 straight 300 -> 0;
+  // servo 1 moves over the same times, so the spans are shared between them.
+  Timeline tl;
+  tl.resize(2);
+  auto seg = [](int start, int end, double from, double to, CurveKind kind) {
+    Segment s;
+    s.start = ExactMs(start);
+    s.end = ExactMs(end);
+    s.from = from;
+    s.to = to;
+    s.kind = kind;
+    s.easing = *parse_easing("in-out").easing;
+    return s;
+  };
+  tl.add(0, seg(0, 100, 0, 100, CurveKind::Linear));
+  tl.add(1, seg(0, 100, 50, 60, CurveKind::Linear));
+  tl.add(0, seg(100, 300, 100, 300, CurveKind::Eased));
+  tl.add(1, seg(100, 300, 60, 70, CurveKind::Eased));
+  tl.add(0, seg(300, 400, 300, 0, CurveKind::Linear));
+  // The eased middle of servo 0 becomes two straight pieces, 100 -> 200 by 200 ms, then -> 300
+  // by 300 ms; the segments around it stay where they were.
+  tl.replace(
+      0, 1, 1,
+      {seg(100, 200, 100, 200, CurveKind::Linear), seg(200, 300, 200, 300, CurveKind::Linear)});
+  ASSERT_EQ(tl.count(0), 4u);
+  EXPECT_DOUBLE_EQ(*tl.value(0, 50), 50);
+  EXPECT_DOUBLE_EQ(*tl.value(0, 150), 150);
+  EXPECT_DOUBLE_EQ(*tl.value(0, 250), 250);
+  EXPECT_DOUBLE_EQ(*tl.value(0, 350), 150);
+  EXPECT_EQ(tl.segment(0, 2).kind, CurveKind::Linear);
+  EXPECT_EQ(tl.start_of(0, 3), ExactMs(300));
+  // Servo 1 keeps its eased middle: at 150 ms, a quarter of the way in time, in-out is 2 * 0.25^2.
+  ASSERT_EQ(tl.count(1), 2u);
+  EXPECT_EQ(tl.segment(1, 1).kind, CurveKind::Eased);
+  EXPECT_DOUBLE_EQ(*tl.value(1, 150), 60 + 10 * 0.125);
+}
+
 }  // namespace
 }  // namespace seqc::compiler

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <numbers>
@@ -114,6 +116,11 @@ TEST(TipLine, EasedLineIsFollowedWithinTheDefaultMillimetreEveryMillisecond) {
   std::cout << "line 1 mm: worst " << c.worst << " mm at " << c.worst_at << " ms, " << c.actions
             << " actions\n";
   EXPECT_LE(c.worst, 1.0 + 1e-9);
+  // The program carries the same largest distance for `seqc check`; with no line it has none.
+  ASSERT_TRUE(p.tip_error_mm.has_value());
+  EXPECT_NEAR(*p.tip_error_mm, c.worst, 1e-9);
+  EXPECT_EQ(p.tip_error_at_ms, c.worst_at);
+  EXPECT_FALSE(program_of(compile_text(kStart)).tip_error_mm.has_value());
   // The claw follows its own quad in-out from 300 to 600 within its 1 unit.
   const Sampler s(p);
   for (std::uint32_t t = 2000; t <= 3000; ++t) {
@@ -124,6 +131,121 @@ TEST(TipLine, EasedLineIsFollowedWithinTheDefaultMillimetreEveryMillisecond) {
   EXPECT_GT(c.actions, 1u);
   // Every action lasts at least the controller's 20 ms.
   for (const Keyframe& k : p.keyframes) EXPECT_GE(k.time_ms, 20);
+}
+
+// Another track's segment boundaries inside a line (a claw in two 500 ms moves, a wrist roll in
+// 300 ms moves) are action boundaries for every servo, the joints included, and another track's
+// curve (a claw eased in two moves) is fitted with actions of its own: in both, the tip must
+// stay within the tolerance at every millisecond, whichever track is walked first.
+TEST(TipLine, AnotherTracksBoundariesInsideTheLineKeepTheTipOnIt) {
+  const std::string line_track = R"(      arm:
+        - move: {tip: [200mm, 100mm, 60mm]}
+          time: 1s
+          path: line
+          ease: in-out
+)";
+  const std::string hand_track = R"(      hand:
+        - move: {claw: 500}
+          time: 500ms
+        - move: {claw: 650}
+          time: 500ms
+)";
+  const std::string roll_track = R"(      roll:
+        - move: {wrist_roll: 600}
+          time: 300ms
+        - move: {wrist_roll: 400}
+          time: 300ms
+        - move: {wrist_roll: 550}
+          time: 300ms
+)";
+  const std::string eased_track = R"(      hand:
+        - move: {claw: 500}
+          time: 600ms
+          ease: in-out
+        - move: {claw: 650}
+          time: 400ms
+          ease: out
+)";
+  // Each file, the other track's servo (by id) and where its moves put it u ms into the line.
+  struct Case {
+    std::string text;
+    int id;
+    std::function<double(double)> want;
+  };
+  auto claw_steps = [](double u) {
+    return u <= 500 ? 300 + 200 * u / 500 : 500 + 150 * (u - 500) / 500;
+  };
+  auto roll_steps = [](double u) {
+    return u <= 300   ? 500 + 100 * u / 300
+           : u <= 600 ? 600 - 200 * (u - 300) / 300
+           : u <= 900 ? 400 + 150 * (u - 600) / 300
+                      : 550;
+  };
+  auto claw_eased = [](double u) {
+    const double out = 1 - (1 - (u - 600) / 400) * (1 - (u - 600) / 400);  // quad-out
+    return u <= 600 ? 300 + 200 * quad_in_out(u / 600) : 500 + 150 * out;
+  };
+  const Case cases[] = {
+      {std::string(kStart) + "  - together:\n" + line_track + hand_track, 1, claw_steps},
+      {std::string(kStart) + "  - together:\n" + hand_track + line_track, 1, claw_steps},
+      {std::string(kStart) + "  - together:\n" + line_track + roll_track, 2, roll_steps},
+      {std::string(kStart) + "  - together:\n" + line_track + eased_track, 1, claw_eased},
+      {std::string(kStart) + "  - together:\n" + eased_track + line_track, 1, claw_eased},
+  };
+  for (const Case& k : cases) {
+    const auto out = compile_text(k.text);
+    ASSERT_TRUE(messages(out).empty()) << ::testing::PrintToString(messages(out));
+    const ServoProgram& p = program_of(out);
+    const LineCheck c = check_line(p, 2000, 3000, {200, 100, 60}, quad_in_out);
+    std::cout << "line beside another track: worst " << c.worst << " mm at " << c.worst_at
+              << " ms, " << c.actions << " actions\n";
+    EXPECT_LE(c.worst, 1.0 + 1e-9) << k.text;
+    // What `seqc check` prints as the tip's fit is this same largest distance.
+    ASSERT_TRUE(p.tip_error_mm.has_value());
+    EXPECT_NEAR(*p.tip_error_mm, c.worst, 1e-9);
+    EXPECT_EQ(p.tip_error_at_ms, c.worst_at);
+    // The other track's servo still follows its own moves within its unit.
+    const Sampler s(p);
+    for (std::uint32_t t = 2000; t <= 3000; ++t) {
+      EXPECT_NEAR(s.at(t).at(k.id), k.want(t - 2000.0), 1.0 + 1e-9) << t << "\n" << k.text;
+    }
+  }
+}
+
+// A curve of another track that goes on past the line's end cannot share the line's actions:
+// the fitter cuts the joints' pieces for it, and the tip's true largest distance, measured here
+// by forward kinematics, is what the warning says.
+TEST(TipLine, ACurveGoingOnPastTheLineWarnsWithTheTipsTrueDistance) {
+  const auto out = compile_text(std::string(kStart) + R"(  - together:
+      arm:
+        - move: {tip: [200mm, 100mm, 60mm]}
+          time: 1s
+          path: line
+          ease: in-out
+      hand:
+        - move: {claw: 650}
+          time: 1500ms
+          ease: in-out
+)");
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
+  const ServoProgram& p = program_of(out);
+  const LineCheck c = check_line(p, 2000, 3000, {200, 100, 60}, quad_in_out);
+  std::cout << "line beside a longer curve: worst " << c.worst << " mm at " << c.worst_at
+            << " ms\n";
+  ASSERT_GT(c.worst, 1.0);
+  char mm[16];
+  std::snprintf(mm, sizeof mm, "%.2f", c.worst);
+  const std::string at =
+      std::to_string(c.worst_at / 1000) + "." + std::to_string(c.worst_at % 1000 + 1000).substr(1);
+  std::string seconds = at;  // "2.831 s", trailing zeros dropped
+  while (seconds.back() == '0') seconds.pop_back();
+  if (seconds.back() == '.') seconds.pop_back();
+  EXPECT_EQ(m[0], "11:17 warning: the tip strays up to " + std::string(mm) +
+                      " mm from this line (at " + seconds +
+                      " s), more than its tolerance of 1mm: other tracks' moves during it cut "
+                      "the joints' actions where the line cannot choose their targets; keep the "
+                      "other tracks straight while it runs, or give it its own stretch of time");
 }
 
 TEST(TipLine, ToleranceInMillimetresIsTheTips) {
@@ -172,7 +294,8 @@ TEST(TipLine, RoundingThatCannotMeetTheToleranceSaysByHowMuch) {
 TEST(TipLine, BelowTheTableAlongTheLineSaysWhere) {
   // back-in, (c + 1)t^3 - ct^2 with c = 1.70158, first runs backwards: it is lowest at
   // t = 2c / (3(c + 1)) = 0.42, where it is -0.100. Up from z = 10 to z = 120 (110 mm) it dips
-  // 11 mm below the start, to z = -1, "at -10% of the line".
+  // 11 mm below the start, to z = -1: 10% of the line's length before its start, said so in
+  // words (a negative percentage of the line would read as nonsense).
   const auto out = compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 0mm, 10mm]}
     time: 1s
   - move: {tip: [200mm, 0mm, 120mm]}
@@ -182,8 +305,25 @@ TEST(TipLine, BelowTheTableAlongTheLineSaysWhere) {
 )");
   const auto m = messages(out);
   ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
-  EXPECT_NE(m[0].find("11:11 error: this line goes 1.0 mm below the table at -10% of the line, "
-                      "[200mm, 0mm, -1mm]"),
+  EXPECT_NE(m[0].find("11:11 error: this line goes 1.0 mm below the table where the ease runs "
+                      "10% of the line's length before its start, [200mm, 0mm, -1mm]"),
+            std::string::npos)
+      << m[0];
+}
+
+TEST(TipLine, PastTheLinesEndIsSaidInWords) {
+  // back-out, the mirror of back-in, runs past its end by the same 0.100 (at t = 0.58). Down
+  // from z = 120 to z = 10 (110 mm) it goes 11 mm past the end, to z = -1: 10% of the line's
+  // length past its end.
+  const auto out = compile_text(std::string(kStart) + R"(  - move: {tip: [200mm, 0mm, 10mm]}
+    time: 1s
+    path: line
+    ease: back-out
+)");
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 1u) << ::testing::PrintToString(m);
+  EXPECT_NE(m[0].find("9:11 error: this line goes 1.0 mm below the table where the ease runs "
+                      "10% of the line's length past its end, [200mm, 0mm, -1mm]"),
             std::string::npos)
       << m[0];
 }

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/source/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
@@ -59,6 +61,7 @@ void ServoLowering::finish(ServoProgram& program) {
   // A file with mistakes makes no program: fitting it would only cost time (a long, slow curve
   // took seconds; found by the check fuzzer).
   if (reporter_.errors_reported() > 0) return;
+  refit_lines();
   if (over_budget_at_) {
     // Already more actions than a group holds before fitting (each step needs at least its
     // count): fitting tens of thousands of steps would only cost time.
@@ -141,6 +144,31 @@ void ServoLowering::finish(ServoProgram& program) {
     std::sort(k.targets.begin(), k.targets.end(),
               [](const lsc::ServoTarget& x, const lsc::ServoTarget& y) { return x.id < y.id; });
     program.keyframes.push_back(std::move(k));
+  }
+  // The tip's own error on the lines, from the actions as they were fitted (all of them: a
+  // group cut at its capacity is an error already).
+  for (const LineRecord& line : lines_) {
+    if (needed > capacity()) break;
+    std::array<std::size_t, 4> joints{};
+    std::copy_n(line.servos.begin(), 4, joints.begin());
+    const backend::TipLineError e = backend::measure_tip_line(
+        line.request, joints, fit.actions, 1 + static_cast<double>(fitting_.clock_ppm) / 1e6);
+    // Under a clock scale the line's boundaries are rounded again on the board's clock, which
+    // moves the tip along the line by a fraction of a millisecond's travel: that is the scale's
+    // (the budget line shows it), not another track's, so only an unscaled fit warns.
+    if (fitting_.clock_ppm == 0 && e.mm > line.request.tolerance_mm + 1e-9) {
+      reporter_.warning(
+          line.path_at,
+          fmt::format("the tip strays up to {:.2f} mm from this line (at {}), more than its "
+                      "tolerance of {:g}mm: other tracks' moves during it cut the joints' "
+                      "actions where the line cannot choose their targets; keep the other "
+                      "tracks straight while it runs, or give it its own stretch of time",
+                      e.mm, format_seconds(e.at_ms), line.request.tolerance_mm));
+    }
+    if (!program.tip_error_mm || e.mm > *program.tip_error_mm) {
+      program.tip_error_mm = e.mm;
+      program.tip_error_at_ms = e.at_ms;
+    }
   }
   program.controller = fit_options.model;
   program.fit_error = fit.max_error;

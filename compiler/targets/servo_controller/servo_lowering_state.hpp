@@ -27,6 +27,7 @@
 #include "compiler/frontend/step_walk.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
+#include "compiler/targets/servo_controller/tip_line.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/timeline.hpp"
 
@@ -122,6 +123,28 @@ class ServoLowering final : public StepWalker {
                 const std::vector<std::optional<int>>& targets, ExactMs start, ExactMs end,
                 const Easing& ease, double tolerance_mm, double tolerance_units,
                 std::vector<KinematicFinding>& findings);
+  // A `path: line` move as tip_line() fitted it, for refit_lines().
+  struct LineRecord {
+    backend::TipLineRequest request;
+    std::vector<std::size_t> servos;  // the joints (base, shoulder, elbow, wrist), then others
+    std::vector<std::size_t> first;   // per servo, the index of its first piece in the timeline
+    std::size_t pieces = 0;           // the line's actions, one piece per servo each
+    std::vector<std::uint32_t> ends;  // each action's end, ms
+    ExactMs start, end;
+    double tolerance_units = 1;
+    Location step_at, path_at;
+  };
+  // Each servo's pieces of the line fitted as `fit`.
+  std::vector<std::vector<Segment>> line_pieces(const backend::TipLineRequest& request,
+                                                const backend::TipLineResult& fit,
+                                                const LineRecord& line) const;
+  // Once every track is walked: fits again each line inside which other servos' segments begin
+  // or end (the fitter ends every servo's action there), with those instants as boundaries of
+  // the line's own actions and its end as it was, and with the curves other servos follow
+  // within the line's time as its own other servos (else the fitter would cut the joints'
+  // pieces where it fits them). Where no such actions keep the tolerance the line stays as it
+  // was and finish() warns with the tip's true distance.
+  void refit_lines();
   // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
   // short from the far end at max_speed. `targets`: the move's positions, by servo.
   void check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time, Location at);
@@ -144,6 +167,7 @@ class ServoLowering final : public StepWalker {
   // The step that made the count pass the group's limit (then the file is not fitted).
   std::optional<Location> over_budget_at_;
   std::optional<Location> sequence_at_;
+  std::vector<LineRecord> lines_;  // every `path: line` move, in the order walked
 };
 
 }  // namespace seqc::compiler

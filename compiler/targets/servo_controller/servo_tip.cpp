@@ -34,6 +34,17 @@ std::string point_text(const std::array<double, 3>& p) {
   return fmt::format("[{:g}mm, {:g}mm, {:g}mm]", mm(p[0]), mm(p[1]), mm(p[2]));
 }
 
+// Where along a line a fraction of it falls: "40% of the line"; past its ends (an overshooting
+// ease) "10% of the line's length before its start" or "... past its end". `inside` tells which.
+std::string along_line(double fraction, bool& inside) {
+  // Adding 0.0 turns a -0 (a fraction just below 0 rounded) into 0.
+  const double percent = std::round(fraction * 100) + 0.0;
+  inside = percent >= 0 && percent <= 100;
+  if (percent < 0) return fmt::format("{:g}% of the line's length before its start", -percent);
+  if (percent > 100) return fmt::format("{:g}% of the line's length past its end", percent - 100);
+  return fmt::format("{:g}% of the line", percent);
+}
+
 }  // namespace
 
 bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
@@ -273,15 +284,17 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
       return false;
     }
     others.push_back(servo);
-    request.others.push_back({seg.from, seg.to, tolerance_units});
+    request.others.push_back({seg.from, seg.to, tolerance_units, {}});
   }
   const backend::TipLineResult fit = backend::fit_tip_line(request);
 
   if (const auto& p = fit.problem) {
     using Kind = backend::TipLineProblem::Kind;
     const Location at = step.find("path")->location;
-    const std::string where =
-        fmt::format("at {:.0f}% of the line, {}", p->fraction * 100, point_text(p->point));
+    bool inside = true;
+    const std::string along = along_line(p->fraction, inside);
+    const std::string where = fmt::format("{} {}, {}", inside ? "at" : "where the ease runs", along,
+                                          point_text(p->point));
     switch (p->kind) {
       case Kind::BelowTable:
         reporter_.error(
@@ -322,57 +335,184 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
         break;
       case Kind::Tolerance:
         reporter_.error(
-            at,
-            fmt::format(
-                "no actions of at least {}ms keep the tip within {:g}mm of this line "
-                "beyond {:.0f}% of it, {} (rounding the joints to whole units moves "
-                "the tip too far){}",
-                lsc::kMinActionMs, tolerance_mm, p->fraction * 100, point_text(p->point),
-                p->suggest > 0
-                    ? fmt::format("; give a larger tolerance, e.g. 'tolerance: {:g}mm'", p->suggest)
-                    : ""));
+            at, fmt::format("no actions of at least {}ms keep the tip within {:g}mm of this line "
+                            "beyond {}, {} (rounding the joints to whole units moves "
+                            "the tip too far){}",
+                            lsc::kMinActionMs, tolerance_mm,
+                            inside ? fmt::format("{:g}% of it", std::round(p->fraction * 100) + 0.0)
+                                   : "where the ease runs " + along,
+                            point_text(p->point),
+                            p->suggest > 0
+                                ? fmt::format("; give a larger tolerance, e.g. 'tolerance: {:g}mm'",
+                                              p->suggest)
+                                : ""));
         break;
     }
     return false;
   }
 
-  // Ordinary straight pieces of every servo of the move, kept as they are (keep_boundaries):
-  // the fitter makes each one action, whole units at whole milliseconds, so what runs is what
-  // was checked here.
+  LineRecord record;
+  record.start = start;
+  record.end = end;
+  record.tolerance_units = tolerance_units;
+  record.step_at = step.location;
+  record.path_at = step.find("path")->location;
   for (std::size_t j = 0; j < 4 + others.size(); ++j) {
     const std::size_t servo = j < 4 ? placed.joints[j] : others[j - 4];
-    auto target = [&](const backend::TipLineAction& a) {
-      return j < 4 ? a.targets[j] : a.others[j - 4];
-    };
     if (!claim(servo, step.location)) return false;
-    double prev = j < 4 ? request.from[j] : request.others[j - 4].from;
-    Segment fastest;
-    for (std::size_t k = 0; k < fit.actions.size(); ++k) {
-      Segment piece;
-      piece.kind = CurveKind::Linear;
-      piece.keep_boundaries = true;
-      piece.start = k == 0 ? start : ExactMs::ratio(fit.actions[k - 1].end_ms, 1);
-      piece.end = k + 1 == fit.actions.size() ? end : ExactMs::ratio(fit.actions[k].end_ms, 1);
-      piece.from = prev;
-      piece.to = target(fit.actions[k]);
-      piece.tolerance = tolerance_units;
-      piece.at = step.location;
-      prev = piece.to;
-      const double ms = piece.end.value() - piece.start.value();
-      if (k == 0 ||
-          std::abs(piece.to - piece.from) / ms >
-              std::abs(fastest.to - fastest.from) / (fastest.end.value() - fastest.start.value())) {
-        fastest = piece;
-      }
+    record.servos.push_back(servo);
+    record.first.push_back(timeline_.count(servo));
+  }
+  const std::vector<std::vector<Segment>> pieces = line_pieces(request, fit, record);
+  for (std::size_t j = 0; j < record.servos.size(); ++j) {
+    const std::size_t servo = record.servos[j];
+    const Segment* fastest = nullptr;
+    for (const Segment& piece : pieces[j]) {
+      auto speed = [](const Segment& x) {
+        return std::abs(x.to - x.from) / (x.end.value() - x.start.value());
+      };
+      if (fastest == nullptr || speed(piece) > speed(*fastest)) fastest = &piece;
       add_segment(servo, piece);
     }
-    check_kinematics(servo, fastest, std::nan(""), std::nullopt, findings);
-    pos_[servo] = target(fit.actions.back());
+    check_kinematics(servo, *fastest, std::nan(""), std::nullopt, findings);
+    pos_[servo] = static_cast<int>(pieces[j].back().to);
   }
+  record.pieces = fit.actions.size();
+  for (const backend::TipLineAction& a : fit.actions) record.ends.push_back(a.end_ms);
+  record.request = std::move(request);
+  lines_.push_back(std::move(record));
   count_actions(fit.actions.size(), step.location);
   timeline_.tip_moves.push_back(
       {start.value(), end.value(), fit.from, placed.point, /*line=*/true});
   return true;
+}
+
+std::vector<std::vector<Segment>> ServoLowering::line_pieces(const backend::TipLineRequest& request,
+                                                             const backend::TipLineResult& fit,
+                                                             const LineRecord& line) const {
+  // Ordinary straight pieces of every servo of the move, kept as they are (keep_boundaries):
+  // the fitter makes each one action, whole units at whole milliseconds, so what runs is what
+  // was checked here.
+  std::vector<std::vector<Segment>> out(line.servos.size());
+  for (std::size_t j = 0; j < line.servos.size(); ++j) {
+    auto target = [&](const backend::TipLineAction& a) {
+      return j < 4 ? a.targets[j] : a.others[j - 4];
+    };
+    double prev = j < 4 ? request.from[j] : request.others[j - 4].from;
+    for (std::size_t k = 0; k < fit.actions.size(); ++k) {
+      Segment piece;
+      piece.kind = CurveKind::Linear;
+      piece.keep_boundaries = true;
+      piece.start = k == 0 ? line.start : ExactMs::ratio(fit.actions[k - 1].end_ms, 1);
+      piece.end = k + 1 == fit.actions.size() ? line.end : ExactMs::ratio(fit.actions[k].end_ms, 1);
+      piece.from = prev;
+      piece.to = target(fit.actions[k]);
+      piece.tolerance = line.tolerance_units;
+      piece.at = line.step_at;
+      prev = piece.to;
+      out[j].push_back(piece);
+    }
+  }
+  return out;
+}
+
+void ServoLowering::refit_lines() {
+  const std::uint32_t min = lsc::kMinActionMs;
+  // Latest first, so that replacing a line's pieces leaves the indices of earlier ones as they
+  // were recorded.
+  for (auto line = lines_.rbegin(); line != lines_.rend(); ++line) {
+    backend::TipLineRequest& r = line->request;
+    // Every other servo's segment boundaries inside the line, rounded as the fitter rounds
+    // them, and kept as it keeps knots: one closer than the shortest action after the one
+    // before (or after the line's start) is merged into it. One that near the line's end
+    // cannot be an action boundary of the line and is left to the fitter.
+    std::vector<std::uint32_t> knots;
+    // Other servos on a curve during the line, whose segments lie within it: the fitter would
+    // cut the joints' pieces wherever it fits them, so the line carries them as its own others
+    // (`first` and `count`: their segments it replaces).
+    struct Follower {
+      std::size_t servo = 0, first = 0, count = 0;
+    };
+    std::vector<Follower> followers;
+    for (std::size_t servo = 0; servo < timeline_.servo_count(); ++servo) {
+      if (std::find(line->servos.begin(), line->servos.end(), servo) != line->servos.end()) {
+        continue;
+      }
+      Follower f{servo, timeline_.count(servo), 0};
+      bool curved = false, within = true;
+      for (std::size_t i = 0; i < timeline_.count(servo); ++i) {
+        const std::int64_t a = timeline_.start_of(servo, i).round();
+        const std::int64_t b = timeline_.end_of(servo, i).round();
+        for (const std::int64_t ms : {a, b}) {
+          if (ms > r.start_ms && ms < r.end_ms) knots.push_back(static_cast<std::uint32_t>(ms));
+        }
+        if (b <= r.start_ms || a >= r.end_ms) continue;
+        f.first = std::min(f.first, i);
+        ++f.count;
+        curved = curved || !timeline_.segment(servo, i).is_straight();
+        within = within && a >= r.start_ms && b <= r.end_ms;
+      }
+      if (curved && within && timeline_.value(servo, r.start_ms)) followers.push_back(f);
+    }
+    std::sort(knots.begin(), knots.end());
+    std::vector<std::uint32_t> forced;
+    bool needed = !followers.empty();
+    for (const std::uint32_t k : knots) {
+      const std::uint32_t before = forced.empty() ? r.start_ms : forced.back();
+      if (k - before < min || r.end_ms - k < min) continue;
+      forced.push_back(k);
+      needed = needed || !std::binary_search(line->ends.begin(), line->ends.end(), k);
+    }
+    if (!needed) continue;
+    r.forced_ms = forced;
+    r.end_joints = backend::Joints{};
+    for (std::size_t j = 0; j < 4; ++j) {
+      r.end_joints->at(j) = static_cast<int>(
+          timeline_.segment(line->servos[j], line->first[j] + line->pieces - 1).to);
+    }
+    LineRecord all = *line;  // the line's own servos, then the followers
+    for (const Follower& f : followers) {
+      backend::OtherServo o;
+      o.tolerance = INFINITY;
+      for (std::size_t i = f.first; i < f.first + f.count; ++i) {
+        o.tolerance = std::min(o.tolerance, timeline_.segment(f.servo, i).tolerance);
+      }
+      for (std::uint32_t t = r.start_ms; t <= r.end_ms; ++t) {
+        o.curve.push_back(*timeline_.value(f.servo, t));
+      }
+      o.from = o.curve.front();
+      o.to = o.curve.back();
+      r.others.push_back(std::move(o));
+      all.servos.push_back(f.servo);
+    }
+    backend::TipLineResult fit = backend::fit_tip_line(r);
+    if (fit.problem && !followers.empty()) {
+      // The curves cannot share the line's actions within their tolerances: the fitter fits
+      // them with actions of its own, as before, and finish() warns if the tip then strays.
+      r.others.resize(line->servos.size() - 4);
+      all.servos.resize(line->servos.size());
+      followers.clear();
+      fit = backend::fit_tip_line(r);
+    }
+    if (fit.problem) continue;  // the pieces stay as they were; finish() warns
+    std::vector<std::vector<Segment>> pieces = line_pieces(r, fit, all);
+    for (std::size_t j = 0; j < line->servos.size(); ++j) {
+      timeline_.replace(line->servos[j], line->first[j], line->pieces, pieces[j]);
+    }
+    for (std::size_t k = 0; k < followers.size(); ++k) {
+      const Follower& f = followers[k];
+      // Its own tolerance, and the step of its segment in force, for the fitter's accounts and
+      // the listing's sources.
+      for (Segment& piece : pieces[line->servos.size() + k]) {
+        const std::size_t i = std::clamp<std::size_t>(
+            timeline_.index_at(f.servo, piece.start.value()).value_or(f.first), f.first,
+            f.first + f.count - 1);
+        piece.tolerance = r.others[line->servos.size() - 4 + k].tolerance;
+        piece.at = timeline_.segment(f.servo, i).at;
+      }
+      timeline_.replace(f.servo, f.first, f.count, pieces[line->servos.size() + k]);
+    }
+  }
 }
 
 }  // namespace seqc::compiler

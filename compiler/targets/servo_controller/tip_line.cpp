@@ -33,7 +33,12 @@ class LineSearch {
  public:
   LineSearch(const TipLineRequest& r, std::vector<Point> points, std::vector<std::uint32_t> grid,
              std::vector<std::vector<Joints>> candidates)
-      : r_(r), points_(std::move(points)), grid_(std::move(grid)), cand_(std::move(candidates)) {}
+      : r_(r), points_(std::move(points)), grid_(std::move(grid)), cand_(std::move(candidates)) {
+    forced_.assign(grid_.size(), 0);
+    for (std::size_t g = 0; g < grid_.size(); ++g) {
+      forced_[g] = std::binary_search(r_.forced_ms.begin(), r_.forced_ms.end(), grid_[g]) ? 1 : 0;
+    }
+  }
 
   // The fewest actions from the first grid point to the last within `tol`; empty when none.
   // `farthest` gets the latest millisecond any chain of actions reached.
@@ -60,6 +65,8 @@ class LineSearch {
       for (const State& s : frontier) {
         int fails = 0;
         for (std::size_t g = s.g + 1; g < grid_.size(); ++g) {
+          // No action spans a forced boundary: the fitter ends every servo's action there.
+          if (g > s.g + 1 && forced_[g - 1] != 0) break;
           const std::uint32_t dt = grid_[g] - grid_[s.g];
           if (dt < r_.min_action_ms) continue;
           if (dt > r_.max_action_ms) break;
@@ -140,6 +147,7 @@ class LineSearch {
  public:
   double other_value(std::size_t k, std::uint32_t t) const {
     const OtherServo& o = r_.others[k];
+    if (!o.curve.empty()) return o.curve[t - r_.start_ms];
     const std::uint32_t n = r_.end_ms - r_.start_ms;
     const double f =
         n == 0 ? 1.0 : r_.ease.at(static_cast<double>(t - r_.start_ms) / static_cast<double>(n));
@@ -172,6 +180,7 @@ class LineSearch {
   std::vector<Point> points_;  // the line's point at every millisecond from start_ms
   std::vector<std::uint32_t> grid_;
   std::vector<std::vector<Joints>> cand_;
+  std::vector<char> forced_;  // per grid point: a boundary every chain must have
 };
 
 }  // namespace
@@ -248,6 +257,11 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
   const std::uint32_t step = n <= kFullGridMs ? 1 : (n + kGridPoints - 1) / kGridPoints;
   for (std::uint32_t t = r.start_ms; t < r.end_ms; t += step) grid.push_back(t);
   grid.push_back(r.end_ms);
+  if (!r.forced_ms.empty()) {
+    grid.insert(grid.end(), r.forced_ms.begin(), r.forced_ms.end());
+    std::sort(grid.begin(), grid.end());
+    grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  }
 
   // Candidate targets at each boundary, nearest the line first; the start is where the joints are.
   auto candidates = [&](std::uint32_t t, double tol, double* best) {
@@ -284,6 +298,7 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
     for (std::size_t g = 1; g < grid.size(); ++g) {
       cand.push_back(candidates(grid[g], tol, g + 1 == grid.size() ? end_error : nullptr));
     }
+    if (r.end_joints) cand.back() = {*r.end_joints};
     LineSearch s(r, points, grid, std::move(cand));
     return std::pair{s.run(tol, farthest), LineSearch(r, points, grid, {})};
   };
@@ -321,6 +336,52 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
     c1 = a.targets;
   }
   out.actions = std::move(actions);
+  return out;
+}
+
+TipLineError measure_tip_line(const TipLineRequest& r, const std::array<std::size_t, 4>& joints,
+                              const std::vector<compiler::FittedAction>& actions,
+                              double board_per_ms) {
+  // Per joint, the actions that name it: when each starts, how long it lasts, its target.
+  struct Move {
+    double start = 0, time = 0;
+    int target = 0;
+  };
+  std::array<std::vector<Move>, 4> moves;
+  for (const compiler::FittedAction& a : actions) {
+    for (const compiler::FittedTarget& t : a.targets) {
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (t.servo == joints[k]) {
+          moves[k].push_back(
+              {static_cast<double>(a.start_ms), static_cast<double>(a.time_ms), t.position});
+        }
+      }
+    }
+  }
+  auto position = [&](std::size_t k, double t) {
+    const std::vector<Move>& m = moves[k];
+    // The last action starting before t moves the joint from the one before's target.
+    const auto it = std::lower_bound(m.begin(), m.end(), t,
+                                     [](const Move& x, double v) { return x.start < v; });
+    if (it == m.begin()) return m.empty() ? static_cast<double>(r.from[k]) : m.front().target;
+    const Move& now = *(it - 1);
+    const double from = it - 1 == m.begin() ? now.target : (it - 2)->target;
+    const double f = std::min(1.0, (t - now.start) / now.time);
+    return compiler::controller_output(r.model, from + (now.target - from) * f);
+  };
+  const Point from = tip_of(r.arm, as_double(r.from));
+  const std::uint32_t n = r.end_ms - r.start_ms;
+  TipLineError out;
+  for (std::uint32_t i = 0; i <= n; ++i) {
+    const double f = n == 0 ? 1.0 : r.ease.at(static_cast<double>(i) / static_cast<double>(n));
+    Point want{};
+    for (std::size_t k = 0; k < 3; ++k) want[k] = from[k] + (r.to[k] - from[k]) * f;
+    const double t = static_cast<double>(r.start_ms + i) * board_per_ms;
+    const std::array<double, 4> j = {position(0, t), position(1, t), position(2, t),
+                                     position(3, t)};
+    const double e = distance(tip_of(r.arm, j), want);
+    if (e > out.mm) out.mm = e, out.at_ms = r.start_ms + i;
+  }
   return out;
 }
 

@@ -17,7 +17,16 @@
 // again only by luck of rounding). The move's other servos share the actions (each action names
 // every servo of the move, so the fitter keeps them as they are): their targets are their eased
 // curves rounded at the boundaries, and an action passes only if they too stay within their
-// tolerance at every millisecond. Pure: no diagnostics here; the caller words the problems.
+// tolerance at every millisecond. Another track's servo whose curve runs within the line's time
+// may be one of them too (OtherServo::curve), so that the fitter need not cut the joints'
+// pieces to fit it.
+//
+// Other servos' segment boundaries inside the line (another track of a `together` block) are
+// action boundaries for every servo (compiler/fitting/fitter.hpp), so the caller may name them
+// in `forced_ms`: the line's actions then end at each of them too, with whole-unit joint targets
+// chosen like any other boundary's, and no action spans one. A second search of a line already
+// fitted pins its end (`end_joints`), so that the steps after it, which started from there, stay
+// as they were. Pure: no diagnostics here; the caller words the problems.
 #pragma once
 
 #include <array>
@@ -25,6 +34,7 @@
 #include <optional>
 #include <vector>
 
+#include "compiler/fitting/fitter.hpp"
 #include "compiler/program/arm_geometry.hpp"
 #include "compiler/program/controller_model.hpp"
 #include "compiler/timeline/easing.hpp"
@@ -35,10 +45,13 @@ using Joints = std::array<int, 4>;  // base, shoulder, elbow, wrist, device unit
 using Point = std::array<double, 3>;
 
 // Another servo of the same move (the claw, the wrist's roll): it follows the step's easing from
-// `from` to `to` in device units, within `tolerance` units, on the line's actions.
+// `from` to `to` in device units, within `tolerance` units, on the line's actions. Or one of
+// another track whose curve runs during the line: `curve` holds where it is meant to be at
+// every millisecond from start_ms to end_ms (`from` its first).
 struct OtherServo {
   double from = 0, to = 0;
   double tolerance = 1;
+  std::vector<double> curve;
 };
 
 struct TipLineRequest {
@@ -55,6 +68,10 @@ struct TipLineRequest {
   compiler::ControllerModel model = compiler::ControllerModel::StraightLine;
   std::array<int, 4> min{}, max{};  // each joint servo's limits
   std::vector<OtherServo> others;
+  // Boundaries the actions must have, ascending, each strictly inside (start_ms, end_ms) and at
+  // least min_action_ms from the next, from the start and from the end.
+  std::vector<std::uint32_t> forced_ms;
+  std::optional<Joints> end_joints;  // the joints' targets at the end, when already chosen
 };
 
 struct TipLineAction {
@@ -93,5 +110,20 @@ struct TipLineResult {
 };
 
 TipLineResult fit_tip_line(const TipLineRequest& request);
+
+// The tip's largest distance (mm) from the line of `request` at any millisecond of it, and
+// where (ms, as the line's times), when the controller moves the joints as the fitted
+// `actions` say: each named joint (`joints`, servo indices of base, shoulder, elbow and wrist)
+// in a straight line from its previous target to the action's, under request.model.
+// `board_per_ms`: the actions' milliseconds per millisecond of the line's (1 + the clock's
+// error when the timeline was stretched for it).
+struct TipLineError {
+  double mm = 0;
+  std::uint32_t at_ms = 0;
+};
+TipLineError measure_tip_line(const TipLineRequest& request,
+                              const std::array<std::size_t, 4>& joints,
+                              const std::vector<compiler::FittedAction>& actions,
+                              double board_per_ms = 1);
 
 }  // namespace seqc::backend
