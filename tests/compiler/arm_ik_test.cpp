@@ -18,10 +18,18 @@ using testing::compile_text;
 using testing::messages;
 using testing::program_of;
 
-// The xArm profile: 1000 units over 240 degrees, ids claw 1 .. base 6; links 72 (table to
-// shoulder), 97, 96 and 150 mm; every joint's zero at 500, the base turning +1, the others -1.
+// An arm as the documents give it: ids claw 1 .. base 6 (wrist pitch 3, elbow 4, shoulder 5),
+// degrees per unit, every joint's zero, each joint's sign and the link lengths in mm.
+struct WrittenArm {
+  double deg_per_unit, zero;
+  int base_sign, shoulder_sign, elbow_sign, wrist_sign;
+  double base_height, upper, fore, hand;
+};
+
+// The xArm profile: 1000 units over 240 degrees; links 72 (table to shoulder), 97, 96 and 150
+// mm; every joint's zero at 500, the base turning +1, the others -1.
 constexpr double kDegPerUnit = 0.24;
-constexpr double kBaseHeight = 72, kUpper = 97, kFore = 96, kHand = 150;
+constexpr WrittenArm kXarm = {kDegPerUnit, 500, 1, -1, -1, -1, 72, 97, 96, 150};
 
 // Each servo's last commanded position, by bus id.
 std::map<int, int> final_positions(const ServoProgram& p) {
@@ -39,15 +47,16 @@ struct Tip {
 
 // r = U sin s + F sin(s+e) + H sin(s+e+w), z = base_height + U cos s + F cos(s+e) + H cos(s+e+w),
 // x = r cos(base), y = r sin(base).
-Tip forward(std::map<int, int> pos) {
+Tip forward(std::map<int, int> pos, const WrittenArm& a = kXarm) {
   const double rad = std::numbers::pi / 180;
-  const double base = (pos[6] - 500) * kDegPerUnit * rad;
-  const double s = -(pos[5] - 500) * kDegPerUnit * rad;
-  const double e = -(pos[4] - 500) * kDegPerUnit * rad;
-  const double w = -(pos[3] - 500) * kDegPerUnit * rad;
-  const double r = kUpper * std::sin(s) + kFore * std::sin(s + e) + kHand * std::sin(s + e + w);
-  const double z =
-      kBaseHeight + kUpper * std::cos(s) + kFore * std::cos(s + e) + kHand * std::cos(s + e + w);
+  auto angle = [&](int id, int sign) { return sign * (pos[id] - a.zero) * a.deg_per_unit * rad; };
+  const double base = angle(6, a.base_sign);
+  const double s = angle(5, a.shoulder_sign);
+  const double e = angle(4, a.elbow_sign);
+  const double w = angle(3, a.wrist_sign);
+  const double r = a.upper * std::sin(s) + a.fore * std::sin(s + e) + a.hand * std::sin(s + e + w);
+  const double z = a.base_height + a.upper * std::cos(s) + a.fore * std::cos(s + e) +
+                   a.hand * std::cos(s + e + w);
   return {{r * std::cos(base), r * std::sin(base), z}, (s + e + w) / rad};
 }
 
@@ -240,17 +249,12 @@ sequence:
     time: 1s
 )");
   std::map<int, int> pos = final_positions(compiled(out));
-  const double rad = std::numbers::pi / 180, per = 0.09;
-  const double base = (pos[6] - 1500) * per * rad;
-  const double s = (pos[5] - 1500) * per * rad;
-  const double e = -(pos[4] - 1500) * per * rad;
-  const double w = -(pos[3] - 1500) * per * rad;
-  const double r = 104.3 * std::sin(s) + 89 * std::sin(s + e) + 177 * std::sin(s + e + w);
-  const double z = 85 + 104.3 * std::cos(s) + 89 * std::cos(s + e) + 177 * std::cos(s + e + w);
+  const double per = 0.09;
+  const Tip tip = forward(pos, {per, 1500, 1, 1, -1, -1, 85, 104.3, 89, 177});
   // Half a unit is 0.045 degrees, at most (370.3 + 370.3 + 266 + 177) mm from the tip.
-  const double rounding = 0.5 * per * rad * (370.3 + 370.3 + 266 + 177);
-  EXPECT_LE(distance({r * std::cos(base), r * std::sin(base), z}, {120, 90, 60}), rounding);
-  EXPECT_NEAR((s + e + w) / rad, 150, 3 * 0.5 * per);
+  const double rounding = 0.5 * per * std::numbers::pi / 180 * (370.3 + 370.3 + 266 + 177);
+  EXPECT_LE(distance(tip.at, {120, 90, 60}), rounding);
+  EXPECT_NEAR(tip.pitch, 150, 3 * 0.5 * per);
   // atan2(90, 120) = 36.87 degrees counter-clockwise: 1500 + 36.87 / 0.09 = 1909.7 us.
   EXPECT_NEAR(pos[6], 1910, 1);
 }
