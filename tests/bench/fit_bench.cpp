@@ -41,6 +41,7 @@
 // small multi-servo sets, for ctest; --runs: compiles per example and way, default 9;
 // --examples: the examples' table alone)
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -296,6 +297,125 @@ long knot_floor(const std::vector<Track>& tracks, int end_ms, double tol) {
   return total;
 }
 
+// The exact fewest actions for two servos under the knot rule, where every action stays within
+// tolerance (-1 when some interval cannot be crossed so: a shortfall, where "fewest" has no
+// meaning): dynamic programming over every (ms, whole unit of servo 0, whole unit of servo 1)
+// state, each action a pair of straight lines from one state to a later one, at least 20 ms
+// long, not crossing a knot, both within tolerance of their tracks at every millisecond. The
+// same windows as interval_minimum(), per servo; the pair's reachable targets are the product
+// of the two servos' sets.
+long exact_two_servo_minimum(const std::vector<Track>& tracks, int end_ms, double tol) {
+  const std::vector<int> knots = knots_of(tracks, end_ms);
+  const double eps = 1e-9;
+  std::vector<char> is_knot(static_cast<std::size_t>(end_ms) + 1, 0);
+  for (int k : knots) is_knot[static_cast<std::size_t>(k)] = 1;
+  std::vector<int> next_knot(static_cast<std::size_t>(end_ms) + 1, end_ms);
+  for (int t = end_ms - 1; t >= 0; --t) {
+    next_knot[static_cast<std::size_t>(t)] = is_knot[static_cast<std::size_t>(t) + 1] != 0
+                                                 ? t + 1
+                                                 : next_knot[static_cast<std::size_t>(t) + 1];
+  }
+  auto own = [&](const Track& tr, int k) {
+    if (k == 0) return true;
+    for (const Piece& p : tr.pieces) {
+      if (static_cast<int>(p.t0) == k || static_cast<int>(p.t1) == k) return true;
+    }
+    return false;
+  };
+  // Each servo's curve and its targets [low, high] at every ms.
+  std::vector<double> c[2];
+  std::vector<int> low[2], high[2];
+  for (int i = 0; i < 2; ++i) {
+    for (int t = 0; t <= end_ms; ++t) {
+      const double w = tracks[static_cast<std::size_t>(i)].at(t);
+      c[i].push_back(w);
+      if (is_knot[static_cast<std::size_t>(t)] != 0 &&
+          own(tracks[static_cast<std::size_t>(i)], t)) {
+        low[i].push_back(static_cast<int>(std::lround(w)));
+        high[i].push_back(static_cast<int>(std::lround(w)));
+      } else {
+        low[i].push_back(static_cast<int>(std::ceil(w - tol - eps)));
+        high[i].push_back(static_cast<int>(std::floor(w + tol + eps)));
+      }
+    }
+  }
+  auto width = [&](int i, int t) {
+    return std::max(0,
+                    high[i][static_cast<std::size_t>(t)] - low[i][static_cast<std::size_t>(t)] + 1);
+  };
+  constexpr int kFar = 1 << 30;
+  std::vector<std::vector<int>> best(static_cast<std::size_t>(end_ms) + 1);
+  for (int t = 0; t <= end_ms; ++t) {
+    best[static_cast<std::size_t>(t)].assign(static_cast<std::size_t>(width(0, t) * width(1, t)),
+                                             kFar);
+  }
+  best[0][0] = 0;
+  // reach[i][u][e - s]: servo i's targets (bits from low at e) a line from its u-th value at s
+  // reaches within tolerance; 0 once the window has closed.
+  std::vector<std::vector<std::uint64_t>> reach[2];
+  std::vector<int> open_until[2];  // per start value: the last end its window reaches
+  for (int s = 0; s < end_ms; ++s) {
+    const std::vector<int>& here = best[static_cast<std::size_t>(s)];
+    if (std::all_of(here.begin(), here.end(), [](int d) { return d >= kFar; })) continue;
+    const int stop = next_knot[static_cast<std::size_t>(s)];
+    for (int i = 0; i < 2; ++i) {
+      reach[i].assign(static_cast<std::size_t>(width(i, s)),
+                      std::vector<std::uint64_t>(static_cast<std::size_t>(stop - s) + 1, 0));
+      open_until[i].assign(static_cast<std::size_t>(width(i, s)), stop);
+      for (int j = 0; j < width(i, s); ++j) {
+        const double u = low[i][static_cast<std::size_t>(s)] + j;
+        double lo = -1e300, hi = 1e300;
+        for (int e = s + 1; e <= stop; ++e) {
+          const double span = e - s;
+          std::uint64_t bits = 0;
+          for (int v = low[i][static_cast<std::size_t>(e)];
+               v <= high[i][static_cast<std::size_t>(e)]; ++v) {
+            const double slope = (v - u) / span;
+            if (slope >= lo - 1e-12 && slope <= hi + 1e-12) {
+              bits |= std::uint64_t{1} << (v - low[i][static_cast<std::size_t>(e)]);
+            }
+          }
+          reach[i][static_cast<std::size_t>(j)][static_cast<std::size_t>(e - s)] = bits;
+          const double w = c[i][static_cast<std::size_t>(e)];
+          lo = std::max(lo, (w - tol - eps - u) / span);
+          hi = std::min(hi, (w + tol + eps - u) / span);
+          if (lo > hi) {
+            open_until[i][static_cast<std::size_t>(j)] = e;
+            break;
+          }
+        }
+      }
+    }
+    const int w1s = width(1, s);
+    for (std::size_t x = 0; x < here.size(); ++x) {
+      const int d = here[x];
+      if (d >= kFar) continue;
+      const std::size_t j0s = x / static_cast<std::size_t>(w1s);
+      const std::size_t j1s = x % static_cast<std::size_t>(w1s);
+      const auto& r0 = reach[0][j0s];
+      const auto& r1 = reach[1][j1s];
+      const int until = std::min(open_until[0][j0s], open_until[1][j1s]);
+      for (int e = s + 20; e <= until; ++e) {
+        const std::uint64_t a0 = r0[static_cast<std::size_t>(e - s)];
+        const std::uint64_t a1 = r1[static_cast<std::size_t>(e - s)];
+        if (a0 == 0 || a1 == 0) continue;
+        std::vector<int>& there = best[static_cast<std::size_t>(e)];
+        const int w1e = width(1, e);
+        for (std::uint64_t b0 = a0; b0 != 0; b0 &= b0 - 1) {
+          const int j0 = std::countr_zero(b0);
+          for (std::uint64_t b1 = a1; b1 != 0; b1 &= b1 - 1) {
+            int& cell = there[static_cast<std::size_t>(j0 * w1e + std::countr_zero(b1))];
+            cell = std::min(cell, d + 1);
+          }
+        }
+      }
+    }
+  }
+  const std::vector<int>& end = best[static_cast<std::size_t>(end_ms)];
+  const int m = end.empty() ? kFar : *std::min_element(end.begin(), end.end());
+  return m >= kFar ? -1 : m;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -320,7 +440,9 @@ Fits fit_both(const Timeline& tl) {
 
 struct Totals {
   long fitted = 0, on_curve = 0, uniform = 0;
-  long floor = 0;  // multi-servo sets: knot_floor()
+  long floor = 0;              // multi-servo sets: knot_floor()
+  long exact = 0;              // two servos: exact_two_servo_minimum(), summed
+  bool exact_unknown = false;  // some case had a shortfall, where there is no exact minimum
   int cases = 0, above_on_curve = 0, above_tolerance = 0, shortfall_cases = 0;
   double worst = 0, fitted_ms = 0, on_curve_ms = 0;
   void add(const Fits& f, long uniform_count, double error, double tol) {
@@ -350,6 +472,13 @@ struct Totals {
     if (floor > 0) {
       std::printf("%-30s        knot floor %6ld  floor / on-curve %.3f\n", "", floor,
                   static_cast<double>(floor) / static_cast<double>(on_curve));
+    }
+    if (exact > 0 && !exact_unknown) {
+      std::printf("%-30s        exact minimum %6ld  exact / on-curve %.3f  fitted / exact %.3f\n",
+                  "", exact, static_cast<double>(exact) / static_cast<double>(on_curve),
+                  static_cast<double>(fitted) / static_cast<double>(exact));
+    } else if (exact_unknown) {
+      std::printf("%-30s        exact minimum: none (a case has a shortfall)\n", "");
     }
   }
 };
@@ -589,6 +718,14 @@ int main(int argc, char** argv) {
           const Fits f = fit_both(timeline_of(tracks, t, ms));
           set.add(f, static_cast<long>(std::ceil(ms / 20)), worst_error(f.fitted, tracks), t);
           set.floor += knot_floor(tracks, static_cast<int>(ms), t);
+          if (servos == 2 && !quick) {
+            const long exact = exact_two_servo_minimum(tracks, static_cast<int>(ms), t);
+            if (exact < 0) {
+              set.exact_unknown = true;
+            } else {
+              set.exact += exact;
+            }
+          }
         }
         const std::string name =
             std::to_string(servos) + " servos, " + (kind == 0 ? "mixed moves" : "oscillations");
