@@ -100,17 +100,8 @@ std::optional<ExactMs> musical_time(const TempoMap& map, const YamlNode& node,
                                     std::string_view what, ExactMs from, Reporter& reporter) {
   const std::optional<TimeValue> t = parse_time_node(node, what, reporter);
   if (!t) return std::nullopt;
-  const ExactMs amount = ExactMs::from_double(t->amount);
-  switch (t->unit) {
-    case TimeUnit::Milliseconds:
-      return from + amount;
-    case TimeUnit::Seconds:
-      return from + amount * ExactMs(1000);
-    case TimeUnit::Beats:
-    case TimeUnit::Bars:
-      break;
-  }
-  if (map.bpm_at(from) <= 0) {
+  const bool musical = t->unit == TimeUnit::Beats || t->unit == TimeUnit::Bars;
+  if (musical && map.bpm_at(from) <= 0) {
     report_no_tempo(node, reporter);
     return std::nullopt;
   }
@@ -118,8 +109,7 @@ std::optional<ExactMs> musical_time(const TempoMap& map, const YamlNode& node,
     report_no_meter(node, reporter);
     return std::nullopt;
   }
-  const std::optional<ExactMs> end =
-      t->unit == TimeUnit::Beats ? map.after_beats(from, amount) : map.after_bars(from, amount);
+  const std::optional<ExactMs> end = map.after(from, ExactMs::from_double(t->amount), t->unit);
   if (!end) report_no_tempo(node, reporter);  // a stretch on the way has none
   return end;
 }
@@ -149,8 +139,8 @@ std::optional<ExactMs> bar_position(const TempoMap& map, const YamlNode& at, Rep
                                     "'tempo' and 'meter' at the top of the file");
     return std::nullopt;
   }
-  const std::optional<ExactMs> first = map.beat_of_bar(ExactMs::from_double(bar - 1));
-  const std::optional<ExactMs> bar_start = first ? map.time_of_beat(*first) : std::nullopt;
+  const ExactMs bar_index = ExactMs::from_double(bar - 1);
+  const std::optional<ExactMs> bar_start = map.time_of_bar(bar_index);
   if (!bar_start) {
     report_no_tempo(at, reporter);
     return std::nullopt;
@@ -161,7 +151,9 @@ std::optional<ExactMs> bar_position(const TempoMap& map, const YamlNode& at, Rep
                                     " beats: 'beat " + words[3] + "' is past its end");
     return std::nullopt;
   }
-  return map.time_of_beat(*first + ExactMs::from_double(beat - 1));
+  const std::optional<ExactMs> t = map.time_of_bar_beat(bar_index, ExactMs::from_double(beat - 1));
+  if (!t) report_no_tempo(at, reporter);  // the tempo stops inside the bar
+  return t;
 }
 
 std::optional<ExactMs> at_target(const TempoMap& map, const YamlNode& at_node, ExactMs now,
@@ -192,14 +184,11 @@ bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, st
                   Reporter& reporter) {
   const int current = map.meter_at(now);
   if (current > 0 && map.bpm_at(now) > 0 && beats_per_bar != current) {
-    const ExactMs bar = map.bar_at(now);
-    if (bar.den() != 1) {
-      const std::int64_t whole = bar.num() / bar.den();  // bars are never negative
-      const ExactMs into = map.beat_at(now) - map.beat_of_bar(whole).value_or(ExactMs(0));
+    if (const std::optional<TempoMap::BarOffset> off = map.off_bar_line(now)) {
       reporter.error(at, std::string(what) + " must fall on a bar line, but here it is " +
-                             beats_text(into) + " into bar " + std::to_string(whole + 1) + " (" +
-                             beats_text(ExactMs(current) - into) + " before bar " +
-                             std::to_string(whole + 2) + ")");
+                             beats_text(off->beats) + " into bar " + std::to_string(off->bar + 1) +
+                             " (" + beats_text(ExactMs(current) - off->beats) + " before bar " +
+                             std::to_string(off->bar + 2) + ")");
       return false;
     }
   }

@@ -119,4 +119,35 @@ std::optional<ExactMs> TempoMap::after_bars(ExactMs t, ExactMs bars) const {
   return after_beats(t, beat - from);
 }
 
+std::optional<ExactMs> TempoMap::after(ExactMs t, ExactMs amount, TimeUnit unit) const {
+  switch (unit) {
+    case TimeUnit::Milliseconds:
+      return t + amount;
+    case TimeUnit::Seconds:
+      return t + amount * ExactMs(1000);
+    case TimeUnit::Beats:
+      return after_beats(t, amount);
+    case TimeUnit::Bars:
+      return after_bars(t, amount);
+  }
+  return std::nullopt;
+}
+
+std::optional<ExactMs> TempoMap::time_of_bar(ExactMs bar) const {
+  return time_of_bar_beat(bar, ExactMs(0));
+}
+
+std::optional<ExactMs> TempoMap::time_of_bar_beat(ExactMs bar, ExactMs beat) const {
+  const std::optional<ExactMs> first = beat_of_bar(bar);
+  if (!first) return std::nullopt;
+  return time_of_beat(*first + beat);
+}
+
+std::optional<TempoMap::BarOffset> TempoMap::off_bar_line(ExactMs t) const {
+  const ExactMs bar = bar_at(t);
+  if (bar.den() == 1) return std::nullopt;
+  const std::int64_t whole = bar.num() / bar.den();  // bars are never negative
+  return BarOffset{whole, beat_at(t) - beat_of_bar(whole).value_or(ExactMs(0))};
+}
+
 }  // namespace seqc::compiler

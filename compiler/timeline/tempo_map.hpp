@@ -9,11 +9,18 @@
 // tempo changed before it. Where no tempo is set the beat clock stands still (no beat passes);
 // where no meter is set the bar clock does. Bar and beat counts start at 0 here: "bar 1 beat 1"
 // of a musician is beat 0, the start of the sequence.
+//
+// All the musical-time arithmetic is here, none of the wording: a time written in any unit
+// after an instant, where a bar and a beat in it fall, and how far an instant is off its bar
+// line. An answer the map cannot give is nullopt; the front end says why in the words of the
+// language.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "compiler/frontend/source/units.hpp"
 #include "compiler/timeline/exact_time.hpp"
 
 namespace seqc::compiler {
@@ -51,6 +58,25 @@ class TempoMap {
   // when no tempo (meter) is in force at `t` or somewhere on the way.
   std::optional<ExactMs> after_beats(ExactMs t, ExactMs beats) const;
   std::optional<ExactMs> after_bars(ExactMs t, ExactMs bars) const;
+  // `t` plus `amount` of `unit`: milliseconds and seconds as they are, beats and bars as
+  // after_beats and after_bars count them.
+  std::optional<ExactMs> after(ExactMs t, ExactMs amount, TimeUnit unit) const;
+
+  // When bar `bar` starts, and when beat `beat` of it falls (both counted from 0: a musician's
+  // "bar 9 beat 3" is bar 8, beat 2); nullopt where no meter counts up to the bar or no tempo
+  // up to the beat. A beat past the bar's end falls in the bars after it: whether the bar has
+  // that beat is meter_at(time_of_bar(bar)).
+  std::optional<ExactMs> time_of_bar(ExactMs bar) const;
+  std::optional<ExactMs> time_of_bar_beat(ExactMs bar, ExactMs beat) const;
+
+  // An instant inside a bar: the bar (counted from 0) and the beats since it started.
+  struct BarOffset {
+    std::int64_t bar = 0;
+    ExactMs beats;
+  };
+  // Where `t` falls in its bar; nullopt when it is on a bar line (also where the bar clock has
+  // stood still since one).
+  std::optional<BarOffset> off_bar_line(ExactMs t) const;
 
   const std::vector<Change>& changes() const { return changes_; }
 

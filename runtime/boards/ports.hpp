@@ -58,6 +58,11 @@ struct OpenedPort {
   // The board at the far end when the port says so (emu:NAME), else request.board.
   const Board* board = nullptr;
   bool emulated = false;
+
+  // The transport runs on a clock of the port's own: an in-process emulator in emulated time,
+  // which jumps to whatever instant is waited for. No instant on it can be compared with the
+  // host's clock or an audio output's (emu:raspblock, stamped on the caller's clock, can).
+  bool own_clock() const { return emulated_clock != nullptr; }
 };
 
 struct OpenResult {

@@ -179,8 +179,10 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
     const std::string said = r.run && r.run->started == boards::Confirmation::Reported
                                  ? std::string(board.called) + " reported it started"
                                  : std::string(board.unconfirmed_run);
-    ctx.err << "seqc: group " << a.group << " started on the downbeat; " << said
-            << "; playing the song to its end (Ctrl-C stops both)\n";
+    ctx.err << "seqc: group " << a.group
+            << (music.robot_in_emulated_time ? " started in emulated time; "
+                                             : " started on the downbeat; ")
+            << said << "; playing the song to its end (Ctrl-C stops both)\n";
   }
   if (!play_song_out(ctx, music, ctx.clock)) {
     // The same stop the player sends after an early end.
@@ -330,6 +332,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
         return ExitCode::InvalidInput;
       }
     }
+    music.robot_in_emulated_time = port.own_clock();
     return run_to_music(ctx, a, board, line, music);
   }
   if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it

@@ -107,6 +107,10 @@ std::string sync_text(const MusicSession& music, const boards::SyncedStart& star
   }
   text += "); ";
   if (!start.written) return text + command + " was not sent";
+  if (music.robot_in_emulated_time) {
+    return text + command +
+           " went to the in-process emulator, which keeps no real time: no start skew is measured";
+  }
   text += "robot started " + relative_text(start.skew) + " (" + command + " written " +
           io::ms_text(*start.written - p.write_at, 2) + " after its time, " +
           io::ms_text(start.wire, 2) + " on the wire";

@@ -3,7 +3,8 @@
 // decoded (runtime/audio), the sound server reached before anything is sent to a board, and the
 // song started just before the robot, whose start boards::music_start times to the downbeat as
 // heard. The report is one line on stderr: when the downbeat is heard, from the audio's start,
-// and how far from it the robot started as seqc measured it.
+// and how far from it the robot started as seqc measured it; an in-process emulator (emu:xarm,
+// emu:lsc6) keeps no real time, so for one the line says that no skew is measured.
 #pragma once
 
 #include <memory>
@@ -43,6 +44,9 @@ class MusicSession {
   io::Duration audio_offset{0};
   std::unique_ptr<audio::AudioOutput> output;
   std::optional<boards::SongStart> started;
+  // The robot is an in-process emulator on its own clock (boards::OpenedPort::own_clock): the
+  // song is dated on the host's clock and the start on the emulator's, so no skew is said.
+  bool robot_in_emulated_time = false;
 };
 
 // The song of `song` (a file's or a show's `music:`): decoded, and the sound server reached.
@@ -56,8 +60,10 @@ ExitCode open_music(Context& ctx, const compiler::CompileOutput& compiled, const
 // Starts the song; false (said on ctx.err) when the output refuses.
 bool start_music(Context& ctx, MusicSession& music);
 
-// "music: downbeat heard at +0.820 s (output latency 50.0 ms, --audio-offset 20 ms); GroupRun
-// arrived 0.02 ms after it"
+// "music: downbeat heard at +0.820 s (output latency 50.0 ms, --audio-offset 20 ms); robot
+// started 0.02 ms after it (GroupRun written 0.01 ms after its time, 7.29 ms on the wire)"; for
+// a robot in emulated time, that `command` went to the in-process emulator and no skew is
+// measured.
 std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
                       const std::string& command);
 

@@ -245,6 +245,7 @@ ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
       return ExitCode::InvalidInput;
     }
   }
+  music.robot_in_emulated_time = port.own_clock();
   const ExitCode code =
       play_and_word(ctx, compiled, board, line, args, args.music.music ? &music : nullptr);
   if (const auto got = boards::received(port); got && ctx.verbosity >= 0) {

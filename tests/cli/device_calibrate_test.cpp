@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/cli/device_test_util.hpp"
+#include "tests/six_bars_dance.hpp"
 
 namespace seqc::cli::test {
 namespace {
@@ -188,24 +189,14 @@ namespace {
 
 // ---- upload --resync ---------------------------------------------------------------------------
 
-// Twelve bars at 120 bpm in 4/4 (24 s), the base swinging each beat: 8 actions every 2 bars.
-constexpr const char* kTwelveBars = R"(robot: xarm
-tempo: 120
-meter: 4/4
-sequence:
-  - repeat: 12
-    do:
-      - move: {base: 600}
-        time: 1b
-      - move: {base: 400}
-        time: 1b
-)";
+// Six bars at 120 bpm in 4/4 (12 s), the base swinging each beat: 8 actions every 2 bars.
+constexpr const char* kSixBars = seqc::testing::kSixBarsDance;
 
 TEST(Resync, EachPieceIsStartedByTheComputerAtItsBarLine) {
   // A board 1 % slow: a 4 s piece lasts 4.0404 s there, so the computer's start of the next one
   // (a GroupStop and a GroupRun in one write) comes while it is still playing and cuts it short.
   DeviceHarness h(with_clock("clock=-1%"));
-  h.files.add("dance.yaml", kTwelveBars);
+  h.files.add("dance.yaml", kSixBars);
   RunResult r = h.run(
       {"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--resync", "2", "--group", "5"});
   ASSERT_EQ(r.code, 0) << r.err;
@@ -249,7 +240,7 @@ TEST(CalibrateClock, AnLsc6CopyWithoutAnEndNoticeCannotBeMeasured) {
 
 TEST(Resync, PiecesBeyondGroup254AreRefusedBeforeAnythingIsStored) {
   DeviceHarness h;
-  h.files.add("dance.yaml", kTwelveBars);
+  h.files.add("dance.yaml", kSixBars);
   RunResult r = h.run(
       {"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--resync", "1", "--group", "252"});
   EXPECT_EQ(r.code, 1);

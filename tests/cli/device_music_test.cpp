@@ -7,6 +7,7 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
@@ -103,6 +104,44 @@ TEST(DeviceMusic, PlayStartsTheFirstMoveOnTheDownbeatAsHeard) {
                        "started on it"),
             std::string::npos)
       << r.err;
+}
+
+// Without the harness's emulator, `--port emu:xarm` is a fresh one on a clock of its own, as on
+// the command line: the song is dated on the host's clock (here the harness's) and the start on
+// the emulator's, so the report says no skew is measured instead of "robot started on it".
+// The downbeat is still heard 50 ms of latency + 750 ms after the song's start.
+RunResult run_on_own_emulator(MusicHarness& h, std::vector<std::string> args) {
+  return run_seqc(std::move(args), h.clock, h.files, [&h](Context& ctx) {
+    ctx.interrupted = &h.interrupted;
+    ctx.audio_files = &h.songs;
+    ctx.audio_output = &h.speakers;
+  });
+}
+
+TEST(DeviceMusic, AnEmulatorInItsOwnTimeGetsNoMeasuredStart) {
+  MusicHarness h;
+  RunResult r =
+      run_on_own_emulator(h, {"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.800 s (output latency 50.0 ms); "
+                       "GroupRun went to the in-process emulator, which keeps no real time: no "
+                       "start skew is measured\n"
+                       "seqc: group 0 started in emulated time; the controller reported it "
+                       "started; playing the song to its end (Ctrl-C stops both)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("robot started"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("on the downbeat"), std::string::npos) << r.err;
+  EXPECT_TRUE(h.speakers.last()->stopped());
+
+  r = run_on_own_emulator(h, {"play", "dance.yaml", "--port", "emu:xarm", "--music", "--force"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.800 s (output latency 50.0 ms); the "
+                       "first move went to the in-process emulator, which keeps no real time: no "
+                       "start skew is measured\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("robot started"), std::string::npos) << r.err;
 }
 
 TEST(DeviceMusic, QuietStillStartsTheGroupOnTheDownbeat) {

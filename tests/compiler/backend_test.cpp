@@ -5,7 +5,12 @@
 #include "compiler/formats/decode.hpp"
 #include "compiler/formats/listing.hpp"
 #include "compiler/formats/simulate.hpp"
+#include "compiler/frontend/file_loader.hpp"
+#include "compiler/frontend/profiles.hpp"
+#include "compiler/frontend/reporter.hpp"
+#include "compiler/frontend/robot_section.hpp"
 #include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_lowering.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/protocol/lsc_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
@@ -205,6 +210,36 @@ TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{501});
   p.controller = compiler::ControllerModel::Truncates;
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{500});
+}
+
+// The program carries the model its profile names, which simulate and --compare read. Every
+// built-in profile names the straight line, which is also the program's default, so the copy is
+// seen only through a profile that names another: the xarm profile with each other model.
+TEST(Backend, TheProgramCarriesItsProfilesControllerModel) {
+  compiler::testing::MemoryFiles files;
+  files.files["main.yaml"] = "robot: xarm\nsequence:\n  - move: {claw: 510}\n    time: 1s\n";
+  for (const compiler::ControllerModel model :
+       {compiler::ControllerModel::Rounds, compiler::ControllerModel::Truncates}) {
+    SCOPED_TRACE(static_cast<int>(model));
+    compiler::SourceManager sources;
+    compiler::Diagnostics diags;
+    compiler::FileLoader loader(files, sources, diags);
+    compiler::Reporter reporter(diags);
+    const auto main = loader.load("main.yaml");
+    ASSERT_TRUE(main.ok());
+    const compiler::LoadedFile& file = **main;
+    ASSERT_TRUE(file.root.has_value());
+    std::optional<compiler::Robot> robot =
+        compiler::parse_robot(*file.root->find("robot"), reporter);
+    ASSERT_TRUE(robot.has_value());
+    compiler::RobotProfile profile = *compiler::find_profile("xarm");
+    profile.controller = model;
+    robot->profile = &profile;
+    const compiler::ServoProgram p = compiler::lower_servo_program(*robot, file, loader, reporter);
+    ASSERT_FALSE(diags.has_errors(false)) << compiler::render_all(diags, sources);
+    ASSERT_EQ(p.keyframes.size(), 1u);
+    EXPECT_EQ(p.controller, model);
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "compiler/targets/servo_controller/resync.hpp"
 #include "tests/compiler/lang_test_util.hpp"
+#include "tests/six_bars_dance.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -113,17 +114,7 @@ sequence:
 // ---- --resync: pieces at bar lines ------------------------------------------------------------
 
 // 24 one-beat moves at 120 bpm in 4/4: a bar is 2000 ms, the dance 12 s.
-const char* kSixBars = R"(robot: xarm
-tempo: 120
-meter: 4/4
-sequence:
-  - repeat: 12
-    do:
-      - move: {base: 600}
-        time: 1b
-      - move: {base: 400}
-        time: 1b
-)";
+constexpr const char* kSixBars = seqc::testing::kSixBarsDance;
 
 TEST(Resync, EveryTwoBarsAPiece) {
   const auto out = compile_with_clock(kSixBars, 0);

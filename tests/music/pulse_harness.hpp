@@ -32,26 +32,9 @@
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
+#include "tests/first_read_clock.hpp"
 
 namespace seqc::test {
-
-// The host's clock, remembering the first time it was read: the pty server reads it once when
-// it starts serving, and stamps what it receives relative to that.
-class FirstReadClock final : public io::Clock {
- public:
-  io::TimePoint now() const override {
-    const io::TimePoint t = real_.now();
-    io::TimePoint unset{-1};
-    first_.compare_exchange_strong(unset, t);
-    return t;
-  }
-  void sleep_until(io::TimePoint deadline) override { real_.sleep_until(deadline); }
-  io::TimePoint first() const { return first_.load(); }
-
- private:
-  io::SteadyClock real_;
-  mutable std::atomic<io::TimePoint> first_{io::TimePoint{-1}};
-};
 
 // An xArm controller at 9600 baud on a pseudo-terminal, served until destroyed.
 class PtyController {
@@ -98,7 +81,7 @@ class PtyController {
   }
   emu::XArmEmulator emulator_{paced()};
   emu::ControllerPtyDevice device_;
-  FirstReadClock clock_;
+  seqc::testing::FirstReadClock clock_;
   std::atomic<bool> stop_{false};
   std::optional<emu::PtyServer> server_;
   std::thread serving_;

@@ -13,27 +13,10 @@
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/transport/serial_transport.hpp"
+#include "tests/first_read_clock.hpp"
 
 namespace seqc::player {
 namespace {
-
-// The real clock, remembering the first time it was read: the server reads it once when it
-// starts serving, and stamps what it receives relative to that.
-class FirstReadClock final : public io::Clock {
- public:
-  io::TimePoint now() const override {
-    const io::TimePoint t = real_.now();
-    io::TimePoint unset{-1};
-    first_.compare_exchange_strong(unset, t);
-    return t;
-  }
-  void sleep_until(io::TimePoint deadline) override { real_.sleep_until(deadline); }
-  io::TimePoint first() const { return first_.load(); }
-
- private:
-  io::SteadyClock real_;
-  mutable std::atomic<io::TimePoint> first_{io::TimePoint{-1}};
-};
 
 // Hands everything to the board and stops the server once `expected` bytes have arrived.
 class StopWhenAllArrived final : public emu::PtyDevice {
@@ -97,7 +80,7 @@ TEST(PlayerPty, TheBoardReceivesTheCompiledStreamOnTime) {
   emu::RaspblockPtyDevice device(board, nullptr);
   std::atomic<bool> stop{false};
   StopWhenAllArrived counted(device, all.size(), stop);
-  FirstReadClock server_clock;
+  seqc::testing::FirstReadClock server_clock;
   std::thread serving([&] { (void)server->serve(counted, server_clock, stop); });
 
   io::SteadyClock clock;
