@@ -20,10 +20,9 @@ std::vector<player::ScheduledFrame> resync_starts(const Board& board,
   return out;
 }
 
-ResyncRun store_and_start(const Board& board, const Line& line,
-                          const compiler::CompileOutput& output,
-                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
-                          const upload::UploadOptions& options, upload::UploadObserver* observer) {
+ResyncRun store_pieces(const Board& board, const Line& line, const compiler::CompileOutput& output,
+                       const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                       const upload::UploadOptions& options, upload::UploadObserver* observer) {
   ResyncRun r;
   const compiler::ServoProgram* dance = output.servo_program();
   if (dance == nullptr) return r;
@@ -49,15 +48,30 @@ ResyncRun store_and_start(const Board& board, const Line& line,
     r.uploads.push_back(upload(board, line, *plan, piece_options, observer));
     if (!r.uploads.back().ok()) return r;
   }
+  return r;
+}
+
+void start_pieces(const Board& board, const Line& line,
+                  const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                  const upload::UploadOptions& options, ResyncRun& r) {
+  if (!r.stored()) return;
   r.starts = resync_starts(board, pieces, first_group);
   if (options.may_run && !options.may_run(line.transport, line.clock)) {
     r.run_refused = true;
-    return r;
+    return;
   }
   player::PlayOptions play;
   play.interrupted = line.interrupted;
   if (board.stop_frame != nullptr) play.safe_stop = board.stop_frame();
   r.play = player::play(r.starts, line.transport, line.clock, play);
+}
+
+ResyncRun store_and_start(const Board& board, const Line& line,
+                          const compiler::CompileOutput& output,
+                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                          const upload::UploadOptions& options, upload::UploadObserver* observer) {
+  ResyncRun r = store_pieces(board, line, output, pieces, first_group, options, observer);
+  start_pieces(board, line, pieces, first_group, options, r);
   return r;
 }
 

@@ -10,9 +10,9 @@
 #include "runtime/boards/board.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/realtime_option.hpp"
 #include "runtime/cli/servo_play.hpp"
 #include "runtime/cli/trace_option.hpp"
-#include "runtime/io/realtime.hpp"
 
 namespace seqc::cli {
 
@@ -48,17 +48,15 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--force", opts->force,
                 "Servo controller: start even when a servo's first move, from where it reports "
                 "it is, is faster than its max_speed");
-  cmd->add_flag("--realtime", opts->realtime,
-                "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
+  add_realtime_option(
+      *cmd, opts->realtime,
+      "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict);
     result.code = c.code;
     if (!c.output.program) return;
-    if (opts->realtime) {
-      if (auto rt = io::request_realtime_scheduling(); !rt) {
-        ctx.err << "seqc: warning: " << rt.error().message << "; playing at normal priority\n";
-      }
-    }
+    // The whole play: opening the port and the song are short beside it.
+    const auto realtime = realtime_stretch(ctx, opts->realtime);
     result.code = play_on_board(ctx, c.output, *opts);
   });
 }

@@ -11,7 +11,8 @@
 // and, for a stored one, whether the board said it started; the skew between performers; and
 // the lateness of streamed frames. With --music the performers' song (every performer with a
 // `music:` block must name the same song and downbeat) plays, and the common deadline is its
-// downbeat as heard (music_play.hpp).
+// downbeat as heard (music_play.hpp). With --realtime the start and the performance (from the
+// song's start with --music) run under SCHED_FIFO; the uploads before do not.
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -28,6 +29,7 @@
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/music_play.hpp"
+#include "runtime/cli/realtime_option.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
@@ -223,10 +225,20 @@ const compiler::Song* show_song(Context& ctx, const compiler::ShowOutput& show) 
   return song;
 }
 
-ExitCode run_show(Context& ctx, const std::string& path, bool strict,
-                  const std::string& trace_prefix, bool force, const MusicArgs& music_args) {
+struct ShowArgs {
+  std::string file;
+  bool strict = false;
+  std::string trace;
+  bool force = false;
+  bool realtime = false;
+  MusicArgs music;
+};
+
+ExitCode run_show(Context& ctx, const ShowArgs& args) {
+  const std::string& path = args.file;
+  const MusicArgs& music_args = args.music;
   ExitCode loaded = ExitCode::Ok;
-  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
+  compiler::ShowOutput show = load_show_and_report(ctx, path, args.strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
   MusicSession music;
   if (music_args.music) {
@@ -237,7 +249,7 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
 
   std::vector<Stage> stages(show.performers.size());
   for (std::size_t i = 0; i < stages.size(); ++i) {
-    if (ExitCode c = open_stage(ctx, show.performers[i], stages[i], trace_prefix);
+    if (ExitCode c = open_stage(ctx, show.performers[i], stages[i], args.trace);
         c != ExitCode::Ok) {
       return c;
     }
@@ -248,7 +260,7 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
       return ExitCode::DeviceFailure;
     }
   }
-  if (!force && !first_moves_safe(ctx, stages)) {
+  if (!args.force && !first_moves_safe(ctx, stages)) {
     ctx.err << "seqc: nothing was started\n";
     return ExitCode::InvalidInput;
   }
@@ -264,6 +276,8 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
   }
   std::optional<io::TimePoint> start_at;
   std::optional<audio::StartPlan> plan;
+  // From the song's start, whose playback clock dates the downbeat, to the performance's end.
+  auto realtime = realtime_stretch(ctx, args.realtime);
   if (music_args.music) {
     if (!start_music(ctx, music)) {
       ctx.err << "seqc: nothing was started\n";
@@ -277,6 +291,7 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
   }
   const boards::ShowReport report =
       boards::perform(performers, ctx.clock, ctx.interrupted, kReplyTimeout, start_at);
+  realtime.reset();
   if (plan && report.error.empty() && ctx.verbosity >= 0) {
     ctx.err << "seqc: music: downbeat heard at +"
             << io::seconds_text(plan->downbeat_heard - plan->audio_started) << " (output latency "
@@ -298,14 +313,7 @@ ExitCode run_show(Context& ctx, const std::string& path, bool strict,
 }  // namespace
 
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
-  struct Options {
-    std::string file;
-    bool strict = false;
-    std::string trace;
-    bool force = false;
-    MusicArgs music;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<ShowArgs>();
   CLI::App* cmd = app.add_subcommand(
       "show", "Perform a show: upload every stored performer, then start all at one instant");
   cmd->add_option("FILE", o->file, "Show file (.yaml: show, performers)")->required();
@@ -316,10 +324,11 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--force", o->force,
                 "Start even if a performer's first move is too fast from where its "
                 "servos are");
+  add_realtime_option(*cmd, o->realtime,
+                      "Start and perform with real-time (SCHED_FIFO) priority, so a busy machine "
+                      "cannot delay the start or streamed frames");
   add_music_options(*cmd, o->music);
-  cmd->callback([&ctx, &result, o] {
-    result.code = run_show(ctx, o->file, o->strict, o->trace, o->force, o->music);
-  });
+  cmd->callback([&ctx, &result, o] { result.code = run_show(ctx, *o); });
 }
 
 }  // namespace seqc::cli

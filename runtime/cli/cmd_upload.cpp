@@ -1,12 +1,13 @@
-// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force] [--music
-//                  [--audio-offset MS]]] [--dry-run] [--trace FILE] [--strict] [--retries N]
-//                  [--clock-ppm N] [--rig FILE] [--resync BARS]
+// seqc upload FILE [--port P] [--group N] [--run [--times K|--forever] [--force] [--realtime]
+//                  [--music [--audio-offset MS]]] [--dry-run] [--trace FILE] [--strict]
+//                  [--retries N] [--clock-ppm N] [--rig FILE] [--resync BARS]
 // Compiles FILE, stores it in an action group of the board the file is for (runtime/boards)
 // and, with --run, starts it. An invalid file sends nothing and opens no port. With --music the
 // song of its `music:` block is decoded and the sound server reached before the port is opened;
 // the group is stored without starting, then the song is played and the group started on its
 // downbeat as heard (music_play.hpp); seqc stays until the song ends, and Ctrl-C stops the
-// group and the song together.
+// group and the song together. With --realtime the starts that keep time (on the downbeat with
+// --music, at each bar line with --resync) run under SCHED_FIFO; the upload itself does not.
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -27,6 +28,7 @@
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/music_play.hpp"
+#include "runtime/cli/realtime_option.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
 #include "runtime/upload/trace_transport.hpp"
@@ -45,7 +47,8 @@ struct UploadArgs {
   bool forever = false;
   bool strict = false;
   int retries = 4;
-  bool force = false;  // start even if a first move is too fast from where the servos are
+  bool force = false;     // start even if a first move is too fast from where the servos are
+  bool realtime = false;  // the timed starts under SCHED_FIFO
   ClockScaleOptions clock;
   unsigned resync = 0;  // bars a piece; 0 = one group
   MusicArgs music;
@@ -102,9 +105,14 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
                     upload::ProgressPrinter& printer, const upload::UploadOptions& options,
                     const std::optional<boards::FirstMoveTooFast>& too_fast) {
   const std::size_t last = static_cast<std::size_t>(a.group) + pieces.size() - 1;
-  const boards::ResyncRun r = boards::store_and_start(
-      board, line, output, pieces, static_cast<std::uint8_t>(a.group), options, progress);
+  const auto first_group = static_cast<std::uint8_t>(a.group);
+  boards::ResyncRun r =
+      boards::store_pieces(board, line, output, pieces, first_group, options, progress);
   printer.finish();
+  if (r.stored()) {
+    const auto realtime = realtime_stretch(ctx, a.realtime);
+    boards::start_pieces(board, line, pieces, first_group, options, r);
+  }
   if (!r.stored()) {
     const upload::UploadResult& failed = r.uploads.back();
     ctx.err << "seqc: error: piece " << r.uploads.size() << " (group "
@@ -145,6 +153,8 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
 // The stored group started on the song's downbeat, then the song played to its end.
 ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& board,
                       const boards::Line& line, MusicSession& music) {
+  // From the song's start, whose playback clock dates the downbeat, to the group's.
+  auto realtime = realtime_stretch(ctx, a.realtime);
   if (!start_music(ctx, music)) {
     ctx.err << "seqc: group " << a.group << " is stored but was not started\n";
     return ExitCode::PortUnavailable;
@@ -152,6 +162,7 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
   const auto times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
   const boards::MusicRunReport r = boards::run_on_downbeat(
       board, line, static_cast<std::uint8_t>(a.group), times, *music.started, music.audio_offset);
+  realtime.reset();
   switch (r.play.end) {
     case player::PlayEnd::Completed:
       break;
@@ -379,6 +390,11 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--force", a->force,
                 "With --run: start even if a first move is too fast from where the servos are")
       ->needs(run);
+  add_realtime_option(*cmd, a->realtime,
+                      "With --run --music or --resync: start with real-time (SCHED_FIFO) "
+                      "priority, so a busy machine cannot delay the start on the downbeat or at a "
+                      "bar line (a plain --run keeps no time)",
+                      run);
   add_music_options(*cmd, a->music, run);
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
   cmd->add_option("--trace", a->trace,

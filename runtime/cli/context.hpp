@@ -11,6 +11,7 @@
 #include "runtime/audio/audio_output.hpp"
 #include "runtime/boards/hooks.hpp"
 #include "runtime/io/clock.hpp"
+#include "runtime/io/realtime.hpp"
 
 namespace seqc::cli {
 
@@ -42,6 +43,8 @@ struct Context {
   // --music: where a song is decoded (null: libsndfile on the disk) and played (null: no audio).
   audio::AudioReader* audio_files = nullptr;
   audio::AudioOutputFactory* audio_output = nullptr;
+  // --realtime: what raises the thread that keeps time (null: the system's SCHED_FIFO).
+  io::Scheduler* scheduler = nullptr;
 };
 
 }  // namespace seqc::cli

@@ -101,6 +101,7 @@ class DeviceHarness {
       ctx.in = in;
       ctx.audio_files = audio_files;
       ctx.audio_output = audio_output;
+      ctx.scheduler = scheduler;
     });
   }
 
@@ -108,6 +109,8 @@ class DeviceHarness {
   // --music: where songs are decoded and played (null: none given).
   audio::AudioReader* audio_files = nullptr;
   audio::AudioOutputFactory* audio_output = nullptr;
+  // --realtime: what raises the timing thread (null: the system's).
+  io::Scheduler* scheduler = nullptr;
 
   // What the emulated controller received since the last mark() (or ever), as lowercase hex.
   std::string received() const {
