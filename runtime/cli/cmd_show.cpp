@@ -265,8 +265,8 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
     return ExitCode::InvalidInput;
   }
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: show " << show.name << ": starting " << stages.size()
-            << " performers at one instant\n";
+    ctx.err << "seqc: show " << show.name << ": starting " << plural(stages.size(), "performer")
+            << " at one instant\n";
   }
   std::vector<boards::Performer> performers;
   for (Stage& s : stages) {

@@ -267,6 +267,9 @@ TEST(Realtime, ShowRefusedWarnsAndStarts) {
   EXPECT_EQ(h.noting.raised,
             std::vector<std::string>{"group 2 stored, 0 GroupRun, 0 moves, song not started"});
   EXPECT_EQ(h.emu.playing_group(), std::optional<std::uint8_t>(2));
+  // One performer, counted as one.
+  EXPECT_NE(r.err.find("seqc: show solo: starting 1 performer at one instant\n"), std::string::npos)
+      << r.err;
 }
 
 }  // namespace
