@@ -212,6 +212,57 @@ TEST(TipLine, AnotherTracksBoundariesInsideTheLineKeepTheTipOnIt) {
   }
 }
 
+// Searched again for another track's boundaries, a line's joints move in other pieces: the
+// fastest of them is still held to each joint's max_speed. The speed each joint reaches is
+// measured here from the actions (target to target, over the action's time); with max_speed
+// just under it, the line's step must be warned about ("... above elbow's 310/s").
+TEST(TipLine, ALineSearchedAgainKeepsItsJointsMaxSpeed) {
+  const std::string tracks = R"(  - together:
+      arm:
+        - move: {tip: [200mm, 100mm, 60mm]}
+          time: 1s
+          path: line
+          ease: in-out
+      hand:
+        - move: {claw: 500}
+          time: 500ms
+        - move: {claw: 650}
+          time: 500ms
+)";
+  const std::pair<const char*, int> joints[] = {
+      {"wrist_pitch", 3}, {"elbow", 4}, {"shoulder", 5}, {"base", 6}};
+  const auto free_run = compile_text(std::string(kStart) + tracks);
+  ASSERT_TRUE(messages(free_run).empty()) << ::testing::PrintToString(messages(free_run));
+  std::map<int, double> fastest;  // units/s over the line's actions, by id
+  std::map<int, int> last;
+  for (const Keyframe& k : program_of(free_run).keyframes) {
+    for (const auto& t : k.targets) {
+      if (k.start_ms >= 2000 && k.start_ms < 3000 && last.count(t.id) != 0) {
+        const double v = std::abs(t.position - last[t.id]) * 1000.0 / k.time_ms;
+        fastest[t.id] = std::max(fastest[t.id], v);
+      }
+      last[t.id] = t.position;
+    }
+  }
+  for (const auto& [name, id] : joints) {
+    ASSERT_GT(fastest[id], 1) << name;
+    std::string robot = "robot:\n  profile: xarm\n  servos:\n";
+    robot += "    " + std::string(name) + ": {id: " + std::to_string(id) +
+             ", max_speed: " + std::to_string(fastest[id] - 0.5) + "/s}\n";
+    std::string text = std::string(kStart) + tracks;
+    text.replace(0, std::string("robot: xarm\n").size(), robot);
+    const auto out = compile_text(text);
+    // The line's step is on line 12 with this robot section (three lines longer than kStart's).
+    bool warned = false;
+    for (const std::string& m : messages(out)) {
+      warned = warned || (m.rfind("12:", 0) == 0 && m.find("warning") != std::string::npos &&
+                          m.find("above " + std::string(name) + "'s ") != std::string::npos);
+    }
+    EXPECT_TRUE(warned) << name << " at " << fastest[id] << "/s\n"
+                        << ::testing::PrintToString(messages(out));
+  }
+}
+
 // A curve of another track that goes on past the line's end cannot share the line's actions:
 // the fitter cuts the joints' pieces for it, and the tip's true largest distance, measured here
 // by forward kinematics, is what the warning says.

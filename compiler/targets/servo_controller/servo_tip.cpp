@@ -496,9 +496,31 @@ void ServoLowering::refit_lines() {
     }
     if (fit.problem) continue;  // the pieces stay as they were; finish() warns
     std::vector<std::vector<Segment>> pieces = line_pieces(r, fit, all);
+    auto speed = [](const Segment& x) {
+      return std::abs(x.to - x.from) / (x.end.value() - x.start.value());
+    };
+    // The new pieces are other straight pieces: one faster than every piece before may break
+    // a servo's max_speed where none did. (A limit the first pieces broke was said at the step;
+    // saying it twice would not help.)
+    std::vector<KinematicFinding> findings;
     for (std::size_t j = 0; j < line->servos.size(); ++j) {
-      timeline_.replace(line->servos[j], line->first[j], line->pieces, pieces[j]);
+      const std::size_t servo = line->servos[j];
+      double before = 0;
+      for (std::size_t i = line->first[j]; i < line->first[j] + line->pieces; ++i) {
+        before = std::max(before, speed(timeline_.segment(servo, i)));
+      }
+      const std::optional<double>& limit = robot_.info.servos[servo].max_speed;
+      const Segment* fastest = nullptr;
+      for (const Segment& piece : pieces[j]) {
+        if (fastest == nullptr || speed(piece) > speed(*fastest)) fastest = &piece;
+      }
+      if (fastest != nullptr && speed(*fastest) > before && limit &&
+          before * 1000 <= *limit + 1e-9) {
+        check_kinematics(servo, *fastest, std::nan(""), std::nullopt, findings);
+      }
+      timeline_.replace(servo, line->first[j], line->pieces, pieces[j]);
     }
+    report_kinematics(findings);
     for (std::size_t k = 0; k < followers.size(); ++k) {
       const Follower& f = followers[k];
       // Its own tolerance, and the step of its segment in force, for the fitter's accounts and
