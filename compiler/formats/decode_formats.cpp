@@ -71,6 +71,21 @@ bool looks_lsc6(ByteView bytes) {
 }
 
 bool is_trace_line(std::string_view line) { return trim(line).starts_with("t="); }
+
+// One line of a trace (docs/trace.md): its time ("t=..."), its direction ('>' sent, '<'
+// received, '#' a note) and what follows; nullopt for a line that is none.
+struct TraceLine {
+  std::string time;
+  char direction = '#';
+  std::string_view rest;
+};
+std::optional<TraceLine> split_trace_line(std::string_view line) {
+  const std::string_view l = trim(line);
+  if (!is_trace_line(l)) return std::nullopt;
+  const std::size_t dir = l.find_first_of("<>#");
+  if (dir == std::string_view::npos) return std::nullopt;
+  return TraceLine{std::string(l.substr(0, l.find(' '))), l[dir], trim(l.substr(dir + 1))};
+}
 constexpr std::string_view kRecordHeader = "time_s,status,bytes,message";
 // `seqc emulate raspblock --record`: the car board's state, one line per change.
 constexpr std::string_view kCarRecordHeader = "time_s,field,previous,value";
@@ -148,14 +163,12 @@ DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines) {
   raspblock::PacketDecoder packets;
   std::size_t n = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    const std::string_view l = trim(lines[i]);
-    if (!is_trace_line(l)) continue;
-    const std::string time(l.substr(0, l.find(' ')));
-    const std::size_t dir = l.find_first_of("<>#");
-    if (dir == std::string_view::npos) continue;
-    const std::string_view rest = trim(l.substr(dir + 1));
-    if (l[dir] != '>') {
-      t.row(time + " " + l[dir] + " " + std::string(rest));
+    const std::optional<TraceLine> line = split_trace_line(lines[i]);
+    if (!line) continue;
+    const std::string& time = line->time;
+    const std::string_view rest = line->rest;
+    if (line->direction != '>') {
+      t.row(time + " " + line->direction + " " + std::string(rest));
       continue;
     }
     auto bytes = parse_hex(rest);
@@ -212,13 +225,11 @@ DecodeResult decode_trace(std::string_view text) {
   const Describe req = request_describer(lsc6), rep = reply_describer(lsc6);
   std::size_t n = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    const std::string_view l = trim(lines[i]);
-    if (!is_trace_line(l)) continue;
-    const std::string time(l.substr(0, l.find(' ')));
-    const std::size_t dir = l.find_first_of("<>#");
-    if (dir == std::string_view::npos) continue;
-    const std::string_view rest = trim(l.substr(dir + 1));
-    if (l[dir] == '#') {
+    const std::optional<TraceLine> line = split_trace_line(lines[i]);
+    if (!line) continue;
+    const std::string& time = line->time;
+    const std::string_view rest = line->rest;
+    if (line->direction == '#') {
       t.row(time + " # " + std::string(rest));
       continue;
     }
@@ -231,7 +242,7 @@ DecodeResult decode_trace(std::string_view text) {
       t.issue(fmt::format("line {}", i + 1), bytes.error().message);
       continue;
     }
-    const bool out = l[dir] == '>';
+    const bool out = line->direction == '>';
     FrameText ft = describe_frames(out ? sent : received, *bytes, out ? req : rep);
     for (const std::string& m : ft.messages) {
       ++n;

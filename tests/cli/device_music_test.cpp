@@ -11,6 +11,7 @@
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
+#include "tests/cli/two_beat_song_dance.hpp"
 
 namespace seqc::cli::test {
 namespace {
@@ -38,18 +39,7 @@ struct MusicHarness : DeviceHarness {
   MusicHarness() : DeviceHarness(at_9600()) {
     audio_files = &songs;
     audio_output = &speakers;
-    files.add("dance.yaml",
-              "robot: xarm\n"
-              "music:\n"
-              "  file: song.wav\n"
-              "  downbeat: 0.750s\n"
-              "  tempo: 120\n"
-              "  meter: 4/4\n"
-              "sequence:\n"
-              "  - move: {base: 400}\n"
-              "    time: 1b\n"
-              "  - move: {base: 600}\n"
-              "    time: 1b\n");
+    files.add("dance.yaml", kTwoBeatSongDance);
   }
   // When the frame `hex` reached the controller, from the song's start.
   std::optional<double> arrival_ms(const std::string& frame) const {

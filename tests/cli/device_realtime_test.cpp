@@ -13,6 +13,7 @@
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
+#include "tests/cli/two_beat_song_dance.hpp"
 
 namespace seqc::cli::test {
 namespace {
@@ -69,20 +70,6 @@ class QuietSongs final : public audio::AudioReader {
   }
 };
 
-// Two beats at 120 bpm (1 s), the song's downbeat at 0.750 s.
-constexpr const char* kDance =
-    "robot: xarm\n"
-    "music:\n"
-    "  file: song.wav\n"
-    "  downbeat: 0.750s\n"
-    "  tempo: 120\n"
-    "  meter: 4/4\n"
-    "sequence:\n"
-    "  - move: {base: 400}\n"
-    "    time: 1b\n"
-    "  - move: {base: 600}\n"
-    "    time: 1b\n";
-
 // The emulated controller at 9600 baud, a manual audio output with 50 ms of latency, and the
 // noting scheduler, which says what group 0 and the song were at each raise and lower.
 struct RealtimeHarness : DeviceHarness {
@@ -91,7 +78,7 @@ struct RealtimeHarness : DeviceHarness {
     audio_files = &songs;
     audio_output = &speakers;
     scheduler = &noting;
-    files.add("dance.yaml", kDance);
+    files.add("dance.yaml", kTwoBeatSongDance);
   }
   static emu::XArmConfig at_9600() {
     emu::XArmConfig c;
