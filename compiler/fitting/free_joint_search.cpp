@@ -1,11 +1,13 @@
-#include "compiler/fitting/free_search.hpp"
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <utility>
 #include <vector>
+
+#include "compiler/fitting/free_search.hpp"
+#include "compiler/fitting/free_targets.hpp"
 
 namespace seqc::compiler::fitting {
 
@@ -26,32 +28,6 @@ constexpr std::size_t kBeamBest = 2;  // with the fewest actions
 constexpr std::size_t kBeamNext = 1;  // with one more (a way round dead ends near the end)
 
 namespace {
-
-// The free targets of servo i at ms t of the stretch as [low, high] (the pinned value at the
-// part's end).
-std::pair<int, int> free_band(const Stretch& in, std::size_t i, std::size_t t, std::size_t last) {
-  const std::size_t x = in.at(i, t);
-  if (t == last || in.pinned[x] != 0) return {in.pin[x], in.pin[x]};
-  return {in.vlo[x], in.vhi[x]};
-}
-
-// The set (bits from `low`) of whole units v in [low, high] with u + lo * span <= v <=
-// u + hi * span: the targets a line from u reaches inside its slope window.
-std::uint64_t reachable(int u, double lo, double hi, double span, int low, int high) {
-  // Clamped to the band first, so that the whole-unit bounds fit an int (and are found
-  // without a library call: this runs for every start at every candidate end).
-  const double a = std::clamp(u + lo * span - 1e-9, low - 1.0, high + 1.0);
-  const double b = std::clamp(u + hi * span + 1e-9, low - 1.0, high + 1.0);
-  int from = static_cast<int>(a), to = static_cast<int>(b);
-  from += from < a ? 1 : 0;  // ceil
-  to -= to > b ? 1 : 0;      // floor
-  from = std::max(from, low);
-  to = std::min(to, high);
-  if (from > to) return 0;
-  const int width = to - from + 1;
-  const std::uint64_t bits = width >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << width) - 1;
-  return bits << (from - low);
-}
 
 // The value of `set` (bits from `low`) nearest servo i's curve at t.
 int nearest(const Stretch& in, std::size_t i, std::size_t t, std::uint64_t set, int low) {
@@ -109,122 +85,6 @@ std::size_t joint_grid(const Stretch& in, std::size_t first, std::size_t last, s
   const double allowed = kJointGridTarget * static_cast<double>(on) + kJointWorkFloor;
   return std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(expected / allowed)), 1,
                                  kMaxGrid);
-}
-
-// The free fit for one curved servo, exact: the fewest actions to reach each whole unit v at
-// each ms t (within tolerance, inside the limits), from every reachable (s, u) along every
-// line that stays within the band at every millisecond between. Only fits with a key below
-// `bound` (the on-curve fit's) are looked for.
-Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t first,
-                        std::size_t last, int bound, std::size_t& work) {
-  const std::size_t min = lim.min_ms, max = lim.max_ms;
-  const std::size_t len = last - first + 1;
-  constexpr std::size_t W = kMaxValues;
-  std::vector<int> key(len * W, kNoKey);
-  std::vector<std::uint32_t> from_t(len * W);
-  std::vector<std::uint8_t> from_v(len * W);
-  auto K = [&](std::size_t t, int j) -> int& {
-    return key[(t - first) * W + static_cast<std::size_t>(j)];
-  };
-  // The start is pinned: index 0 of a band holding that value alone.
-  std::vector<int> low(len), high(len);
-  for (std::size_t t = first; t <= last; ++t) {
-    std::tie(low[t - first], high[t - first]) = free_band(in, 0, t, last);
-  }
-  low[0] = high[0] = in.pin[in.at(0, first)];
-  K(first, 0) = 0;
-  std::vector<int> best_at(len, kNoKey);   // the smallest key at each t
-  std::vector<int> worst_at(len, kNoKey);  // the largest
-  best_at[0] = 0;
-  const std::vector<double>& inv = *lim.inverse;
-  int u[W], uj[W], uk[W];
-  double lo[W], hi[W];
-  for (std::size_t s = first; s < last; ++s) {
-    const int ls = low[s - first], hs = high[s - first];
-    const int limit = std::min(bound, K(last, 0));
-    int n = 0;
-    for (int v = ls; v <= hs; ++v) {
-      const int k = K(s, v - ls);
-      if (k == kNoKey || k + 2 >= limit) continue;
-      u[n] = v;
-      uj[n] = v - ls;
-      uk[n] = k;
-      lo[n] = -1e300;
-      hi[n] = 1e300;
-      ++n;
-    }
-    if (n == 0) continue;
-    const std::size_t stop = std::min({last, s + max, std::size_t{in.next_knot[s]}});
-    for (std::size_t e = s + 1; e <= stop; ++e) {
-      work += static_cast<std::size_t>(n);
-      if (work > kWorkBudget) return gave_up();
-      const double span = static_cast<double>(e - s), r = inv[e - s];
-      const int le = low[e - first], he = high[e - first];
-      if (e - s >= min && le <= he) {
-        for (int o = 0; o < n; ++o) {
-          // Most candidates arrive where every value already has as few actions.
-          if (uk[o] + 2 >= worst_at[e - first]) continue;
-          std::uint64_t bits = reachable(u[o], lo[o], hi[o], span, le, he);
-          while (bits != 0) {
-            const int j = std::countr_zero(bits);
-            bits &= bits - 1;
-            const int k = uk[o] + 2 + (s == first && le + j == u[o] ? 1 : 0);
-            if (k < K(e, j)) {
-              K(e, j) = k;
-              from_t[(e - first) * W + static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(s);
-              from_v[(e - first) * W + static_cast<std::size_t>(j)] =
-                  static_cast<std::uint8_t>(uj[o]);
-              best_at[e - first] = std::min(best_at[e - first], k);
-            }
-          }
-          int worst = 0;
-          for (int c = 0; c <= he - le; ++c) worst = std::max(worst, K(e, c));
-          worst_at[e - first] = worst;
-        }
-      }
-      const std::size_t x = in.at(0, e);
-      const double bl = in.lo[x], bh = in.hi[x];
-      bool open = false;
-      for (int o = 0; o < n; ++o) {
-        lo[o] = std::max(lo[o], (bl - u[o]) * r);
-        hi[o] = std::min(hi[o], (bh - u[o]) * r);
-        open = open || lo[o] <= hi[o];
-      }
-      if (!open) break;
-    }
-  }
-  Path path;
-  std::size_t t = last;
-  int j = 0;
-  if (K(last, 0) == kNoKey) {
-    if (bound != kNoKey) return path;  // nothing better than the on-curve fit
-    t = farthest_reached(in, best_at, first, last, min);
-    // At the farthest boundary, the value with the fewest actions, nearest the curve.
-    for (int c = 0; c <= high[t - first] - low[t - first]; ++c) {
-      const double w = in.want[in.at(0, t)];
-      if (K(t, c) < K(t, j) || (K(t, c) == K(t, j) && std::abs(low[t - first] + c - w) <
-                                                          std::abs(low[t - first] + j - w))) {
-        j = c;
-      }
-    }
-  }
-  path.complete = t == last;
-  path.reached = t;
-  path.key = t == first ? 0 : K(t, j);
-  if (!path.complete) path.key += 4 * static_cast<int>(last - t);
-  std::vector<std::pair<std::size_t, int>> back;
-  while (t > first) {
-    back.push_back({t, low[t - first] + j});
-    const std::size_t i = (t - first) * W + static_cast<std::size_t>(j);
-    t = from_t[i];
-    j = from_v[i];
-  }
-  std::reverse(back.begin(), back.end());
-  for (const auto& [end, value] : back) {
-    path.ends.push_back(end);
-    path.values.push_back(value);
-  }
-  return path;
 }
 
 // The free fit for several curved servos sharing boundaries. Their joint states are too
