@@ -1,0 +1,286 @@
+// Free end points and the controller model, checked from the outside as in fitting_test.cpp
+// (fitting_check.hpp): a hand-worked curve, never more actions than the on-curve fit, a miss
+// only where the on-curve fit misses as much, targets inside the servos' limits, no leading
+// still action, and the tolerance held under each controller model.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "compiler/fitting/fitter.hpp"
+#include "compiler/frontend/profiles.hpp"
+#include "compiler/timeline/easing.hpp"
+#include "tests/compiler/easing_reference.hpp"
+#include "tests/compiler/fitting_check.hpp"
+#include "tests/compiler/lang_test_util.hpp"
+
+namespace seqc::compiler {
+namespace {
+
+using namespace fitting_check;
+
+TEST(Fitting, FreeEndPointsSaveAnActionOnAHandWorkedCurve) {
+  Segment seg;
+  seg.start = ExactMs(0);
+  seg.end = ExactMs(60);
+  seg.from = 0;
+  seg.to = 18;
+  seg.kind = CurveKind::Eased;
+  seg.easing = *parse_easing("quad-in").easing;
+  seg.tolerance = 1;
+  Timeline tl;
+  tl.resize(1);
+  tl.add(0, seg);
+  tl.end = ExactMs(60);
+  const FitResult free = fit_timeline(tl);
+  ASSERT_EQ(free.actions.size(), 2u);
+  EXPECT_TRUE(free.shortfalls.empty());
+  // Whatever the two targets are, the motion stays within 1 of t^2 / 200 at every millisecond.
+  const Motion motion(free.actions, 0);
+  for (int t = 0; t <= 60; ++t) {
+    EXPECT_LE(std::abs(motion.at(t) - t * t / 200.0), 1 + 1e-9) << t;
+  }
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  EXPECT_EQ(fit_timeline(tl, on_curve).actions.size(), 3u);
+}
+
+// The same curve compiled from a file: CompileOptions::free_end_points chooses between the two
+// fits (fit_bench compares them on the examples this way).
+TEST(Fitting, CompileOptionsChooseTheFreeOrTheOnCurveFit) {
+  testing::MemoryFiles files;
+  files.files["main.yaml"] =
+      "robot: xarm\nsequence:\n  - move: {base: 0}\n    time: 1s\n  - move: {base: 18}\n"
+      "    time: 60ms\n    ease: quad-in\n";
+  CompileOptions options;
+  const CompileOutput free = compile_file("main.yaml", files, options);
+  options.free_end_points = false;
+  const CompileOutput on_curve = compile_file("main.yaml", files, options);
+  // The first move, then the curve's two actions (free) or three (on the curve).
+  EXPECT_EQ(testing::program_of(free).keyframes.size(), 3u);
+  EXPECT_EQ(testing::program_of(on_curve).keyframes.size(), 4u);
+}
+
+// Random single curves and servos moving together: the fit never has more actions than the
+// on-curve fit alone (it keeps the better of the two).
+TEST(Fitting, NeverMoreActionsThanTheOnCurveFit) {
+  std::mt19937 rng(20261125);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<std::string> names = {"sine-in-out", "cubic-in",    "quad-out",
+                                          "back-in-out", "expo-in-out", "circ-in",
+                                          "bounce-out",  "elastic-out", "quart-in-out"};
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  int fewer = 0;
+  for (int round = 0; round < 60; ++round) {
+    const std::size_t servos = 1 + static_cast<std::size_t>(round % 8);
+    Timeline tl;
+    tl.resize(servos);
+    double end = 0;
+    for (std::size_t s = 0; s < servos; ++s) {
+      double t = 0, pos = 300 + std::floor(unit(rng) * 400);
+      while (t < 1500) {
+        const double len = std::floor(150 + unit(rng) * 650);
+        Segment seg;
+        seg.start = ExactMs(static_cast<std::int64_t>(t));
+        seg.end = ExactMs(static_cast<std::int64_t>(t + len));
+        seg.from = pos;
+        seg.to = pos + std::floor((unit(rng) - 0.5) * 600);
+        seg.kind = CurveKind::Eased;
+        seg.easing = *parse_easing(names[static_cast<std::size_t>(unit(rng) * 9) % 9]).easing;
+        seg.tolerance = round % 2 == 0 ? 1 : 2;
+        tl.add(s, seg);
+        pos = seg.to;
+        t += len;
+      }
+      end = std::max(end, t);
+    }
+    tl.end = ExactMs(static_cast<std::int64_t>(end));
+    const std::size_t fitted = fit_timeline(tl).actions.size();
+    const std::size_t before = fit_timeline(tl, on_curve).actions.size();
+    EXPECT_LE(fitted, before) << "round " << round << ", " << servos << " servos";
+    fewer += fitted < before ? 1 : 0;
+  }
+  EXPECT_GT(fewer, 30);  // and the free end points do save actions
+}
+
+// Where even the shortest actions miss (an elastic's first swings, a bounce), both fits report
+// shortfalls. The fit kept spends an action more than the on-curve fit only to miss by less:
+// more misses of the same size are not worth an action.
+// Elastic-out over 500 ms from 50 to 450 at tolerance 1 is such a curve: its first swing turns
+// round within 20 ms, so both fits miss there by the same worst amount, whatever comes after.
+TEST(Fitting, AnActionMoreThanTheOnCurveFitOnlyForASmallerWorstMiss) {
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  auto worst_miss = [](const FitResult& r) {
+    double most = 0;
+    for (const FitShortfall& f : r.shortfalls) most = std::max(most, f.error);
+    return most;
+  };
+  int both_miss = 0;
+  for (const char* name : {"elastic-out", "elastic-in", "bounce-out", "bounce-in-out"}) {
+    for (int ms : {300, 500, 800}) {
+      for (double tol : {1.0, 2.0}) {
+        Segment seg;
+        seg.start = ExactMs(0);
+        seg.end = ExactMs(ms);
+        seg.from = 50;
+        seg.to = 450;
+        seg.kind = CurveKind::Eased;
+        seg.easing = *parse_easing(name).easing;
+        seg.tolerance = tol;
+        Timeline tl;
+        tl.resize(1);
+        tl.add(0, seg);
+        tl.end = ExactMs(ms);
+        const FitResult fitted = fit_timeline(tl);
+        const FitResult before = fit_timeline(tl, on_curve);
+        SCOPED_TRACE(std::string(name) + " over " + std::to_string(ms) + " ms at tolerance " +
+                     std::to_string(tol));
+        if (fitted.actions.size() > before.actions.size()) {
+          EXPECT_LT(worst_miss(fitted), worst_miss(before) - 1e-6);
+        }
+        both_miss += !fitted.shortfalls.empty() && !before.shortfalls.empty() ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(both_miss, 6);  // the cases are the ones where both fits miss
+}
+
+// A free end point never leaves the servo's limits. Curves that dip to just above the bottom of
+// the servo's range (0 here) and come back: Hermite pieces from 40 to 40 whose inner control
+// points sit at p1 = p2 = (m - 10) / 0.75, so that the middle, 40/8 + 3/4 p1 + 40/8, is m (0.2
+// or 0.5). Lines across a dip fit best with their ends below the curve, where the band of whole
+// units within tolerance reaches below 0; the fit keeps at 0 or above.
+TEST(Fitting, FreeEndPointsStayWithinTheServosLimits) {
+  FitOptions limited;
+  limited.limits = {{0, 1000}};
+  int below_without_limits = 0;
+  for (int ms : {300, 600, 900, 1200, 1500}) {
+    for (double m : {0.2, 0.5}) {
+      const double p1 = (m - 10) / 0.75, h = ms;
+      Segment seg;
+      seg.start = ExactMs(0);
+      seg.end = ExactMs(ms);
+      seg.from = seg.to = 40;
+      seg.kind = CurveKind::Hermite;
+      seg.slope_from = static_cast<float>(-(40 - p1) * 3 / h);
+      seg.slope_to = -seg.slope_from;
+      seg.tolerance = 2;
+      Timeline tl;
+      tl.resize(1);
+      tl.add(0, seg);
+      tl.end = ExactMs(ms);
+      for (const FittedAction& a : fit_timeline(tl).actions) {
+        below_without_limits += a.targets[0].position < 0 ? 1 : 0;
+      }
+      const FitResult fit = fit_timeline(tl, limited);
+      for (const FittedAction& a : fit.actions) {
+        EXPECT_GE(a.targets[0].position, 0) << ms << " ms, " << m << ", at " << a.start_ms;
+      }
+      // Still within tolerance at every millisecond.
+      EXPECT_TRUE(fit.shortfalls.empty());
+      const Motion motion(fit.actions, 40);
+      Intended want;
+      want.t1 = h;
+      want.from = want.to = 40;
+      want.hermite = true;
+      want.slope_from = seg.slope_from;
+      want.slope_to = seg.slope_to;
+      want.tolerance = 2;
+      for (int t = 0; t <= ms; ++t) {
+        EXPECT_LE(std::abs(motion.at(t) - want.at(t)), 2 + 1e-6) << ms << " ms, " << m << ", " << t;
+      }
+    }
+  }
+  // Without limits the fit does use the units below 0, so the limits above were in play.
+  EXPECT_GT(below_without_limits, 0);
+}
+
+// An eased move whose curve barely leaves its start does not begin with an action that moves
+// nothing: cubic-in from 500 to 600 over 1 s stays within 1 of 500 for its first 215 ms
+// (100 x 0.215^3 = 0.99), so a first action holding 500 fits, but one that moves does too.
+TEST(Fitting, AnEasedMoveDoesNotBeginWithAnActionThatMovesNothing) {
+  for (const char* ease : {"cubic-in", "expo-in", "quint-in"}) {
+    auto out = testing::compile_text(
+        std::string("robot: xarm\nsequence:\n") + "  - move: {base: 500}\n    time: 1s\n" +
+        "  - move: {base: 600}\n    time: 1s\n    ease: " + ease + "\n");
+    const ServoProgram& p = testing::program_of(out);
+    ASSERT_GE(p.keyframes.size(), 3u) << ease;
+    EXPECT_EQ(p.keyframes[0].targets, (std::vector<lsc::ServoTarget>{{6, 500}})) << ease;
+    ASSERT_EQ(p.keyframes[1].targets.size(), 1u) << ease;
+    EXPECT_NE(p.keyframes[1].targets[0].position, 500) << ease;
+  }
+}
+
+// The controller model: a fit for a controller that rounds (or truncates) its output to whole
+// units keeps that output within tolerance at every millisecond; the same curves fitted for
+// the straight line do not, put out that way, so the setting is what keeps the promise.
+TEST(Fitting, TheControllerModelIsWhatTheToleranceHoldsFor) {
+  EXPECT_EQ(controller_output(ControllerModel::StraightLine, 2.5), 2.5);
+  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.5), 3);
+  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.49), 2);
+  EXPECT_EQ(controller_output(ControllerModel::Truncates, 2.99), 2);
+  auto output = [](ControllerModel model, double line) {
+    return model == ControllerModel::Rounds ? std::floor(line + 0.5) : std::trunc(line);
+  };
+  for (ControllerModel model : {ControllerModel::Rounds, ControllerModel::Truncates}) {
+    int straight_misses = 0;
+    for (const char* name : {"sine-in-out", "quad-in-out", "cubic-out", "back-in-out"}) {
+      Segment seg;
+      seg.start = ExactMs(0);
+      seg.end = ExactMs(1500);
+      seg.from = 300;
+      seg.to = 420;
+      seg.kind = CurveKind::Eased;
+      seg.easing = *parse_easing(name).easing;
+      seg.tolerance = 1;
+      Timeline tl;
+      tl.resize(1);
+      tl.add(0, seg);
+      tl.end = ExactMs(1500);
+      Intended want;
+      want.t1 = 1500;
+      want.from = 300;
+      want.to = 420;
+      want.tolerance = 1;
+      want.easing = seg.easing;
+      FitOptions options;
+      options.model = model;
+      const FitResult fit = fit_timeline(tl, options);
+      EXPECT_TRUE(fit.shortfalls.empty()) << name;
+      const Motion motion(fit.actions, 300);
+      double worst = 0;
+      for (int t = 0; t <= 1500; ++t) {
+        const double err = std::abs(output(model, motion.at(t)) - want.at(t));
+        EXPECT_LE(err, 1 + 1e-9) << name << " at " << t;
+        worst = std::max(worst, err);
+      }
+      EXPECT_NEAR(fit.max_error, worst, 1e-6) << name;
+      const Motion straight(fit_timeline(tl).actions, 300);
+      for (int t = 0; t <= 1500; ++t) {
+        if (std::abs(output(model, straight.at(t)) - want.at(t)) > 1 + 1e-9) {
+          ++straight_misses;
+          break;
+        }
+      }
+    }
+    EXPECT_GT(straight_misses, 0);
+  }
+}
+
+// Every built-in profile fits for the straight line between whole-unit targets: what the
+// protocol document describes; docs/language.md says why.
+TEST(Fitting, BuiltInProfilesFitForTheStraightLine) {
+  for (const char* name : {"xarm", "bus", "lsc-16", "lsc-32", "lsc-6"}) {
+    const RobotProfile* p = find_profile(name);
+    ASSERT_NE(p, nullptr) << name;
+    EXPECT_EQ(p->controller, ControllerModel::StraightLine) << name;
+  }
+}
+
+}  // namespace
+}  // namespace seqc::compiler
