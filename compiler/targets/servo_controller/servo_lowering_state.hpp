@@ -114,7 +114,7 @@ class ServoLowering final : public StepWalker {
                         const std::optional<Reporter::Note>& note,
                         std::vector<KinematicFinding>& findings);
   void report_kinematics(const std::vector<KinematicFinding>& findings);
-  // A `path: line` move (servo_tip.cpp): the straight pieces of the joints that keep the tip
+  // A `path: line` move (servo_tip_line.cpp): the straight pieces of the joints that keep the tip
   // within `tolerance_mm` of the line from where it is to `placed`, and of the move's other
   // servos (`targets`, by servo) that keep them within `tolerance_units` of their eased curves,
   // added to the timeline from `start` to `end`; the final positions go to `pos_`. False after
