@@ -1,8 +1,9 @@
 // The servo-controller front end's state while it walks a file's steps (private to
 // servo_lowering.cpp, which reads files and supplies the shared walk's hooks, and
-// servo_motion.cpp, which turns move, wait and through steps into timeline segments and checks
-// them). The walk itself (lists, repeat, include, sections, together, at, tempo, meter) is
-// StepWalker's (step_walk.hpp).
+// servo_motion.cpp, which turns move, wait and through steps into timeline segments, with their
+// checks in servo_motion_checks.cpp, and servo_tip.cpp / servo_tip_line.cpp for the arm's tip). The
+// walk itself (lists, repeat, include, sections, together, at, tempo, meter) is StepWalker's
+// (step_walk.hpp).
 //
 // Time is exact (ExactMs): each step list remembers when it started (for `at:`) and its
 // tolerance override; beats and bars go through the timeline's tempo map. A `together` block
@@ -72,9 +73,9 @@ class ServoLowering final : public StepWalker {
   std::optional<double> parse_tolerance(const YamlNode& node);
   double tolerance() const;
 
-  // ---- motion (servo_motion.cpp) ------------------------------------------------------------
-  // `keys_ok`: false when the step has an unknown key (then a missing 'time' is most likely
-  // that key misspelt, already reported).
+  // ---- motion (servo_motion.cpp, servo_motion_checks.cpp)
+  // ------------------------------------------------------------ `keys_ok`: false when the step has
+  // an unknown key (then a missing 'time' is most likely that key misspelt, already reported).
   void move_step(const YamlNode& step, const YamlNode& target, bool keys_ok);
   // A move's `tip:` (servo_tip.cpp): appends to `entries` (the move's other servos) the joint
   // positions that put the claw's tip there, with the move's `pitch:` and the step's `elbow:`;
