@@ -95,6 +95,17 @@ def sync_scratch(root, scratch):
         with open(dst, "wb") as f:
             f.write(content)
         shutil.copymode(src, dst)
+    # A file the tree no longer has goes from the copy too: a source left behind would still be
+    # compiled (the build globs its folders) and define twice what its successor defines.
+    keep = {rel for rel in files if rel}
+    for folder, dirs, names in os.walk(scratch.encode()):
+        rel_folder = os.path.relpath(folder, scratch.encode())
+        if rel_folder == b".":
+            dirs[:] = [d for d in dirs if d not in (b"build", b"logs", b".git")]
+        for name in names:
+            rel = os.path.normpath(os.path.join(rel_folder, name))
+            if rel not in keep:
+                os.remove(os.path.join(folder, name))
 
 
 def main():
