@@ -4,6 +4,7 @@ byte. Enough of the protocol for a test to open one page and evaluate script in 
 port is opened."""
 import json
 import os
+import signal
 import subprocess
 
 
@@ -20,13 +21,14 @@ class Chromium:
             ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
              "--remote-debugging-pipe", f"--user-data-dir={tmp}/cdp-profile", *flags,
              "about:blank"],
-            preexec_fn=as_fd3_and_fd4, pass_fds=(3, 4, to_r, from_w),
+            preexec_fn=as_fd3_and_fd4, pass_fds=(3, 4, to_r, from_w), start_new_session=True,
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(to_r)
         os.close(from_w)
         self.out = os.fdopen(to_w, "wb", buffering=0)
         self.inp = os.fdopen(from_r, "rb", buffering=0)
         self.pending = b""
+        self.events = []  # every event the browser sent, as (method, params), in order
         self.last_id = 0
         self.session = None
         page = next(t for t in self.call("Target.getTargets")["targetInfos"]
@@ -48,7 +50,9 @@ class Chromium:
                 self.pending += chunk
             raw, self.pending = self.pending.split(b"\0", 1)
             reply = json.loads(raw)
-            if reply.get("id") == self.last_id:
+            if "method" in reply and "id" not in reply:
+                self.events.append((reply["method"], reply.get("params", {})))
+            elif reply.get("id") == self.last_id:
                 if "error" in reply:
                     raise RuntimeError(f"{method}: {reply['error']}")
                 return reply["result"]
@@ -62,5 +66,16 @@ class Chromium:
         return result["result"].get("value")
 
     def close(self):
-        self.proc.kill()
+        """Closes the browser and waits for every process of it: a renderer still writing into
+        the profile would make the caller's temporary directory fail to go away."""
+        try:
+            self.session = None
+            self.call("Browser.close")
+            self.proc.wait(timeout=10)
+        except (RuntimeError, OSError, subprocess.TimeoutExpired):
+            pass
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
         self.proc.wait()

@@ -7,6 +7,8 @@ unreachable), with the page opened from disk.
   URL.
 - Driving the audio's clock moves the picture: with the page paused, setting the audio's
   currentTime to the downbeat + 5 s shows t = 5 in `seqc-state`.
+- Nothing is fetched: the browser's own log of requests (DevTools' Network domain) holds the
+  page's file and data: URLs only.
 - Playing, the picture follows the audio, not a timer: moving the audio's currentTime while it
   plays moves the picture with it; at several moments, `seqc-state`'s t is
   the audio's currentTime minus the downbeat (within 50 ms: one frame is 17 ms), the audio having
@@ -44,6 +46,9 @@ with tempfile.TemporaryDirectory() as tmp:
     browser = Chromium(tmp, "--autoplay-policy=no-user-gesture-required",
                        "--proxy-server=127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND")
     try:
+        # The browser's own record of every request the page makes: the page itself from disk
+        # and its embedded song (data:) are the only ones allowed.
+        browser.call("Network.enable")
         browser.call("Page.navigate", {"url": f"file://{html}#t=1"})
         for _ in range(200):
             if browser.eval("(document.getElementById('seqc-state') || {}).textContent || ''"):
@@ -105,6 +110,15 @@ with tempfile.TemporaryDirectory() as tmp:
             if abs(advanced - rate * wall) > 0.25 * wall:
                 problems.append(f"rate {rate}: the audio advanced {advanced:.3f} s in "
                                 f"{wall:.3f} s of wall time")
+        requests = [p["request"]["url"] for m, p in browser.events
+                    if m == "Network.requestWillBeSent"]
+        print(f"{len(requests)} requests made by the page: "
+              + ", ".join(sorted({u.split(':', 1)[0] + ':' for u in requests})))
+        if not any(u.startswith("file://") for u in requests):
+            problems.append("the browser recorded no request for the page itself")
+        for url in requests:
+            if not url.startswith(("file://", "data:")):
+                problems.append(f"the page requested {url[:80]}")
     finally:
         browser.close()
 
