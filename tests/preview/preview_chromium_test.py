@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """`seqc preview` as a person sees it. Every example is previewed and opened by headless
-Chromium (Debian's `chromium`) from disk, with the network made unreachable (a proxy on a
-closed port and a resolver that finds no host), at several `#t=` instants:
+Chromium (Debian's `chromium`, one browser driven over the DevTools pipe, each instant a fresh
+load of the page) from disk, with the network made unreachable (a proxy on a closed port and a
+resolver that finds no host), at several `#t=` instants:
 
 - the page's `seqc-state` (JSON for the instant shown) must give each servo the position
   `seqc simulate --step 1` gives at that millisecond (within 0.5 unit: simulate rounds), and
@@ -14,10 +15,12 @@ closed port and a resolver that finds no host), at several `#t=` instants:
   distance out along the base's direction, the base angle being (base - 500) * 0.24 degrees on
   the xArm and (base - 1500) * 0.09 degrees on the LeArm (2000 us over 180 degrees);
 - the file names no URL and loads nothing (no src/href, @import, url(); a song is embedded as
-  a data: URL).
-It also prints the page's size and load time (Chromium started to `seqc-state` dumped) for the
-longest example.
+  a data: URL), and the browser's own log of requests (DevTools' Network domain) holds nothing
+  but the pages' files.
+It also prints the page's size and load time (a whole `chromium --dump-dom` run, Chromium started
+to `seqc-state` dumped, and inside the page) for the longest example.
 Usage: preview_chromium_test.py SEQC FILE..."""
+import base64
 import csv
 import io
 import json
@@ -30,6 +33,9 @@ import tempfile
 import time
 
 from PIL import Image
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cdp_pipe import Chromium  # noqa: E402
 
 seqc, files = sys.argv[1], sys.argv[2:]
 problems = []
@@ -44,11 +50,38 @@ def chromium(tmp, *args):
 
 
 def state_at(tmp, html, seconds):
+    """seqc-state after a whole `chromium --dump-dom` run (the load-time figures)."""
     run = chromium(tmp, "--dump-dom", f"file://{html}#t={seconds}")
     m = re.search(r'<pre id="seqc-state">([^<]*)</pre>', run.stdout)
     if not m or not m.group(1):
         return None
     return json.loads(m.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+
+
+def load_at(browser, html, seconds):
+    """Loads the page afresh at #t=seconds and returns seqc-state once it is written and the
+    page has drawn a frame after it (None if it never is)."""
+    url = f"file://{html}#t={seconds}"
+    browser.call("Page.navigate", {"url": "about:blank"})
+    browser.call("Page.navigate", {"url": url})
+    for _ in range(400):
+        text = browser.eval(f"""(() => {{
+            const e = document.getElementById('seqc-state');
+            return location.href === {json.dumps(url)} && document.readyState === 'complete'
+                && e ? e.textContent : '';
+        }})()""")
+        if text:
+            browser.eval("new Promise((r) => requestAnimationFrame(() => "
+                         "requestAnimationFrame(() => r(1))))")
+            return json.loads(text)
+        time.sleep(0.025)
+    return None
+
+
+def screenshot(browser, png):
+    data = browser.call("Page.captureScreenshot", {"format": "png"})["data"]
+    with open(png, "wb") as f:
+        f.write(base64.b64decode(data))
 
 
 def simulated(path):
@@ -165,59 +198,75 @@ def performers(path):
 
 longest = None
 with tempfile.TemporaryDirectory() as tmp:
-    for path in files:
-        name = os.path.splitext(os.path.basename(path))[0]
-        html = os.path.join(tmp, name + ".html")
-        run = subprocess.run([seqc, "preview", path, "-o", html], capture_output=True, text=True)
-        if run.returncode != 0:
-            problems.append(f"{path}: seqc preview failed: {run.stderr}")
-            continue
-        check_self_contained(path, open(html).read())
-        parts = [(who, file, simulated(file)) for who, file in performers(path)]
-        if any(sim is None for _, _, sim in parts):
-            problems.append(f"{path}: seqc simulate failed")
-            continue
-        end = max(max(sim) for _, _, sim in parts)
-        if longest is None or end > longest[0]:
-            longest = (end, path, html)
-        instants = sorted({0, round(end * 0.3), round(end * 0.55) + 7, round(end * 0.8), end})
-        shown = 0
-        for ms in instants:
-            state = state_at(tmp, html, ms / 1000)
-            if state is None:
-                problems.append(f"{path}: no seqc-state at t={ms / 1000}")
+    browser = Chromium(tmp, *BLOCKED)
+    browser.call("Network.enable")
+    browser.call("Emulation.setDeviceMetricsOverride",
+                 {"width": 1200, "height": 1000, "deviceScaleFactor": 1, "mobile": False})
+    try:
+        for path in files:
+            name = os.path.splitext(os.path.basename(path))[0]
+            html = os.path.join(tmp, name + ".html")
+            run = subprocess.run([seqc, "preview", path, "-o", html], capture_output=True,
+                                 text=True)
+            if run.returncode != 0:
+                problems.append(f"{path}: seqc preview failed: {run.stderr}")
                 continue
-            if abs(state["t"] - ms / 1000) > 1e-9:
-                problems.append(f"{path}: seqc-state t={state['t']} for #t={ms / 1000}")
-            for who, file, sim in parts:
-                part = state["performers"][who] if who else state
-                row = sim[min(ms, max(sim))]
-                compare(f"{path} {who or ''} t={ms / 1000}", part, row)
-                if "x" in row:
-                    check_car(f"{path} {who or ''} t={ms / 1000}", part, sim, ms)
-            shown += 1
-        # A screenshot mid-way: the page's size, not blank, the tip where it belongs.
-        ms = round(end * 0.55) + 7
-        png = os.path.join(tmp, name + ".png")
-        chromium(tmp, "--window-size=1200,1000", f"--screenshot={png}",
-                 f"file://{html}#t={ms / 1000}")
-        if not os.path.exists(png):
-            problems.append(f"{path}: chromium wrote no screenshot")
-            continue
-        image = Image.open(png).convert("RGB")
-        if image.size != (1200, 1000):
-            problems.append(f"{path}: screenshot is {image.size}, not 1200x1000")
-        pixels = list(image.getdata())
-        white = sum(1 for p in pixels if p == (255, 255, 255)) / len(pixels)
-        ink = sum(1 for p in pixels if sum(p) < 300) / len(pixels)
-        colours = len(set(pixels))
-        print(f"{name}: {shown} instants checked; screenshot {white:.1%} white, {ink:.2%} dark "
-              f"ink, {colours} colours")
-        if white < 0.3 or white > 0.995 or ink < 0.003 or colours < 8:
-            problems.append(f"{path}: looks blank or broken ({white:.1%} white, {ink:.2%} ink)")
-        state = state_at(tmp, html, ms / 1000)
-        if state and "tip" in state:
-            check_tip_pixel(f"{path} t={ms / 1000}", png, state, profile_of(path))
+            check_self_contained(path, open(html).read())
+            parts = [(who, file, simulated(file)) for who, file in performers(path)]
+            if any(sim is None for _, _, sim in parts):
+                problems.append(f"{path}: seqc simulate failed")
+                continue
+            end = max(max(sim) for _, _, sim in parts)
+            if longest is None or end > longest[0]:
+                longest = (end, path, html)
+            mid = round(end * 0.55) + 7
+            instants = sorted({0, round(end * 0.3), mid, round(end * 0.8), end})
+            shown = 0
+            png = os.path.join(tmp, name + ".png")
+            for ms in instants:
+                state = load_at(browser, html, ms / 1000)
+                if state is None:
+                    problems.append(f"{path}: no seqc-state at t={ms / 1000}")
+                    continue
+                if abs(state["t"] - ms / 1000) > 1e-9:
+                    problems.append(f"{path}: seqc-state t={state['t']} for #t={ms / 1000}")
+                for who, file, sim in parts:
+                    part = state["performers"][who] if who else state
+                    row = sim[min(ms, max(sim))]
+                    compare(f"{path} {who or ''} t={ms / 1000}", part, row)
+                    if "x" in row:
+                        check_car(f"{path} {who or ''} t={ms / 1000}", part, sim, ms)
+                shown += 1
+                if ms != mid:
+                    continue
+                # A screenshot mid-way: the page's size, not blank, the tip where it belongs.
+                screenshot(browser, png)
+                image = Image.open(png).convert("RGB")
+                if image.size != (1200, 1000):
+                    problems.append(f"{path}: screenshot is {image.size}, not 1200x1000")
+                pixels = list(image.getdata())
+                white = sum(1 for p in pixels if p == (255, 255, 255)) / len(pixels)
+                ink = sum(1 for p in pixels if sum(p) < 300) / len(pixels)
+                colours = len(set(pixels))
+                print(f"{name}: screenshot at t={ms / 1000}: {white:.1%} white, {ink:.2%} dark "
+                      f"ink, {colours} colours")
+                if white < 0.3 or white > 0.995 or ink < 0.003 or colours < 8:
+                    problems.append(f"{path}: looks blank or broken ({white:.1%} white, "
+                                    f"{ink:.2%} ink)")
+                if "tip" in state:
+                    check_tip_pixel(f"{path} t={ms / 1000}", png, state, profile_of(path))
+            print(f"{name}: {shown} instants checked")
+        requests = [p["request"]["url"] for m, p in browser.events
+                    if m == "Network.requestWillBeSent"]
+        pages = {f"file://{os.path.join(tmp, os.path.splitext(os.path.basename(f))[0])}.html"
+                 for f in files}
+        fetched = [u for u in requests if u.split("#")[0] not in pages and u != "about:blank"]
+        print(f"{len(requests)} requests logged by the browser, {len(fetched)} other than the "
+              "pages themselves")
+        for url in fetched:
+            problems.append(f"a page requested {url[:100]}")
+    finally:
+        browser.close()
     if longest:
         end, path, html = longest
         began = time.monotonic()
