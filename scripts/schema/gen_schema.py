@@ -246,7 +246,12 @@ STEP_KEYS = {
                     "pitch": doc("Pitch", "The hand's angle with `tip`: 0deg up, 90deg level, "
                                  "180deg down (default: as it is).", type="string",
                                  pattern=r"^[+-]?[0-9.]+deg$",
-                                 patternErrorMessage="an angle in degrees: 135deg")}),
+                                 patternErrorMessage="an angle in degrees: 135deg"),
+                    "elbow": doc("Elbow", "The `elbow` servo's position, or with `tip`: `up` "
+                                 "(the default) or `down`, which of the two ways the arm "
+                                 "reaches the point (also a key of the step).",
+                                 anyOf=[ref("position"), {"type": "string",
+                                                          "enum": ["up", "down"]}])}),
     "elbow": doc("Elbow", "With a `tip` move: `up` (the default) or `down`, which of the two "
                  "ways the arm reaches the point.", type="string", enum=["up", "down"]),
     "path": doc("Path", "With a `tip` move: `line` takes the tip in a straight line from where "

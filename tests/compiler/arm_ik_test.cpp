@@ -120,6 +120,34 @@ TEST(ArmTip, ElbowDownIsTheOtherSolution) {
   EXPECT_NEAR(forward(down_pos).pitch, 135, kRoundingPitch);
 }
 
+TEST(ArmTip, ElbowMayBeChosenInsideTheMove) {
+  // In a tip move the elbow's servo is placed by the tip, so `elbow: down` inside the move
+  // chooses the solution exactly as the step's key does.
+  const std::string head = "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n";
+  const auto beside =
+      compile_text(head +
+                   "  - move: {tip: [250mm, 0mm, 80mm], pitch: 135deg}\n    time: 1s\n"
+                   "    elbow: down\n");
+  const auto inside = compile_text(
+      head + "  - move: {tip: [250mm, 0mm, 80mm], pitch: 135deg, elbow: down}\n    time: 1s\n");
+  const std::map<int, int> pos = final_positions(compiled(inside));
+  EXPECT_GT(pos.at(4), 500);
+  EXPECT_EQ(pos, final_positions(compiled(beside)));
+
+  const auto twice = compile_text(head +
+                                  "  - move: {tip: [250mm, 0mm, 80mm], elbow: down}\n    time: 1s\n"
+                                  "    elbow: up\n");
+  EXPECT_EQ(messages(twice),
+            std::vector<std::string>{
+                "5:44 error: 'elbow' is given twice, in the move and beside it; keep one"});
+  // A number is still the elbow's servo, which the tip places.
+  const auto servo =
+      compile_text(head + "  - move: {tip: [250mm, 0mm, 80mm], elbow: 300}\n    time: 1s\n");
+  EXPECT_EQ(messages(servo),
+            std::vector<std::string>{"5:44 error: 'elbow' is placed by 'tip' in this move; "
+                                     "leave it out or drop 'tip'"});
+}
+
 TEST(ArmTip, SignedTipMovesFromTheCurrentTipAndKeepsThePitch) {
   const auto out = compile_text(R"(robot: xarm
 sequence:

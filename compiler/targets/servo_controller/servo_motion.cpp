@@ -87,8 +87,12 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   if (has_tip) {
     // The other servos parse as usual; tip and pitch are the inverse kinematics' own.
     YamlNode rest = target;
+    // `elbow: up` or `down` inside the move chooses the solution, as it does beside `time`: in
+    // a tip move the elbow's servo is placed by the tip, so those words name no position.
     std::erase_if(rest.entries, [](const YamlEntry& e) {
-      return e.first.scalar == "tip" || e.first.scalar == "pitch";
+      return e.first.scalar == "tip" || e.first.scalar == "pitch" ||
+             (e.first.scalar == "elbow" && e.second.is_scalar() &&
+              (e.second.scalar == "up" || e.second.scalar == "down"));
     });
     inline_entries = parse_positions(rest, "in this move");
     ok = tip_entries(step, target, inline_entries, placed) && ok;

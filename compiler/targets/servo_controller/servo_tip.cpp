@@ -108,7 +108,18 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
     }
   }
   bool elbow_up = true;
-  if (const YamlNode* e = step.find("elbow")) {
+  const YamlNode* elbow = step.find("elbow");
+  if (const YamlNode* inside = target.find("elbow");
+      inside != nullptr && inside->is_scalar() &&
+      (inside->scalar == "up" || inside->scalar == "down")) {
+    if (elbow != nullptr) {
+      reporter_.error(inside->location,
+                      "'elbow' is given twice, in the move and beside it; keep one");
+      ok = false;
+    }
+    elbow = inside;
+  }
+  if (const YamlNode* e = elbow) {
     if (e->is_scalar() && (e->scalar == "up" || e->scalar == "down")) {
       elbow_up = e->scalar == "up";
     } else {
