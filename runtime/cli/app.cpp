@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
+#include "runtime/cli/commands.hpp"
 #include "runtime/cli/usage_hints.hpp"
 #include "runtime/cli/version.hpp"
 

@@ -6,13 +6,17 @@
 // `seqc help [SUBCOMMAND...]` prints the same text as `--help`.
 #pragma once
 
-#include <CLI/CLI.hpp>
-
-#include "runtime/cli/commands.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 
+// CLI11 is large and header-only: only the files that build the command line parse it.
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace seqc::cli {
+
+struct Outcome;  // commands.hpp
 
 inline constexpr const char* kAppDescription =
     "seqc: compile, check and upload motion sequences for hobby servo robots";

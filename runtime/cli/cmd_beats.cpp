@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/music/beat_analysis.hpp"
 #include "compiler/music/click_track.hpp"
 #include "runtime/audio/sndfile_audio.hpp"

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/frontend/source/units.hpp"
 #include "compiler/show.hpp"

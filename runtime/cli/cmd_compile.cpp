@@ -3,6 +3,8 @@
 // would send, from the board's own uploader run against a recording transport.
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/dry_run.hpp"
 #include "runtime/cli/clock_option.hpp"

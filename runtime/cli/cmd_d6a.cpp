@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/formats/d6a.hpp"
 #include "compiler/formats/d6a_import.hpp"
 #include "runtime/boards/board.hpp"

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/formats/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/protocol/bytes.hpp"

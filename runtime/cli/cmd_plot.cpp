@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/svg_text.hpp"
 #include "compiler/frontend/source/units.hpp"

@@ -2,6 +2,8 @@
 // controller could be on. The plain listing is for people (exit 3 with hints when nothing is
 // found); --json and --names are for programs and shell completion: they print the list, empty
 // or not, and exit 0.
+#include <CLI/CLI.hpp>
+
 #include "runtime/cli/commands.hpp"
 #include "runtime/transport/hidapi_backend.hpp"
 #include "runtime/transport/port_discovery.hpp"

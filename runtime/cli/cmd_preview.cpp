@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/formats/preview_html.hpp"
 #include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/first_move.hpp"

@@ -5,6 +5,8 @@
 // -o OUT.csv each goes to OUT-NAME.csv, on stdout each follows a "# performer NAME (FILE)" line.
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/frontend/source/units.hpp"
 #include "compiler/show.hpp"
 #include "runtime/boards/program_views.hpp"

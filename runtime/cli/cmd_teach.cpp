@@ -7,6 +7,8 @@
 #include <istream>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "compiler/frontend/robot_section.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"

@@ -17,6 +17,8 @@
 
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
+
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/dry_run.hpp"
 #include "runtime/boards/first_move.hpp"

@@ -4,10 +4,12 @@
 #include <ostream>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace seqc::compiler {
 struct CompileOutput;

@@ -36,9 +36,10 @@ void add_device_options(CLI::App& cmd, DeviceOptions& options) {
 }
 
 void add_robot_option(CLI::App& cmd, std::string& profile) {
-  cmd.add_option("--robot", profile,
-                 "Robot profile (xarm, bus, lsc-16, lsc-32, lsc-6, learm): allows servo names; lsc-6 "
-                 "and learm select the LSC-6 board's own dialect");
+  cmd.add_option(
+      "--robot", profile,
+      "Robot profile (xarm, bus, lsc-16, lsc-32, lsc-6, learm): allows servo names; lsc-6 "
+      "and learm select the LSC-6 board's own dialect");
 }
 
 void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {

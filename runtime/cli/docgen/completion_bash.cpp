@@ -11,12 +11,6 @@ void walk(const CommandDoc& c, const std::function<void(const CommandDoc&)>& f) 
   for (const CommandDoc& s : c.subcommands) walk(s, f);
 }
 
-std::string words(const std::vector<std::string>& list) {
-  std::string out;
-  for (const std::string& w : list) out += (out.empty() ? "" : " ") + w;
-  return out;
-}
-
 }  // namespace
 
 // The generated function keeps one table per property, keyed by the subcommand path ("." for
@@ -36,7 +30,8 @@ std::string bash_completion(const CommandDoc& root) {
         valued.push_back(n);
         if (o.kind == ValueKind::File) files.push_back(n);
         if (o.kind == ValueKind::Choice) {
-          t << "  choices[\"" << path << ' ' << n << "\"]=\"" << words(o.choices) << "\"\n";
+          t << "  choices[\"" << path << ' ' << n << "\"]=\"" << space_separated(o.choices)
+            << "\"\n";
         }
       }
     }
@@ -44,10 +39,10 @@ std::string bash_completion(const CommandDoc& root) {
     for (const PositionalDoc& p : c.positionals) {
       if (!p.extension.empty()) ext = p.extension;
     }
-    t << "  subs" << key << '"' << words(subs) << "\"\n"
-      << "  opts" << key << '"' << words(opts) << "\"\n"
-      << "  valued" << key << '"' << words(valued) << "\"\n"
-      << "  fileopts" << key << '"' << words(files) << "\"\n"
+    t << "  subs" << key << '"' << space_separated(subs) << "\"\n"
+      << "  opts" << key << '"' << space_separated(opts) << "\"\n"
+      << "  valued" << key << '"' << space_separated(valued) << "\"\n"
+      << "  fileopts" << key << '"' << space_separated(files) << "\"\n"
       << "  ext" << key << '"' << ext << "\"\n";
   });
 

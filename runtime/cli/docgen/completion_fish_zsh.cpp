@@ -12,12 +12,6 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
-std::string words(const std::vector<std::string>& list) {
-  std::string out;
-  for (const std::string& w : list) out += (out.empty() ? "" : " ") + w;
-  return out;
-}
-
 // fish: a condition that holds when the words typed so far lead exactly to `c`.
 std::string fish_condition(const CommandDoc& c, const CommandDoc& parent) {
   if (c.path.empty()) return "";
@@ -25,7 +19,7 @@ std::string fish_condition(const CommandDoc& c, const CommandDoc& parent) {
   for (const std::string& p : c.path) cond += "__fish_seen_subcommand_from " + p + "; and ";
   std::vector<std::string> subs;
   for (const CommandDoc& s : c.subcommands) subs.push_back(s.path.back());
-  if (!subs.empty()) cond += "not __fish_seen_subcommand_from " + words(subs) + "; and ";
+  if (!subs.empty()) cond += "not __fish_seen_subcommand_from " + space_separated(subs) + "; and ";
   (void)parent;
   return cond.substr(0, cond.size() - 6);
 }
@@ -36,9 +30,9 @@ void fish_command(std::ostringstream& out, const CommandDoc& c, const CommandDoc
   std::vector<std::string> subs;
   for (const CommandDoc& s : c.subcommands) subs.push_back(s.path.back());
   for (const CommandDoc& s : c.subcommands) {
-    std::string here = c.path.empty()
-                           ? "not __fish_seen_subcommand_from " + words(subs)
-                           : cond + "; and not __fish_seen_subcommand_from " + words(subs);
+    std::string here =
+        c.path.empty() ? "not __fish_seen_subcommand_from " + space_separated(subs)
+                       : cond + "; and not __fish_seen_subcommand_from " + space_separated(subs);
     out << "complete -c seqc -f -n " << quoted(here) << " -a " << s.path.back() << " -d "
         << quoted(s.description.substr(0, s.description.find('.'))) << "\n";
   }
@@ -50,7 +44,7 @@ void fish_command(std::ostringstream& out, const CommandDoc& c, const CommandDoc
     if (o.kind == ValueKind::Port) {
       out << " -x -a '(seqc ports --names 2>/dev/null) hid emu:xarm emu:raspblock'";
     } else if (o.kind == ValueKind::Choice) {
-      out << " -x -a " << quoted(words(o.choices));
+      out << " -x -a " << quoted(space_separated(o.choices));
     } else if (o.kind == ValueKind::File) {
       out << " -r -F";
     } else if (o.kind == ValueKind::Text) {
@@ -78,8 +72,8 @@ void zsh_tables(std::ostringstream& out, const CommandDoc& c) {
       opts.push_back(name);
       if (o.kind != ValueKind::None) valued.push_back(name);
       if (o.kind == ValueKind::Choice) {
-        out << "  choices[" << quoted(path + " " + name) << "]=" << quoted(words(o.choices))
-            << "\n";
+        out << "  choices[" << quoted(path + " " + name)
+            << "]=" << quoted(space_separated(o.choices)) << "\n";
       }
       if (o.kind == ValueKind::File) {
         out << "  fileopts[" << quoted(path + " " + name) << "]=1\n";
@@ -91,8 +85,8 @@ void zsh_tables(std::ostringstream& out, const CommandDoc& c) {
   bool yaml = false;
   for (const PositionalDoc& p : c.positionals) yaml = yaml || !p.extension.empty();
   out << "  subs" << key << quoted(sub_list) << "\n"
-      << "  opts" << key << quoted(words(opts)) << "\n"
-      << "  valued" << key << quoted(words(valued)) << "\n"
+      << "  opts" << key << quoted(space_separated(opts)) << "\n"
+      << "  valued" << key << quoted(space_separated(valued)) << "\n"
       << "  yaml" << key << (yaml ? "1" : "0") << "\n";
   for (const CommandDoc& s : c.subcommands) zsh_tables(out, s);
 }

@@ -5,7 +5,10 @@
 #include <sstream>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "runtime/cli/app.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/cli/docgen/command_model.hpp"
 #include "runtime/cli/docgen/completions.hpp"
 #include "runtime/cli/docgen/man_page.hpp"
