@@ -369,7 +369,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
   Robot robot;
   const YamlNode* profile_node = &value;
   if (value.is_map()) {
-    reporter.check_keys(value, {"profile", "servos", "mirror", "arm"}, "in 'robot'");
+    reporter.check_keys(value, {"profile", "servos", "mirror", "arm", "controller"}, "in 'robot'");
     profile_node = value.find("profile");
     if (profile_node == nullptr) {
       reporter.error(value.location, "'robot' needs a 'profile': one of " + profile_list());
@@ -379,6 +379,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
   robot.profile = profile_named(*profile_node, reporter);
   if (robot.profile == nullptr) return std::nullopt;
   robot.info = robot_from_profile(*robot.profile);
+  robot.controller = robot.profile->controller;
   for (std::size_t i = 0; i < robot.info.servos.size(); ++i) {
     robot.names[robot.info.servos[i].name] = i;
   }
@@ -420,6 +421,24 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
     }
   }
   if (const YamlNode* arm = value.find("arm")) parse_arm(robot, *arm, reporter);
+  if (const YamlNode* c = value.find("controller")) {
+    if (robot.info.kind != RobotKind::ServoController) {
+      reporter.error(c->location, "'controller' is for servo controllers; " +
+                                      std::string(robot.profile->name) + " stores no actions");
+    } else if (const std::optional<ControllerModel> model =
+                   c->is_scalar() ? controller_model_named(c->scalar) : std::nullopt) {
+      robot.controller = *model;
+    } else if (c->is_scalar()) {
+      reporter.unknown(c->location, "controller model", c->scalar,
+                       {"straight-line", "rounds", "truncates"}, {},
+                       "straight-line: the exact line between whole-unit targets; rounds or "
+                       "truncates: that line rounded or truncated to whole units");
+    } else {
+      reporter.error(c->location,
+                     "'controller' is one of straight-line, rounds or truncates, not a list "
+                     "or map");
+    }
+  }
   return finish();
 }
 

@@ -23,6 +23,8 @@ struct Robot {
   bool has_mirror_table = false;
   // The servos the built-in pose `home` moves: the named ones (all channels if none is named).
   std::vector<std::size_t> home_servos;
+  // How the board moves a servo during an action: the profile's, or the file's `controller:`.
+  ControllerModel controller = ControllerModel::StraightLine;
 
   std::vector<std::string> name_list() const;
   // Device units for a position written in degrees (absolute) or a degree offset (relative).

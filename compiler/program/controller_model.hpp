@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 namespace seqc::compiler {
 
@@ -16,5 +18,9 @@ enum class ControllerModel : std::uint8_t {
 
 // The position the controller puts out when the straight line is at `line`.
 double controller_output(ControllerModel model, double line);
+
+// The model's name in a file's `robot: {controller: ...}`: straight-line, rounds, truncates.
+std::string_view controller_model_name(ControllerModel model);
+std::optional<ControllerModel> controller_model_named(std::string_view name);
 
 }  // namespace seqc::compiler

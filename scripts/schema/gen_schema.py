@@ -196,6 +196,11 @@ robot_object = doc(
                                                       enum=[1, -1])})
                                       for j in ["base", "shoulder", "elbow", "wrist"]}),
                        claw=ref("servoName"))),
+        "controller": doc("Controller model", "How the board moves a servo between whole-unit "
+                          "targets, which fitting keeps every tolerance under: `straight-line` "
+                          "(the exact line, every built-in profile's), `rounds` or `truncates` "
+                          "(that line rounded or truncated to whole units at every instant).",
+                          type="string", enum=["straight-line", "rounds", "truncates"]),
     },
     allOf=[{"if": {"properties": {"profile": {"const": p}}},
             "then": {"properties": {"servos": {"additionalProperties": ref("servo_" + p)}}}}

@@ -7,8 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/profiles.hpp"
@@ -272,10 +275,54 @@ TEST(Fitting, TheControllerModelIsWhatTheToleranceHoldsFor) {
   }
 }
 
+// A file names its board's model in `robot:`; the program is fitted for it and carries it, so
+// that `simulate --compare` measures the same motion.
+TEST(Fitting, AFileChoosesItsControllerModel) {
+  const std::string head = "robot: {profile: xarm, controller: ";
+  const std::string body =
+      "}\nsequence:\n  - move: {claw: 300}\n    time: 500ms\n"
+      "  - move: {claw: 420}\n    time: 1500ms\n    ease: sine-in-out\n";
+  for (const auto& [word, model] : std::vector<std::pair<std::string, ControllerModel>>{
+           {"straight-line", ControllerModel::StraightLine},
+           {"rounds", ControllerModel::Rounds},
+           {"truncates", ControllerModel::Truncates}}) {
+    const CompileOutput out = testing::compile_text(head + word + body);
+    const ServoProgram& p = testing::program_of(out);
+    EXPECT_EQ(p.controller, model) << word;
+    // The claw (bus id 1) under that model, at every millisecond of the eased move, against
+    // (1 - cos(pi t)) / 2 from 300 to 420, written here.
+    std::vector<FittedAction> actions;
+    for (const Keyframe& k : p.keyframes) {
+      if (k.start_ms < 500) continue;
+      FittedAction a;
+      a.start_ms = k.start_ms - 500;
+      a.time_ms = k.time_ms;
+      for (const auto& t : k.targets) {
+        if (t.id == 1) a.targets.push_back({0, t.position});
+      }
+      actions.push_back(a);
+    }
+    const Motion motion(actions, 300);
+    for (int t = 0; t <= 1500; ++t) {
+      const double line = motion.at(t);
+      const double out_now = model == ControllerModel::Rounds      ? std::floor(line + 0.5)
+                             : model == ControllerModel::Truncates ? std::trunc(line)
+                                                                   : line;
+      const double want = 300 + 120 * (1 - std::cos(std::numbers::pi * t / 1500.0)) / 2;
+      EXPECT_LE(std::abs(out_now - want), 1 + 1e-9) << word << " at " << t;
+    }
+  }
+  EXPECT_EQ(testing::messages(testing::compile_text(head + "round" + body)),
+            std::vector<std::string>{
+                "1:36 error: unknown controller model 'round'; did you mean 'rounds'? "
+                "(straight-line: the exact line between whole-unit targets; rounds or "
+                "truncates: that line rounded or truncated to whole units)"});
+}
+
 // Every built-in profile fits for the straight line between whole-unit targets: what the
 // protocol document describes; docs/language.md says why.
 TEST(Fitting, BuiltInProfilesFitForTheStraightLine) {
-  for (const char* name : {"xarm", "bus", "lsc-16", "lsc-32", "lsc-6"}) {
+  for (const char* name : {"xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "learm"}) {
     const RobotProfile* p = find_profile(name);
     ASSERT_NE(p, nullptr) << name;
     EXPECT_EQ(p->controller, ControllerModel::StraightLine) << name;

@@ -72,7 +72,7 @@ void ServoLowering::finish(ServoProgram& program) {
     return;
   }
   FitOptions fit_options;
-  if (robot_.profile != nullptr) fit_options.model = robot_.profile->controller;
+  fit_options.model = robot_.controller;
   fit_options.free_end_points = fitting_.free_end_points;
   for (const ServoInfo& s : robot_.info.servos) fit_options.limits.push_back({s.min, s.max});
   // A board clock e fast plays a board millisecond in 1 / (1 + e) host ms: the author's

@@ -55,7 +55,7 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
   request.tolerance_mm = tolerance_mm;
   request.min_action_ms = lsc::kMinActionMs;
   request.max_action_ms = lsc::kMaxActionMs;
-  if (robot_.profile) request.model = robot_.profile->controller;
+  request.model = robot_.controller;
   // The move's other servos, on the line's actions.
   std::vector<std::size_t> others;
   for (std::size_t servo = 0; servo < targets.size(); ++servo) {
