@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -259,6 +260,7 @@ class Fitter {
   // places; then the whole stretch is fitted on the curve as well, and the fit with fewer
   // shortfalls (then fewer actions) kept.
   void fit_stretch(const Stretch& in, const std::vector<std::size_t>& curved) {
+    on_curve_done_.clear();
     // As long as the longest action this stretch can hold (a program of straight moves needs
     // none: the table is not allocated for it).
     const std::size_t spans = std::min<std::size_t>(in.n, opt_.max_action_ms) + 1;
@@ -323,7 +325,7 @@ class Fitter {
     std::size_t cur = first;
     while (cur < last) {
       std::size_t work_on = 0, work_free = 0;
-      Path best = on_curve_search(in, search_limits(), cur, last, work_on);
+      Path best = on_curve(in, cur, last, work_on);
       if (free_ && !best.gave_up) {
         // The free fit looks only for fewer actions than the on-curve one found.
         const int bound = best.complete ? best.key : kNoKey;
@@ -364,6 +366,22 @@ class Fitter {
   }
 
   SearchLimits search_limits() const { return {opt_.min_action_ms, opt_.max_action_ms, &inverse_}; }
+
+  // The on-curve search of [first, last] of the current stretch, and the work it spent. A
+  // stretch fitted again on the curve alone (fit_stretch()) asks for the same parts as the
+  // free fit did up to where the two part ways: each is searched once.
+  Path on_curve(const Stretch& in, std::size_t first, std::size_t last, std::size_t& work) {
+    const auto key = std::make_pair(first, last);
+    if (auto it = on_curve_done_.find(key); it != on_curve_done_.end()) {
+      work = it->second.second;
+      return it->second.first;
+    }
+    std::size_t spent = 0;
+    Path path = on_curve_search(in, search_limits(), first, last, spent);
+    on_curve_done_.emplace(key, std::make_pair(path, spent));
+    work = spent;
+    return path;
+  }
 
   // Whether path x is better than y: reaching the end first, then further, then by key.
   static bool better(const Path& x, const Path& y) {
@@ -506,8 +524,10 @@ class Fitter {
   std::vector<RoundedTrack> tracks_;
   std::vector<std::optional<int>> pos_;  // each servo's last target
   std::vector<double> inverse_;          // SearchLimits::inverse
-  bool free_ = true;                     // whether fit_range() tries free end points
-  bool restarted_ = false;               // whether a search stopped short or was cut
+  // The current stretch's on-curve searches by [first, last], with the work each spent.
+  std::map<std::pair<std::size_t, std::size_t>, std::pair<Path, std::size_t>> on_curve_done_;
+  bool free_ = true;        // whether fit_range() tries free end points
+  bool restarted_ = false;  // whether a search stopped short or was cut
   FitResult result_;
 };
 

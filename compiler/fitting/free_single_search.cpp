@@ -53,15 +53,19 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
       ++n;
     }
     if (n == 0) continue;
+    int ks = uk[0];  // the smallest key among the starts
+    for (int o = 1; o < n; ++o) ks = std::min(ks, uk[o]);
     const std::size_t stop = std::min({last, s + max, std::size_t{in.next_knot[s]}});
     for (std::size_t e = s + 1; e <= stop; ++e) {
       work += static_cast<std::size_t>(n);
       if (work > kWorkBudget) return gave_up();
       const double span = static_cast<double>(e - s), r = inv[e - s];
       const int le = low[e - first], he = high[e - first];
-      if (e - s >= min && le <= he) {
+      // Most candidates arrive where every value already has as few actions (worst_at: the
+      // largest key at e, brought up to date once per end).
+      if (e - s >= min && le <= he && ks + 2 < worst_at[e - first]) {
+        bool improved = false;
         for (int o = 0; o < n; ++o) {
-          // Most candidates arrive where every value already has as few actions.
           if (uk[o] + 2 >= worst_at[e - first]) continue;
           std::uint64_t bits = reachable(u[o], lo[o], hi[o], span, le, he);
           while (bits != 0) {
@@ -74,8 +78,11 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
               from_v[(e - first) * W + static_cast<std::size_t>(j)] =
                   static_cast<std::uint8_t>(uj[o]);
               best_at[e - first] = std::min(best_at[e - first], k);
+              improved = true;
             }
           }
+        }
+        if (improved) {
           int worst = 0;
           for (int c = 0; c <= he - le; ++c) worst = std::max(worst, K(e, c));
           worst_at[e - first] = worst;
