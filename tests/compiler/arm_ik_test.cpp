@@ -148,6 +148,22 @@ TEST(ArmTip, ElbowMayBeChosenInsideTheMove) {
                                      "leave it out or drop 'tip'"});
 }
 
+// [150mm, -80mm, 40mm] reads like an absolute point on the right, but the sign makes it an
+// offset: an unsigned coordinate that is not 0 beside a signed one is warned about.
+TEST(ArmTip, AnUnsignedCoordinateInARelativeTipIsWarnedAbout) {
+  const std::string head =
+      "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n"
+      "  - move: {tip: [200mm, 0mm, 100mm], pitch: 135deg}\n    time: 1s\n";
+  EXPECT_EQ(messages(compile_text(head + "  - move: {tip: [+20mm, 0mm, 5mm]}\n    time: 1s\n")),
+            std::vector<std::string>{
+                "7:30 warning: '5mm' has no sign, but a sign elsewhere in this tip makes the "
+                "whole point relative, so it moves the tip by 5mm too; write '+5mm', or name "
+                "the coordinates for an absolute point: 'tip: {x: +20mm, y: 0mm, z: 5mm}'"});
+  // 0mm beside a sign is "no change", as documented: no warning.
+  EXPECT_TRUE(
+      messages(compile_text(head + "  - move: {tip: [+20mm, 0mm, -5mm]}\n    time: 1s\n")).empty());
+}
+
 TEST(ArmTip, SignedTipMovesFromTheCurrentTipAndKeepsThePitch) {
   const auto out = compile_text(R"(robot: xarm
 sequence:

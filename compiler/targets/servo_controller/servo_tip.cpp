@@ -75,6 +75,9 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
                     "40mm}'");
     ok = false;
   } else {
+    // A coordinate without a sign but not 0 in a point that another's sign makes relative: most
+    // likely meant as an absolute point (one with a negative coordinate needs the named form).
+    const YamlNode* unsigned_offset = nullptr;
     for (std::size_t i = 0; i < 3; ++i) {
       bool sign = false;
       const YamlNode& item = tip.items[i];
@@ -89,6 +92,17 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
       }
       point[i] = *v;
       relative = relative || sign;
+      if (!sign && *v != 0 && unsigned_offset == nullptr) unsigned_offset = &item;
+    }
+    if (ok && relative && unsigned_offset != nullptr) {
+      const YamlNode& item = *unsigned_offset;
+      reporter_.warning(
+          item.location,
+          fmt::format("'{}' has no sign, but a sign elsewhere in this tip makes the whole point "
+                      "relative, so it moves the tip by {} too; write '+{}', or name the "
+                      "coordinates for an absolute point: 'tip: {{x: {}, y: {}, z: {}}}'",
+                      item.scalar, item.scalar, item.scalar, tip.items[0].scalar,
+                      tip.items[1].scalar, tip.items[2].scalar));
     }
   }
   std::optional<double> pitch;
