@@ -11,9 +11,12 @@ namespace {
 // degrees. 375 deg/s is 1562.5 units/s on the xArm (1000 units over 240 deg) and 4166.7 us/s on
 // a PWM servo (2000 us over 180 deg).
 constexpr double kRatedDegreesPerSecond = 60 / 0.16;
-// The xArm 1S's links, from public xArm 1S URDF descriptions (upper arm and forearm about 97 and
-// 96 mm; the hand measured to the claw's tip). Shoulder, elbow and wrist servos are mounted so
-// that a larger position tilts the arm back towards the base axis.
+// The xArm 1S's links, from public xArm 1S URDF descriptions, which agree on an upper arm and a
+// forearm of about 97 and 96 mm: for one, github.com/Werewolf-Leader/xArm_1s-Description-Package
+// (urdf/xarm.xacro) puts the elbow axis 96.4 mm from the shoulder axis and the wrist-pitch axis
+// 58.3 + 37.4 = 95.7 mm from the elbow. The base height and the hand (wrist axis to the claw's
+// tip) are measurements. Shoulder, elbow and wrist servos are mounted so that a larger position
+// tilts the arm back towards the base axis.
 // A function's static, so the table (itself a function's static) never sees it uninitialised.
 const ArmGeometry& xarm_arm() {
   static const ArmGeometry arm = {.base_height = 72,
