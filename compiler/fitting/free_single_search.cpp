@@ -18,26 +18,31 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
                         std::size_t last, int bound, std::size_t& work) {
   const std::size_t min = lim.min_ms, max = lim.max_ms;
   const std::size_t len = last - first + 1;
-  constexpr std::size_t W = kMaxValues;
-  std::vector<int> key(len * W, kNoKey);
-  std::vector<std::uint32_t> from_t(len * W);
-  std::vector<std::uint8_t> from_v(len * W);
-  auto K = [&](std::size_t t, int j) -> int& {
-    return key[(t - first) * W + static_cast<std::size_t>(j)];
-  };
   // The start is pinned: index 0 of a band holding that value alone.
   std::vector<int> low(len), high(len);
   for (std::size_t t = first; t <= last; ++t) {
     std::tie(low[t - first], high[t - first]) = free_band(in, 0, t, last);
   }
   low[0] = high[0] = in.pin[in.at(0, first)];
+  // The tables hold as many values per ms as the widest band (2 x tolerance + 1 at most, and
+  // never more than kMaxValues), so that a search at a small tolerance stays in the cache.
+  std::size_t W = 1;
+  for (std::size_t t = 0; t < len; ++t) {
+    W = std::max<std::size_t>(W, static_cast<std::size_t>(std::max(high[t] - low[t] + 1, 1)));
+  }
+  std::vector<int> key(len * W, kNoKey);
+  std::vector<std::uint32_t> from_t(len * W);
+  std::vector<std::uint8_t> from_v(len * W);
+  auto K = [&](std::size_t t, int j) -> int& {
+    return key[(t - first) * W + static_cast<std::size_t>(j)];
+  };
   K(first, 0) = 0;
   std::vector<int> best_at(len, kNoKey);   // the smallest key at each t
   std::vector<int> worst_at(len, kNoKey);  // the largest
   best_at[0] = 0;
   const std::vector<double>& inv = *lim.inverse;
-  int u[W], uj[W], uk[W];
-  double lo[W], hi[W];
+  int u[kMaxValues], uj[kMaxValues], uk[kMaxValues];
+  double lo[kMaxValues], hi[kMaxValues];
   for (std::size_t s = first; s < last; ++s) {
     const int ls = low[s - first], hs = high[s - first];
     const int limit = std::min(bound, K(last, 0));

@@ -212,10 +212,11 @@ TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{500});
 }
 
-// The program carries the model its profile names, which simulate and --compare read. Every
-// built-in profile names the straight line, which is also the program's default, so the copy is
-// seen only through a profile that names another: the xarm profile with each other model.
-TEST(Backend, TheProgramCarriesItsProfilesControllerModel) {
+// The program carries the robot's model (its profile's, or the file's `controller:`), which
+// simulate and --compare read. Every built-in profile names the straight line, which is also the
+// program's default, so the copy is seen only through a robot that names another: the xarm with
+// each other model. (tests/compiler/free_end_points_test.cpp compiles `controller:` itself.)
+TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
   compiler::testing::MemoryFiles files;
   files.files["main.yaml"] = "robot: xarm\nsequence:\n  - move: {claw: 510}\n    time: 1s\n";
   for (const compiler::ControllerModel model :
@@ -232,9 +233,8 @@ TEST(Backend, TheProgramCarriesItsProfilesControllerModel) {
     std::optional<compiler::Robot> robot =
         compiler::parse_robot(*file.root->find("robot"), reporter);
     ASSERT_TRUE(robot.has_value());
-    compiler::RobotProfile profile = *compiler::find_profile("xarm");
-    profile.controller = model;
-    robot->profile = &profile;
+    EXPECT_EQ(robot->controller, compiler::ControllerModel::StraightLine);  // the xarm's
+    robot->controller = model;
     const compiler::ServoProgram p = compiler::lower_servo_program(*robot, file, loader, reporter);
     ASSERT_FALSE(diags.has_errors(false)) << compiler::render_all(diags, sources);
     ASSERT_EQ(p.keyframes.size(), 1u);
