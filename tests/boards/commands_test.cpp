@@ -12,16 +12,17 @@
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/protocol/lsc6_messages.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
+
+using test_support::silent;
 
 using std::chrono::milliseconds;
 
 const Board& xarm() { return *find_board("xarm"); }
 const Board& lsc6() { return *find_board("lsc6"); }
-
-Bytes silent(ByteView) { return {}; }
 
 struct Xarm {
   io::ManualClock clock;

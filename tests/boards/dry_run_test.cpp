@@ -14,14 +14,12 @@
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/disk.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
-compiler::CompileOutput compile_example(const char* name) {
-  io::DiskFileReader files;
-  return compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name, files);
-}
+using test_support::compile_example;
 
 Bytes joined(const std::vector<Bytes>& frames) {
   Bytes all;

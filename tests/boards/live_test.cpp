@@ -11,18 +11,15 @@
 #include "runtime/boards/ports.hpp"
 #include "runtime/boards/recording_transport.hpp"
 #include "runtime/io/disk.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
+using test_support::compile_example;
+using test_support::silent;
+
 using std::chrono::milliseconds;
-
-compiler::CompileOutput compile_example(const char* name) {
-  io::DiskFileReader files;
-  return compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name, files);
-}
-
-Bytes silent(ByteView) { return {}; }
 
 TEST(BoardsPlayLive, TheCarGetsItsStream) {
   const compiler::CompileOutput car = compile_example("car-dance.yaml");

@@ -6,15 +6,16 @@
 #include <chrono>
 
 #include "runtime/boards/recording_transport.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
+using test_support::silent;
+
 using std::chrono::milliseconds;
 
 Bytes echo_length(ByteView request) { return Bytes{static_cast<std::uint8_t>(request.size())}; }
-Bytes silent(ByteView) { return {}; }
-
 TEST(AcknowledgingTransport, RecordsEachWriteAndQueuesItsAnswer) {
   io::ManualClock clock;
   AcknowledgingTransport device(clock, echo_length);

@@ -8,14 +8,12 @@
 #include "compiler/compile.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/io/disk.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
-compiler::CompileOutput compile_example(const char* name) {
-  io::DiskFileReader files;
-  return compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name, files);
-}
+using test_support::compile_example;
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 

@@ -10,16 +10,14 @@
 #include "compiler/compile.hpp"
 #include "runtime/boards/show.hpp"
 #include "runtime/io/disk.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
-using std::chrono::milliseconds;
+using test_support::compile_example;
 
-compiler::CompileOutput compile_example(const char* name) {
-  io::DiskFileReader files;
-  return compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/" + name, files);
-}
+using std::chrono::milliseconds;
 
 struct Stage {
   compiler::CompileOutput walk = compile_example("../tests/data/walk-joints.yaml");

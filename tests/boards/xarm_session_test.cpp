@@ -10,13 +10,14 @@
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/upload/controller_link.hpp"
+#include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {
 namespace {
 
-using std::chrono::milliseconds;
+using test_support::silent;
 
-Bytes silent(ByteView) { return {}; }
+using std::chrono::milliseconds;
 
 struct Emulated {
   io::ManualClock clock;

@@ -11,23 +11,13 @@
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
+#include "tests/cli/quiet_songs.hpp"
 #include "tests/cli/two_beat_song_dance.hpp"
 
 namespace seqc::cli::test {
 namespace {
 
 using std::chrono::milliseconds;
-
-// Every song is 2 s of quiet at 8 kHz; the paths asked for are kept.
-class QuietSongs final : public audio::AudioReader {
- public:
-  Result<audio::MonoAudio> read(const std::string& path) override {
-    asked.push_back(path);
-    if (path.find("missing") != std::string::npos) return make_error(path + ": no such file");
-    return audio::MonoAudio{std::vector<float>(16000, 0.1f), 8000};
-  }
-  std::vector<std::string> asked;
-};
 
 emu::XArmConfig at_9600() {
   emu::XArmConfig c;

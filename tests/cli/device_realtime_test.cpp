@@ -13,6 +13,7 @@
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
+#include "tests/cli/quiet_songs.hpp"
 #include "tests/cli/two_beat_song_dance.hpp"
 
 namespace seqc::cli::test {
@@ -61,14 +62,6 @@ std::size_t moves(const emu::XArmEmulator& emu) {
   }
   return n;
 }
-
-// Every song is 2 s of quiet at 8 kHz.
-class QuietSongs final : public audio::AudioReader {
- public:
-  Result<audio::MonoAudio> read(const std::string&) override {
-    return audio::MonoAudio{std::vector<float>(16000, 0.1f), 8000};
-  }
-};
 
 // The emulated controller at 9600 baud, a manual audio output with 50 ms of latency, and the
 // noting scheduler, which says what group 0 and the song were at each raise and lower.

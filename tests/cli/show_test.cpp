@@ -16,6 +16,7 @@
 
 #include "runtime/audio/manual_output.hpp"
 #include "tests/cli/device_test_util.hpp"
+#include "tests/cli/quiet_songs.hpp"
 
 namespace seqc::cli::test {
 namespace {
@@ -65,14 +66,6 @@ TEST(Show, InProcessOnBothEmulatorsUploadsThenStartsTogether) {
   EXPECT_NE(err.find("seqc: start skew between performers: 0.00 ms"), std::string::npos) << err;
   EXPECT_GT(h.clock.now() - before, std::chrono::seconds(2));  // the car's stream was played
 }
-
-// Every song is 2 s of quiet at 8 kHz.
-class QuietSongs final : public audio::AudioReader {
- public:
-  Result<audio::MonoAudio> read(const std::string&) override {
-    return audio::MonoAudio{std::vector<float>(16000, 0.1f), 8000};
-  }
-};
 
 TEST(Show, WithMusicEveryoneStartsOnTheDownbeatAsHeard) {
   emu::XArmConfig at_9600;

@@ -10,11 +10,14 @@
 #include <string>
 
 #include "tests/compiler/lang_test_util.hpp"
+#include "tests/compiler/xarm_reference.hpp"
 
 namespace seqc::compiler {
 namespace {
 
 using testing::compile_text;
+using testing::distance;
+using testing::kDegPerUnit;
 using testing::messages;
 using testing::program_of;
 
@@ -26,9 +29,8 @@ struct WrittenArm {
   double base_height, upper, fore, hand;
 };
 
-// The xArm profile: 1000 units over 240 degrees; links 72 (table to shoulder), 97, 96 and 150
-// mm; every joint's zero at 500, the base turning +1, the others -1.
-constexpr double kDegPerUnit = 0.24;
+// The xArm profile: 1000 units over 240 degrees (kDegPerUnit); links 72 (table to shoulder),
+// 97, 96 and 150 mm; every joint's zero at 500, the base turning +1, the others -1.
 constexpr WrittenArm kXarm = {kDegPerUnit, 500, 1, -1, -1, -1, 72, 97, 96, 150};
 
 // Each servo's last commanded position, by bus id.
@@ -66,10 +68,6 @@ Tip forward(std::map<int, int> pos, const WrittenArm& a = kXarm) {
 const double kRoundingMm =
     0.5 * kDegPerUnit * std::numbers::pi / 180 * ((343 + 343) + (96 + 150) + 150);
 constexpr double kRoundingPitch = 3 * 0.5 * kDegPerUnit;  // shoulder, elbow and wrist
-
-double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-}
 
 const ServoProgram& compiled(const CompileOutput& out) { return program_of(out); }
 

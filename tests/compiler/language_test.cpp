@@ -12,7 +12,7 @@ using testing::diagnostics_of;
 using testing::MemoryFiles;
 using testing::program_of;
 
-std::vector<lsc::ServoTarget> T(std::initializer_list<std::pair<int, int>> list) {
+std::vector<lsc::ServoTarget> targets(std::initializer_list<std::pair<int, int>> list) {
   std::vector<lsc::ServoTarget> out;
   for (auto [id, p] : list)
     out.push_back({static_cast<std::uint8_t>(id), static_cast<std::uint16_t>(p)});
@@ -33,11 +33,11 @@ sequence:
   ASSERT_EQ(p.keyframes.size(), 2u);
   EXPECT_EQ(p.keyframes[0].time_ms, 500);
   EXPECT_EQ(p.keyframes[0].start_ms, 0u);
-  EXPECT_EQ(p.keyframes[0].targets, T({{4, 700}, {5, 300}}));
+  EXPECT_EQ(p.keyframes[0].targets, targets({{4, 700}, {5, 300}}));
   EXPECT_EQ(p.keyframes[0].source.line, 5u);
   EXPECT_EQ(p.keyframes[1].time_ms, 1500);
   EXPECT_EQ(p.keyframes[1].start_ms, 500u);
-  EXPECT_EQ(p.keyframes[1].targets, T({{1, 200}}));
+  EXPECT_EQ(p.keyframes[1].targets, targets({{1, 200}}));
   EXPECT_EQ(p.duration_ms(), 2000u);
   EXPECT_EQ(p.robot.profile, "xarm");
   EXPECT_EQ(p.robot.find_id(6)->name, "base");
@@ -46,18 +46,18 @@ sequence:
 TEST(Language, BuiltinHomeMovesEveryNamedServo) {
   auto out = compile_text("robot: xarm\nsequence:\n  - move: home\n    time: 1s\n");
   EXPECT_EQ(program_of(out).keyframes[0].targets,
-            T({{1, 500}, {2, 500}, {3, 500}, {4, 500}, {5, 500}, {6, 500}}));
+            targets({{1, 500}, {2, 500}, {3, 500}, {4, 500}, {5, 500}, {6, 500}}));
 }
 
 TEST(Language, DegreesFollowTheProfile) {
   auto xarm = compile_text(
       "robot: xarm\nsequence:\n  - move: {base: 90deg, claw: 0deg, elbow: 240deg}\n    time: "
       "1s\n");
-  EXPECT_EQ(program_of(xarm).keyframes[0].targets, T({{1, 0}, {4, 1000}, {6, 375}}));
+  EXPECT_EQ(program_of(xarm).keyframes[0].targets, targets({{1, 0}, {4, 1000}, {6, 375}}));
   auto lsc = compile_text(
       "robot: lsc-32\nsequence:\n  - move: {ch31: 90deg, ch0: 0deg, ch5: 180deg}\n    time: "
       "1s\n");
-  EXPECT_EQ(program_of(lsc).keyframes[0].targets, T({{0, 500}, {5, 2500}, {31, 1500}}));
+  EXPECT_EQ(program_of(lsc).keyframes[0].targets, targets({{0, 500}, {5, 2500}, {31, 1500}}));
 }
 
 TEST(Language, RelativeMovesAddToTheCurrentPosition) {
@@ -71,8 +71,8 @@ sequence:
     time: 1s
 )");
   const ServoProgram& p = program_of(out);
-  EXPECT_EQ(p.keyframes[1].targets, T({{4, 550}}));
-  EXPECT_EQ(p.keyframes[2].targets, T({{4, 450}}));  // 24deg = 100 units on the xArm
+  EXPECT_EQ(p.keyframes[1].targets, targets({{4, 550}}));
+  EXPECT_EQ(p.keyframes[2].targets, targets({{4, 450}}));  // 24deg = 100 units on the xArm
 }
 
 TEST(Language, BeatsUseTheTempo) {
@@ -93,7 +93,7 @@ sequence:
   const ServoProgram& p = program_of(out);
   ASSERT_EQ(p.keyframes.size(), 2u);
   EXPECT_EQ(p.keyframes[1].time_ms, 300);
-  EXPECT_EQ(p.keyframes[1].targets, T({{1, 100}, {6, 900}}));
+  EXPECT_EQ(p.keyframes[1].targets, targets({{1, 100}, {6, 900}}));
 }
 
 TEST(Language, LongStepsBecomeSeveralActions) {
@@ -108,8 +108,8 @@ sequence:
   const ServoProgram& p = program_of(out);
   ASSERT_EQ(p.keyframes.size(), 1u + 2u + 3u);
   EXPECT_EQ(p.keyframes[1].time_ms, 22500);
-  EXPECT_EQ(p.keyframes[1].targets, T({{4, 500}}));
-  EXPECT_EQ(p.keyframes[2].targets, T({{4, 1000}}));
+  EXPECT_EQ(p.keyframes[1].targets, targets({{4, 500}}));
+  EXPECT_EQ(p.keyframes[2].targets, targets({{4, 1000}}));
   EXPECT_EQ(p.keyframes[3].time_ms + p.keyframes[4].time_ms + p.keyframes[5].time_ms, 61000);
   for (const Keyframe& k : p.keyframes) EXPECT_LE(k.time_ms, 30000);
 }
@@ -131,15 +131,15 @@ sequence:
   const ServoProgram& p = program_of(out);
   ASSERT_EQ(p.keyframes.size(), 1u + 4u + 3u);
   // in-out (quadratic): 0.125, 0.5, 0.875, 1 of the way.
-  EXPECT_EQ(p.keyframes[1].targets, T({{4, 125}}));
-  EXPECT_EQ(p.keyframes[2].targets, T({{4, 500}}));
-  EXPECT_EQ(p.keyframes[3].targets, T({{4, 875}}));
-  EXPECT_EQ(p.keyframes[4].targets, T({{4, 1000}}));
+  EXPECT_EQ(p.keyframes[1].targets, targets({{4, 125}}));
+  EXPECT_EQ(p.keyframes[2].targets, targets({{4, 500}}));
+  EXPECT_EQ(p.keyframes[3].targets, targets({{4, 875}}));
+  EXPECT_EQ(p.keyframes[4].targets, targets({{4, 1000}}));
   for (int i = 1; i <= 4; ++i) EXPECT_EQ(p.keyframes[i].time_ms, 100);
   // in: 1/9, 4/9 of the way from 1000 to 0.
-  EXPECT_EQ(p.keyframes[5].targets, T({{4, 889}}));
-  EXPECT_EQ(p.keyframes[6].targets, T({{4, 556}}));
-  EXPECT_EQ(p.keyframes[7].targets, T({{4, 0}}));
+  EXPECT_EQ(p.keyframes[5].targets, targets({{4, 889}}));
+  EXPECT_EQ(p.keyframes[6].targets, targets({{4, 556}}));
+  EXPECT_EQ(p.keyframes[7].targets, targets({{4, 0}}));
 }
 
 TEST(Language, ResolutionSetsTheDefaultStepLength) {
@@ -167,7 +167,7 @@ sequence:
 )");
   const ServoProgram& p = program_of(out);
   ASSERT_EQ(p.keyframes.size(), 4u);
-  EXPECT_EQ(p.keyframes[3].targets, T({{6, 400}}));
+  EXPECT_EQ(p.keyframes[3].targets, targets({{6, 400}}));
   EXPECT_EQ(p.keyframes[3].start_ms, 1400u);
 }
 
@@ -194,8 +194,8 @@ sequence:
   ASSERT_EQ(p.keyframes.size(), 3u);
   // left_arm +500 from its home becomes right_arm -500 from its home; head reflects in place;
   // ch3 is not in the table and is unchanged.
-  EXPECT_EQ(p.keyframes[1].targets, T({{1, 1100}, {2, 1300}, {3, 1000}}));
-  EXPECT_EQ(p.keyframes[2].targets, T({{0, 1300}}));  // right_arm +100 -> left_arm -100
+  EXPECT_EQ(p.keyframes[1].targets, targets({{1, 1100}, {2, 1300}, {3, 1000}}));
+  EXPECT_EQ(p.keyframes[2].targets, targets({{0, 1300}}));  // right_arm +100 -> left_arm -100
 }
 
 TEST(Language, UnmentionedServosAreNotInTheKeyframe) {
@@ -206,7 +206,7 @@ sequence:
   - move: {claw: 700}
     time: 1s
 )");
-  EXPECT_EQ(program_of(out).keyframes[1].targets, T({{1, 700}}));
+  EXPECT_EQ(program_of(out).keyframes[1].targets, targets({{1, 700}}));
 }
 
 TEST(Language, IncludeResolvesRelativeToTheIncludingFile) {
@@ -233,10 +233,10 @@ sequence:
   auto out = compile_file("dir/main.yaml", files);
   const ServoProgram& p = program_of(out);
   ASSERT_EQ(p.keyframes.size(), 4u);
-  EXPECT_EQ(p.keyframes[1].targets, T({{4, 900}}));  // the includer's pose
-  EXPECT_EQ(p.keyframes[1].time_ms, 1000);           // the included file's tempo
-  EXPECT_EQ(p.keyframes[2].targets, T({{4, 100}}));
-  EXPECT_EQ(p.keyframes[3].targets, T({{4, 110}}));  // state carries across the include
+  EXPECT_EQ(p.keyframes[1].targets, targets({{4, 900}}));  // the includer's pose
+  EXPECT_EQ(p.keyframes[1].time_ms, 1000);                 // the included file's tempo
+  EXPECT_EQ(p.keyframes[2].targets, targets({{4, 100}}));
+  EXPECT_EQ(p.keyframes[3].targets, targets({{4, 110}}));  // state carries across the include
   EXPECT_EQ(out.sources.path(p.keyframes[2].source.file), "dir/parts/bit.yaml");
 }
 

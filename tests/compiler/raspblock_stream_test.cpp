@@ -11,6 +11,7 @@
 #include "compiler/formats/raspblock_listing.hpp"
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
+#include "tests/compiler/raspblock_frames.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -18,21 +19,8 @@ namespace {
 using testing::compile_text;
 using testing::diagnostics_of;
 
-// "at_ms: hex" per frame.
-std::vector<std::string> frames_of(const std::string& text) {
-  auto out = compile_text(text);
-  const RaspblockProgram* p = out.raspblock_program();
-  EXPECT_NE(p, nullptr) << diagnostics_of(out);
-  if (p == nullptr) return {};
-  auto frames = backend::plan_stream(*p);
-  EXPECT_TRUE(frames.ok());
-  std::vector<std::string> lines;
-  for (const auto& f : *frames) lines.push_back(std::to_string(f.at_ms) + ": " + to_hex(f.bytes));
-  return lines;
-}
-
-// Rocker 0,0,0: data 01 00 00 00 00 00 00 01 (Z = 0 sets the Z bit); 03+08+01+01 = 0d.
-const std::string kStop = "ff fe 03 08 01 00 00 00 00 00 00 01 0d";
+using testing::frames_of;
+using testing::kStop;
 
 TEST(RaspblockStream, DriveThenStop) {
   // The vendor driver's example: X=-10 -> 01 00 0a 00 00 00 00 05; 03+08+01+0a+05 = 1b.

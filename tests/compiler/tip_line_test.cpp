@@ -15,17 +15,20 @@
 #include <string>
 
 #include "tests/compiler/lang_test_util.hpp"
+#include "tests/compiler/xarm_reference.hpp"
 
 namespace seqc::compiler {
 namespace {
 
 using testing::compile_text;
+using testing::distance;
+using testing::kDegPerUnit;
 using testing::messages;
 using testing::program_of;
 
-// The xArm profile: 0.24 degrees per unit; links 72 (table to shoulder), 97, 96 and 150 mm;
-// every joint's zero at 500, the base (id 6) turning +1, shoulder 5, elbow 4, wrist 3 -1.
-constexpr double kDegPerUnit = 0.24;
+// The xArm profile: kDegPerUnit (0.24) degrees per unit; links 72 (table to shoulder), 97, 96
+// and 150 mm; every joint's zero at 500, the base (id 6) turning +1, shoulder 5, elbow 4, wrist
+// 3 -1.
 
 using Vec = std::array<double, 3>;
 
@@ -38,10 +41,6 @@ Vec forward(const std::map<int, double>& pos) {
   const double r = 97 * std::sin(s) + 96 * std::sin(s + e) + 150 * std::sin(s + e + w);
   const double z = 72 + 97 * std::cos(s) + 96 * std::cos(s + e) + 150 * std::cos(s + e + w);
   return {r * std::cos(base), r * std::sin(base), z};
-}
-
-double distance(const Vec& a, const Vec& b) {
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
 // Every servo's position at millisecond t as the controller moves it: from its previous target

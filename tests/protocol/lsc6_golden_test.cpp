@@ -52,7 +52,7 @@ TEST(Lsc6Golden, HandWrittenRequestsDecode) {
   for (const auto& v : request_vectors()) {
     auto frame = lsc::decode_serial(hex(v.wire));
     ASSERT_TRUE(frame.ok()) << v.name;
-    auto decoded = decode_request(*frame);
+    auto decoded = lsc6::decode_request(*frame);
     ASSERT_TRUE(decoded.ok()) << v.name << ": " << decoded.error().message;
     EXPECT_EQ(*decoded, v.value) << v.name;
   }
@@ -69,7 +69,7 @@ TEST(Lsc6Golden, EveryAnswerIsFourBytes) {
     EXPECT_EQ(to_hex(encode_serial(reply)), norm(wire)) << describe(reply);
     auto frame = lsc::decode_serial(hex(wire));
     ASSERT_TRUE(frame.ok());
-    auto decoded = decode_reply(*frame);
+    auto decoded = lsc6::decode_reply(*frame);
     ASSERT_TRUE(decoded.ok()) << wire;
     EXPECT_EQ(*decoded, reply) << wire;
   }
@@ -77,15 +77,15 @@ TEST(Lsc6Golden, EveryAnswerIsFourBytes) {
 
 TEST(Lsc6Golden, EraseIgnoresItsParameter) {
   // The board wipes every group whatever byte follows the command.
-  auto decoded = decode_request(*lsc::decode_serial(hex("55 55 03 08 05")));
+  auto decoded = lsc6::decode_request(*lsc::decode_serial(hex("55 55 03 08 05")));
   ASSERT_TRUE(decoded.ok());
   EXPECT_TRUE(std::holds_alternative<EraseAll>(*decoded));
 }
 
 TEST(Lsc6Golden, XarmRepliesAreNotLsc6Answers) {
   // 55 55 04 05 01 00 is an xArm download acknowledgement; the LSC-6 never sends data.
-  EXPECT_FALSE(decode_reply(*lsc::decode_serial(hex("55 55 04 05 01 00"))).ok());
-  EXPECT_FALSE(decode_reply(*lsc::decode_serial(hex("55 55 02 0f"))).ok());
+  EXPECT_FALSE(lsc6::decode_reply(*lsc::decode_serial(hex("55 55 04 05 01 00"))).ok());
+  EXPECT_FALSE(lsc6::decode_reply(*lsc::decode_serial(hex("55 55 02 0f"))).ok());
 }
 
 TEST(Lsc6Range, RefusesWhatTheBoardWouldIgnoreOrChange) {

@@ -28,7 +28,7 @@ Result<Reply> reply_from(const char* wire) {
   return decode_reply(*frame);
 }
 
-std::vector<std::uint8_t> ids(std::size_t n) { return std::vector<std::uint8_t>(n, 1); }
+std::vector<std::uint8_t> ones(std::size_t n) { return std::vector<std::uint8_t>(n, 1); }
 
 TEST(LscRange, MultiServoMoveExplicitNoMoveValueIsAnError) {
   auto frame = encode(Request{MultiServoMove{100, {{1, kNoMove}}}});
@@ -45,11 +45,11 @@ TEST(LscRange, MultiServoMoveTooManyServos) {
 }
 
 TEST(LscRange, IdListsMustFitOneFrame) {
-  EXPECT_TRUE(encodes(MultiServoOff{ids(252)}));
-  EXPECT_FALSE(encodes(MultiServoOff{ids(253)}));
-  EXPECT_FALSE(encodes(ServoPositionRead{ids(256)}));
-  EXPECT_FALSE(encodes(ServoOffsetWrite{ids(300)}));
-  EXPECT_FALSE(encodes(ServoOffsetRead{ids(253)}));
+  EXPECT_TRUE(encodes(MultiServoOff{ones(252)}));
+  EXPECT_FALSE(encodes(MultiServoOff{ones(253)}));
+  EXPECT_FALSE(encodes(ServoPositionRead{ones(256)}));
+  EXPECT_FALSE(encodes(ServoOffsetWrite{ones(300)}));
+  EXPECT_FALSE(encodes(ServoOffsetRead{ones(253)}));
 }
 
 TEST(LscRange, ReplyListsMustFitOneFrame) {
