@@ -21,17 +21,17 @@ namespace seqc::compiler::fitting_check {
 inline constexpr std::int64_t kMinActionMs = 20;
 inline constexpr double kHoldTolerance = 1;  // the tolerance of the hold before the curve
 
-// The controller's motion of servo 0, rebuilt from the actions alone: during each action a
-// straight line from where the servo is to the action's target, or a hold if the action does
-// not name it.
+// The controller's motion of one servo (0 unless named), rebuilt from the actions alone: during
+// each action a straight line from where the servo is to the action's target, or a hold if the
+// action does not name it.
 class Motion {
  public:
-  Motion(const std::vector<FittedAction>& actions, double start_value) {
+  Motion(const std::vector<FittedAction>& actions, double start_value, std::size_t servo = 0) {
     double pos = start_value;
     for (const FittedAction& a : actions) {
       double to = pos;
       for (const FittedTarget& x : a.targets) {
-        if (x.servo == 0) to = x.position;
+        if (x.servo == servo) to = x.position;
       }
       pieces_.push_back(
           {static_cast<double>(a.start_ms), static_cast<double>(a.start_ms + a.time_ms), pos, to});

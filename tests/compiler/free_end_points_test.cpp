@@ -16,6 +16,7 @@
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/timeline/easing.hpp"
+#include "tests/bench/fit_reference.hpp"
 #include "tests/compiler/easing_reference.hpp"
 #include "tests/compiler/fitting_check.hpp"
 #include "tests/compiler/lang_test_util.hpp"
@@ -65,6 +66,115 @@ TEST(Fitting, CompileOptionsChooseTheFreeOrTheOnCurveFit) {
   // The first move, then the curve's two actions (free) or three (on the curve).
   EXPECT_EQ(testing::program_of(free).keyframes.size(), 3u);
   EXPECT_EQ(testing::program_of(on_curve).keyframes.size(), 4u);
+}
+
+// One curve's free fit has exactly the fewest actions any fit with free end points can have:
+// the count of an exhaustive search over every (millisecond, whole unit) state written apart
+// from the fitter (fit_reference.hpp, the benchmark's reference), on eased moves of 250 and
+// 600 ms, short and long, at tolerance 1 and 2.
+TEST(Fitting, OneCurvesFreeFitHasTheExactFewestActions) {
+  const std::vector<std::string> names = {
+      "sine-in-out", "quad-in",  "cubic-out",   "quart-in-out",
+      "expo-in-out", "circ-out", "back-in-out", "cubic-bezier(0.2, 0.8, 0.6, 0.1)"};
+  int compared = 0;
+  for (const std::string& name : names) {
+    for (const int ms : {250, 600}) {
+      for (const auto& [move, tol] : {std::pair{60.0, 1.0}, std::pair{300.0, 2.0}}) {
+        fit_reference::Piece piece;
+        piece.t0 = 0;
+        piece.t1 = ms;
+        piece.from = 400;
+        piece.to = 400 + move;
+        piece.easing = *parse_easing(name).easing;
+        const int minimum = fit_reference::free_minimum(piece, ms, tol);
+        if (minimum >= (1 << 30)) continue;  // even 20 ms actions cannot follow it
+        Segment seg;
+        seg.start = ExactMs(0);
+        seg.end = ExactMs(ms);
+        seg.from = piece.from;
+        seg.to = piece.to;
+        seg.kind = CurveKind::Eased;
+        seg.easing = piece.easing;
+        seg.tolerance = tol;
+        Timeline tl;
+        tl.resize(1);
+        tl.add(0, seg);
+        tl.end = ExactMs(ms);
+        const FitResult fit = fit_timeline(tl);
+        EXPECT_TRUE(fit.shortfalls.empty()) << name << " " << ms << " ms";
+        EXPECT_EQ(static_cast<int>(fit.actions.size()), minimum)
+            << name << " over " << ms << " ms by " << move << " at tolerance " << tol;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GE(compared, 20);  // of the 32, those 20 ms actions can follow
+}
+
+// Servos moving together (each its own eased moves, their boundaries apart) are fitted within
+// tolerance at every millisecond: each servo's motion is rebuilt from the actions (a straight
+// line to each target it is sent, a hold otherwise) and compared with the curves computed from
+// the textbook formulas. The moves are gentle enough for 20 ms actions and their boundaries lie
+// on a 100 ms grid (so no two servos' boundaries are merged into one), so no shortfall is
+// excused.
+TEST(Fitting, ServosMovingTogetherStayWithinToleranceAtEveryMillisecond) {
+  struct Piece {
+    double t0, t1, from, to;
+    Easing easing;
+  };
+  std::mt19937 rng(20261128);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<std::string> names = {"sine-in-out", "quad-in-out", "cubic-in-out",
+                                          "sine-out",    "quad-in",     "cubic-out"};
+  for (int round = 0; round < 12; ++round) {
+    const std::size_t servos = 2 + static_cast<std::size_t>(round % 3) * 2;  // 2, 4, 6
+    const double tol = round % 2 == 0 ? 1 : 2;
+    Timeline tl;
+    tl.resize(servos);
+    std::vector<std::vector<Piece>> tracks(servos);
+    const double end = 2000;
+    for (std::size_t s = 0; s < servos; ++s) {
+      double t = 0, pos = 300 + std::floor(unit(rng) * 400);
+      while (t < end) {
+        double len = 100 * std::floor(3 + unit(rng) * 8);
+        if (end - (t + len) < 300) len = end - t;  // no piece shorter than 300 ms
+        Piece p{t, t + len, pos, pos + std::floor((unit(rng) - 0.5) * 300),
+                *parse_easing(names[static_cast<std::size_t>(unit(rng) * 6) % 6]).easing};
+        Segment seg;
+        seg.start = ExactMs(static_cast<std::int64_t>(p.t0));
+        seg.end = ExactMs(static_cast<std::int64_t>(p.t1));
+        seg.from = p.from;
+        seg.to = p.to;
+        seg.kind = CurveKind::Eased;
+        seg.easing = p.easing;
+        seg.tolerance = tol;
+        tl.add(s, seg);
+        tracks[s].push_back(p);
+        pos = p.to;
+        t = p.t1;
+      }
+    }
+    tl.end = ExactMs(static_cast<std::int64_t>(end));
+    const FitResult fit = fit_timeline(tl);
+    EXPECT_TRUE(fit.shortfalls.empty()) << "round " << round;
+    for (std::size_t s = 0; s < servos; ++s) {
+      const Motion motion(fit.actions, std::round(tracks[s].front().from), s);
+      double worst = 0;
+      int worst_at = 0;
+      for (int t = 0; t <= static_cast<int>(end); ++t) {
+        const auto p = std::find_if(tracks[s].begin(), tracks[s].end(),
+                                    [&](const Piece& x) { return t <= x.t1; });
+        const double u = (t - p->t0) / (p->t1 - p->t0);
+        const double want = p->from + (p->to - p->from) * testing::ease_ref::at(p->easing, u);
+        if (std::abs(motion.at(t) - want) > worst) {
+          worst = std::abs(motion.at(t) - want);
+          worst_at = t;
+        }
+      }
+      EXPECT_LE(worst, tol + 1e-9)
+          << "round " << round << ", servo " << s << ", at " << worst_at << " ms";
+    }
+  }
 }
 
 // Random single curves and servos moving together: the fit never has more actions than the
