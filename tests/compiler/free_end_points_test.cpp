@@ -26,6 +26,23 @@ namespace {
 
 using namespace fitting_check;
 
+// One servo's eased move over [0, ms], nothing before or after it.
+Timeline eased_move(double from, double to, int ms, const Easing& easing, double tol) {
+  Segment seg;
+  seg.start = ExactMs(0);
+  seg.end = ExactMs(ms);
+  seg.from = from;
+  seg.to = to;
+  seg.kind = CurveKind::Eased;
+  seg.easing = easing;
+  seg.tolerance = tol;
+  Timeline tl;
+  tl.resize(1);
+  tl.add(0, seg);
+  tl.end = ExactMs(ms);
+  return tl;
+}
+
 TEST(Fitting, FreeEndPointsSaveAnActionOnAHandWorkedCurve) {
   Segment seg;
   seg.start = ExactMs(0);
@@ -88,19 +105,7 @@ TEST(Fitting, OneCurvesFreeFitHasTheExactFewestActions) {
         piece.easing = *parse_easing(name).easing;
         const int minimum = fit_reference::free_minimum(piece, ms, tol);
         if (minimum >= (1 << 30)) continue;  // even 20 ms actions cannot follow it
-        Segment seg;
-        seg.start = ExactMs(0);
-        seg.end = ExactMs(ms);
-        seg.from = piece.from;
-        seg.to = piece.to;
-        seg.kind = CurveKind::Eased;
-        seg.easing = piece.easing;
-        seg.tolerance = tol;
-        Timeline tl;
-        tl.resize(1);
-        tl.add(0, seg);
-        tl.end = ExactMs(ms);
-        const FitResult fit = fit_timeline(tl);
+        const FitResult fit = fit_timeline(eased_move(piece.from, piece.to, ms, piece.easing, tol));
         EXPECT_TRUE(fit.shortfalls.empty()) << name << " " << ms << " ms";
         EXPECT_EQ(static_cast<int>(fit.actions.size()), minimum)
             << name << " over " << ms << " ms by " << move << " at tolerance " << tol;
@@ -237,18 +242,7 @@ TEST(Fitting, AnActionMoreThanTheOnCurveFitOnlyForASmallerWorstMiss) {
   for (const char* name : {"elastic-out", "elastic-in", "bounce-out", "bounce-in-out"}) {
     for (int ms : {300, 500, 800}) {
       for (double tol : {1.0, 2.0}) {
-        Segment seg;
-        seg.start = ExactMs(0);
-        seg.end = ExactMs(ms);
-        seg.from = 50;
-        seg.to = 450;
-        seg.kind = CurveKind::Eased;
-        seg.easing = *parse_easing(name).easing;
-        seg.tolerance = tol;
-        Timeline tl;
-        tl.resize(1);
-        tl.add(0, seg);
-        tl.end = ExactMs(ms);
+        const Timeline tl = eased_move(50, 450, ms, *parse_easing(name).easing, tol);
         const FitResult fitted = fit_timeline(tl);
         const FitResult before = fit_timeline(tl, on_curve);
         SCOPED_TRACE(std::string(name) + " over " + std::to_string(ms) + " ms at tolerance " +
