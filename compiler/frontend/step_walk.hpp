@@ -23,6 +23,7 @@
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/scope_chain.hpp"
+#include "compiler/frontend/sections.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/tempo_map.hpp"
@@ -48,25 +49,6 @@ std::optional<ExactMs> at_target(const TempoMap& map, const YamlNode& at_node, E
 // change for the message); false after reporting.
 bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, std::string_view what,
                   Reporter& reporter);
-
-// A file's `sections` (a map of names to step lists, or to {params, steps}) into `scope`.
-void read_sections(const YamlNode& sections, FileScope& scope, Reporter& reporter);
-
-// The steps of a performance of `section` (called `name`, performed by `step`) with its
-// parameters' values put in for every `$name`; nullptr after reporting. `copy` holds them when
-// anything was put in; `performance` gets the note naming the values, when there are any.
-const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, const YamlNode& section,
-                                YamlNode& copy, std::optional<Reporter::Note>& performance,
-                                Reporter& reporter);
-
-// Performs the section a `section` step (`step`, naming it in `value`) names, from the running
-// files' sections: reports an unknown name, a section that performs itself (`running`, the
-// sections running now, outermost first) and any mistake in its parameters; otherwise calls
-// `run` with its steps and a name for them, with the performance named in every message from
-// inside it.
-void run_section(const YamlNode& step, const YamlNode& value, const ScopeChain& scopes,
-                 std::vector<const YamlNode*>& running, Reporter& reporter,
-                 const std::function<void(const YamlNode& steps, const std::string& what)>& run);
 
 // The running `together` blocks (outermost first) and which of their tracks owns each output.
 // An output is a number the front end chooses (a servo, or a unit such as the car's gimbal);
