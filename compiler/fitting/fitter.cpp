@@ -2,11 +2,11 @@
 
 #include "compiler/fitting/free_search.hpp"
 #include "compiler/fitting/on_curve_search.hpp"
+#include "compiler/fitting/search_memo.hpp"
 #include "compiler/fitting/stretch.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -23,8 +23,11 @@ using fitting::kMaxValues;
 using fitting::kNoKey;
 using fitting::on_curve_search;
 using fitting::Path;
+using fitting::SearchKey;
+using fitting::SearchKind;
 using fitting::SearchLimits;
 using fitting::Stretch;
+using fitting::StretchSource;
 
 // One servo's segments with their boundaries rounded to whole milliseconds.
 struct RoundedTrack {
@@ -65,6 +68,8 @@ class Fitter {
       const std::vector<std::int64_t> inner(knots.begin() + static_cast<std::ptrdiff_t>(j) + 1,
                                             knots.begin() + static_cast<std::ptrdiff_t>(end) + 1);
       const Stretch in = sample(curved, knots[j], inner);
+      memo_.enter(in, {curved, knots[j], inner},
+                  [this](const StretchSource& x) { return sample(x.curved, x.a, x.inner); });
       fit_stretch(in, curved);
       j = end;
     }
@@ -260,7 +265,6 @@ class Fitter {
   // places; then the whole stretch is fitted on the curve as well, and the fit with fewer
   // shortfalls (then fewer actions) kept.
   void fit_stretch(const Stretch& in, const std::vector<std::size_t>& curved) {
-    on_curve_done_.clear();
     // As long as the longest action this stretch can hold (a program of straight moves needs
     // none: the table is not allocated for it).
     const std::size_t spans = std::min<std::size_t>(in.n, opt_.max_action_ms) + 1;
@@ -325,14 +329,32 @@ class Fitter {
     std::size_t cur = first;
     while (cur < last) {
       std::size_t work_on = 0, work_free = 0;
-      Path best = on_curve(in, cur, last, work_on);
-      if (free_ && !best.gave_up) {
+      Path best;
+      const int greedy = free_ && in.k == 1
+                             ? fitting::greedy_on_curve_key(in, search_limits(), cur, last)
+                             : kNoKey;
+      const bool exact_alone = greedy != kNoKey && free_first(in, cur, last, greedy);
+      if (exact_alone) {
+        // Every on-curve fit is one of the exact free search's, so it looks first, for fewer
+        // actions than a greedy walk along the rounded curve needs (among as few, it prefers
+        // targets on the curve). The on-curve search runs only where it finds none (then the
+        // greedy walk had the fewest, and the on-curve search finds its own fit with as many)
+        // or none reaches the end (then the farther of the two is kept).
+        best = search(SearchKind::FreeSingle, in, cur, last, greedy, 0, 0, work_free);
+        if (!best.complete && !best.gave_up) {
+          Path on = on_curve(in, cur, last, work_on);
+          if (!better(best, on)) best = std::move(on);
+        }
+      } else {
+        best = on_curve(in, cur, last, work_on);
+      }
+      if (free_ && !exact_alone && !best.gave_up) {
         // The free fit looks only for fewer actions than the on-curve one found.
         const int bound = best.complete ? best.key : kNoKey;
-        Path free = in.k == 1 ? free_single_search(in, search_limits(), cur, last, bound, work_free)
-                              : free_joint_search(in, search_limits(), cur, last, bound,
-                                                  joint_grid(in, cur, last, work_on),
-                                                  joint_cap(work_on), work_free);
+        Path free = in.k == 1
+                        ? search(SearchKind::FreeSingle, in, cur, last, bound, 0, 0, work_free)
+                        : search(SearchKind::FreeJoint, in, cur, last, bound,
+                                 joint_grid(in, cur, last, work_on), joint_cap(work_on), work_free);
         if (free.gave_up || better(free, best)) best = std::move(free);
       }
       if (best.gave_up) {
@@ -365,20 +387,56 @@ class Fitter {
     }
   }
 
+  // Whether the free search of one curved servo over [first, last] goes first, the on-curve
+  // search only where it is needed (fit_range()): where the rounded curve is among the free
+  // targets at every ms (then every on-curve fit is also a free fit; it is not where the
+  // tolerance is below half a unit), and where the free search is expected to stay well within
+  // its budget. It tries about (band width) x (length) x (action length) lines, the greedy walk
+  // (its key `greedy`) telling the action length; past a quarter of the budget, the on-curve
+  // search goes first as it always did, since a search that gives up is time lost.
+  bool free_first(const Stretch& in, std::size_t first, std::size_t last, int greedy) const {
+    std::size_t width = 1;
+    for (std::size_t t = first + 1; t <= last; ++t) {
+      const std::size_t x = in.at(0, t);
+      if (t == last || in.pinned[x] != 0) continue;
+      if (in.pin[x] < in.vlo[x] || in.pin[x] > in.vhi[x]) return false;
+      width = std::max<std::size_t>(width, static_cast<std::size_t>(in.vhi[x] - in.vlo[x] + 1));
+    }
+    const double len = static_cast<double>(last - first);
+    const double actions = std::max(1, greedy / 2);
+    return static_cast<double>(width) * len * len / actions <= fitting::kWorkBudget / 4.0;
+  }
+
   SearchLimits search_limits() const { return {opt_.min_action_ms, opt_.max_action_ms, &inverse_}; }
 
-  // The on-curve search of [first, last] of the current stretch, and the work it spent. A
-  // stretch fitted again on the curve alone (fit_stretch()) asks for the same parts as the
-  // free fit did up to where the two part ways: each is searched once.
+  // The on-curve search of [first, last] of the current stretch, and the work it spent.
   Path on_curve(const Stretch& in, std::size_t first, std::size_t last, std::size_t& work) {
-    const auto key = std::make_pair(first, last);
-    if (auto it = on_curve_done_.find(key); it != on_curve_done_.end()) {
-      work = it->second.second;
-      return it->second.first;
+    return search(SearchKind::OnCurve, in, first, last, kNoKey, 0, 0, work);
+  }
+
+  // One search of [first, last] of the current stretch, and the work it spent: run once per
+  // stretch content (search_memo.hpp).
+  Path search(SearchKind kind, const Stretch& in, std::size_t first, std::size_t last, int bound,
+              std::size_t grid, std::size_t cap, std::size_t& work) {
+    const SearchKey key{kind, first, last, bound, grid, cap};
+    if (const auto* found = memo_.find(key)) {
+      work = found->second;
+      return found->first;
     }
     std::size_t spent = 0;
-    Path path = on_curve_search(in, search_limits(), first, last, spent);
-    on_curve_done_.emplace(key, std::make_pair(path, spent));
+    Path path;
+    switch (kind) {
+      case SearchKind::OnCurve:
+        path = on_curve_search(in, search_limits(), first, last, spent);
+        break;
+      case SearchKind::FreeSingle:
+        path = free_single_search(in, search_limits(), first, last, bound, spent);
+        break;
+      case SearchKind::FreeJoint:
+        path = free_joint_search(in, search_limits(), first, last, bound, grid, cap, spent);
+        break;
+    }
+    memo_.store(key, path, spent);
     work = spent;
     return path;
   }
@@ -524,10 +582,9 @@ class Fitter {
   std::vector<RoundedTrack> tracks_;
   std::vector<std::optional<int>> pos_;  // each servo's last target
   std::vector<double> inverse_;          // SearchLimits::inverse
-  // The current stretch's on-curve searches by [first, last], with the work each spent.
-  std::map<std::pair<std::size_t, std::size_t>, std::pair<Path, std::size_t>> on_curve_done_;
-  bool free_ = true;        // whether fit_range() tries free end points
-  bool restarted_ = false;  // whether a search stopped short or was cut
+  fitting::SearchMemo memo_;             // the searches run so far, by stretch content
+  bool free_ = true;                     // whether fit_range() tries free end points
+  bool restarted_ = false;               // whether a search stopped short or was cut
   FitResult result_;
 };
 

@@ -10,10 +10,47 @@
 
 namespace seqc::compiler::fitting {
 
+// The key of the fit along the rounded curve taken greedily, each action to the farthest
+// boundary its line reaches that leaves room for the next (kNoKey where that walk gets stuck):
+// a fit the exact search finds too (the same windows, the same test of a target). It costs
+// one pass over the stretch.
+int greedy_on_curve_key(const Stretch& in, const SearchLimits& lim, std::size_t first,
+                        std::size_t last) {
+  const std::size_t min = lim.min_ms, max = lim.max_ms;
+  const int* const pin = in.pin.data() + in.at(0, 0);
+  const double* const band_lo = in.lo.data() + in.at(0, 0);
+  const double* const band_hi = in.hi.data() + in.at(0, 0);
+  const double* const inv = lim.inverse->data();
+  int key = 0;
+  std::size_t s = first;
+  while (s < last) {
+    const std::size_t stop = std::min({last, s + max, std::size_t{in.next_knot[s]}});
+    const double u = pin[s];
+    double lo = -1e300, hi = 1e300;
+    std::size_t to = s;
+    for (std::size_t e = s + 1; e <= stop; ++e) {
+      const bool room = e == last || in.is_knot[e] != 0 || in.next_knot[e] - e >= min;
+      if (e - s >= min && room &&
+          reachable(pin[s], lo, hi, static_cast<double>(e - s), pin[e], pin[e]) != 0) {
+        to = e;
+      }
+      const double r = inv[e - s];
+      lo = std::max(lo, (band_lo[e] - u) * r);
+      hi = std::min(hi, (band_hi[e] - u) * r);
+      if (lo > hi) break;
+    }
+    if (to == s) return kNoKey;
+    key += 2 + (s == first && pin[to] == pin[first] ? 1 : 0);
+    s = to;
+  }
+  return key;
+}
+
 // The free fit for one curved servo, exact: the fewest actions to reach each whole unit v at
 // each ms t (within tolerance, inside the limits), from every reachable (s, u) along every
-// line that stays within the band at every millisecond between. Only fits with a key below
-// `bound` (the on-curve fit's) are looked for.
+// line that stays within the band at every millisecond between; among as few actions, the
+// fewest targets off the rounded curve (so that where free end points save nothing, the fit is
+// the on-curve one). Only fits with a key below `bound` are looked for.
 Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t first,
                         std::size_t last, int bound, std::size_t& work) {
   const std::size_t min = lim.min_ms, max = lim.max_ms;
@@ -30,80 +67,117 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
   for (std::size_t t = 0; t < len; ++t) {
     W = std::max<std::size_t>(W, static_cast<std::size_t>(std::max(high[t] - low[t] + 1, 1)));
   }
-  std::vector<int> key(len * W, kNoKey);
+  // A state's cost, compared as one number: its key, then its targets off the rounded curve.
+  auto cost = [](int key, int off) {
+    return static_cast<std::int64_t>(key) << 32 | static_cast<std::int64_t>(off);
+  };
+  const std::int64_t none = cost(kNoKey, 0);
+  std::vector<std::int64_t> best(len * W, none);
   std::vector<std::uint32_t> from_t(len * W);
   std::vector<std::uint8_t> from_v(len * W);
-  auto K = [&](std::size_t t, int j) -> int& {
-    return key[(t - first) * W + static_cast<std::size_t>(j)];
+  std::vector<int> best_at(len, kNoKey);  // the smallest key at each t
+  // At each t, the largest cost of a value off the rounded curve and the cost of the value on
+  // it (the smallest cost when the band does not hold it): a start whose candidates would cost
+  // no less than these is not tried there.
+  std::vector<std::int64_t> worst_off(len, none), on_pin(len, none);
+  // Raw pointers held in locals: the byte stores into from_v may alias anything, and would
+  // otherwise make the compiler load every vector's data pointer again on each candidate.
+  std::int64_t* const cost_at = best.data();
+  std::uint32_t* const from_t_at = from_t.data();
+  std::uint8_t* const from_v_at = from_v.data();
+  int* const best_p = best_at.data();
+  std::int64_t* const worst_off_p = worst_off.data();
+  std::int64_t* const on_pin_p = on_pin.data();
+  const int* const low_p = low.data();
+  const int* const high_p = high.data();
+  const int* const pin = in.pin.data() + in.at(0, 0);
+  const double* const band_lo = in.lo.data() + in.at(0, 0);
+  const double* const band_hi = in.hi.data() + in.at(0, 0);
+  const double* const inv = lim.inverse->data();
+  const std::uint32_t* const next_knot = in.next_knot.data();
+  auto K = [&](std::size_t t, int j) {
+    return static_cast<int>(cost_at[(t - first) * W + static_cast<std::size_t>(j)] >> 32);
   };
-  K(first, 0) = 0;
-  std::vector<int> best_at(len, kNoKey);   // the smallest key at each t
-  std::vector<int> worst_at(len, kNoKey);  // the largest
-  best_at[0] = 0;
-  const std::vector<double>& inv = *lim.inverse;
-  int u[kMaxValues], uj[kMaxValues], uk[kMaxValues];
-  double lo[kMaxValues], hi[kMaxValues];
+  cost_at[0] = cost(0, 0);
+  best_p[0] = 0;
+  int u[kMaxValues], uj[kMaxValues];
+  std::int64_t uc[kMaxValues];
+  // The work, counted in a local (the caller's counter is a reference the stores below might
+  // alias) against what is left of the budget.
+  std::size_t spent = 0;
+  const std::size_t budget = kWorkBudget - std::min(work, kWorkBudget);
   for (std::size_t s = first; s < last; ++s) {
-    const int ls = low[s - first], hs = high[s - first];
-    const int limit = std::min(bound, K(last, 0));
+    const int ls = low_p[s - first], hs = high_p[s - first];
+    // A start can lead to a better fit only with an action to spare below the bound, and below
+    // the best fit found so far with an action to spare or as many (then fewer off the curve).
+    const int k_last = K(last, 0);
     int n = 0;
     for (int v = ls; v <= hs; ++v) {
-      const int k = K(s, v - ls);
-      if (k == kNoKey || k + 2 >= limit) continue;
+      const std::int64_t c = cost_at[(s - first) * W + static_cast<std::size_t>(v - ls)];
+      const int k = static_cast<int>(c >> 32);
+      if (k == kNoKey || k + 2 >= bound || k + 2 > k_last) continue;
       u[n] = v;
       uj[n] = v - ls;
-      uk[n] = k;
-      lo[n] = -1e300;
-      hi[n] = 1e300;
+      uc[n] = c + cost(2, 0);  // an action more
       ++n;
     }
-    if (n == 0) continue;
-    int ks = uk[0];  // the smallest key among the starts
-    for (int o = 1; o < n; ++o) ks = std::min(ks, uk[o]);
-    const std::size_t stop = std::min({last, s + max, std::size_t{in.next_knot[s]}});
-    for (std::size_t e = s + 1; e <= stop; ++e) {
-      work += static_cast<std::size_t>(n);
-      if (work > kWorkBudget) return gave_up();
-      const double span = static_cast<double>(e - s), r = inv[e - s];
-      const int le = low[e - first], he = high[e - first];
-      // Most candidates arrive where every value already has as few actions (worst_at: the
-      // largest key at e, brought up to date once per end).
-      if (e - s >= min && le <= he && ks + 2 < worst_at[e - first]) {
-        bool improved = false;
-        for (int o = 0; o < n; ++o) {
-          if (uk[o] + 2 >= worst_at[e - first]) continue;
-          std::uint64_t bits = reachable(u[o], lo[o], hi[o], span, le, he);
+    const std::size_t stop = std::min({last, s + max, std::size_t{next_knot[s]}});
+    // One start at a time, its slope window held in registers. Starts of the same s improve
+    // an end in the same order as they would end by end (the first of equal costs is kept).
+    for (int o = 0; o < n; ++o) {
+      const double d = u[o];
+      const std::int64_t c0 = uc[o];
+      double lo = -1e300, hi = 1e300;
+      for (std::size_t e = s + 1; e <= stop; ++e) {
+        if (++spent > budget) {
+          work += spent;
+          return gave_up();
+        }
+        const std::size_t at = e - first;
+        const int le = low_p[at], he = high_p[at];
+        // Most candidates arrive where every value already costs as little (brought up to
+        // date on each improvement).
+        if (e - s >= min && le <= he && ((c0 | 1) < worst_off_p[at] || c0 < on_pin_p[at])) {
+          std::uint64_t bits = reachable(u[o], lo, hi, static_cast<double>(e - s), le, he);
+          bool improved = false;
           while (bits != 0) {
             const int j = std::countr_zero(bits);
             bits &= bits - 1;
-            const int k = uk[o] + 2 + (s == first && le + j == u[o] ? 1 : 0);
-            if (k < K(e, j)) {
-              K(e, j) = k;
-              from_t[(e - first) * W + static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(s);
-              from_v[(e - first) * W + static_cast<std::size_t>(j)] =
-                  static_cast<std::uint8_t>(uj[o]);
-              best_at[e - first] = std::min(best_at[e - first], k);
+            const int v = le + j;
+            // A first action that moves nothing costs a half action more.
+            const std::int64_t c =
+                (c0 + (s == first && v == u[o] ? cost(1, 0) : 0)) | (v != pin[e] ? 1 : 0);
+            const std::size_t x = at * W + static_cast<std::size_t>(j);
+            if (c < cost_at[x]) {
+              cost_at[x] = c;
+              from_t_at[x] = static_cast<std::uint32_t>(s);
+              from_v_at[x] = static_cast<std::uint8_t>(uj[o]);
+              best_p[at] = std::min(best_p[at], static_cast<int>(c >> 32));
               improved = true;
             }
           }
+          if (improved) {
+            std::int64_t worst = 0, at_pin = 0;
+            for (int j = 0; j <= he - le; ++j) {
+              const std::int64_t c = cost_at[at * W + static_cast<std::size_t>(j)];
+              if (le + j == pin[e]) {
+                at_pin = c;
+              } else {
+                worst = std::max(worst, c);
+              }
+            }
+            worst_off_p[at] = worst;
+            on_pin_p[at] = at_pin;
+          }
         }
-        if (improved) {
-          int worst = 0;
-          for (int c = 0; c <= he - le; ++c) worst = std::max(worst, K(e, c));
-          worst_at[e - first] = worst;
-        }
+        const double r = inv[e - s];
+        lo = std::max(lo, (band_lo[e] - d) * r);
+        hi = std::min(hi, (band_hi[e] - d) * r);
+        if (lo > hi) break;
       }
-      const std::size_t x = in.at(0, e);
-      const double bl = in.lo[x], bh = in.hi[x];
-      bool open = false;
-      for (int o = 0; o < n; ++o) {
-        lo[o] = std::max(lo[o], (bl - u[o]) * r);
-        hi[o] = std::min(hi[o], (bh - u[o]) * r);
-        open = open || lo[o] <= hi[o];
-      }
-      if (!open) break;
     }
   }
+  work += spent;
   Path path;
   std::size_t t = last;
   int j = 0;

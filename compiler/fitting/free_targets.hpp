@@ -25,9 +25,12 @@ inline std::pair<int, int> free_band(const Stretch& in, std::size_t i, std::size
 // u + hi * span: the targets a line from u reaches inside its slope window.
 inline std::uint64_t reachable(int u, double lo, double hi, double span, int low, int high) {
   // Clamped to the band first, so that the whole-unit bounds fit an int (and are found
-  // without a library call: this runs for every start at every candidate end).
-  const double a = std::clamp(u + lo * span - 1e-9, low - 1.0, high + 1.0);
-  const double b = std::clamp(u + hi * span + 1e-9, low - 1.0, high + 1.0);
+  // without a library call: this runs for every start at every candidate end). The slack
+  // is at least the on-curve search's (1e-12 on the slope), so that every on-curve line is
+  // found here too.
+  const double slack = 1e-9 + 1e-12 * span;
+  const double a = std::clamp(u + lo * span - slack, low - 1.0, high + 1.0);
+  const double b = std::clamp(u + hi * span + slack, low - 1.0, high + 1.0);
   int from = static_cast<int>(a), to = static_cast<int>(b);
   from += from < a ? 1 : 0;  // ceil
   to -= to > b ? 1 : 0;      // floor

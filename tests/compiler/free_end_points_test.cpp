@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -26,19 +27,25 @@ namespace {
 
 using namespace fitting_check;
 
-// One servo's eased move over [0, ms], nothing before or after it.
-Timeline eased_move(double from, double to, int ms, const Easing& easing, double tol) {
+// A segment over [start, end] ms.
+Segment segment(int start, int end, double from, double to, CurveKind kind, const Easing& easing,
+                double tol) {
   Segment seg;
-  seg.start = ExactMs(0);
-  seg.end = ExactMs(ms);
+  seg.start = ExactMs(start);
+  seg.end = ExactMs(end);
   seg.from = from;
   seg.to = to;
-  seg.kind = CurveKind::Eased;
+  seg.kind = kind;
   seg.easing = easing;
   seg.tolerance = tol;
+  return seg;
+}
+
+// One servo's eased move over [0, ms], nothing before or after it.
+Timeline eased_move(double from, double to, int ms, const Easing& easing, double tol) {
   Timeline tl;
   tl.resize(1);
-  tl.add(0, seg);
+  tl.add(0, segment(0, ms, from, to, CurveKind::Eased, easing, tol));
   tl.end = ExactMs(ms);
   return tl;
 }
@@ -421,6 +428,154 @@ TEST(Fitting, AFileChoosesItsControllerModel) {
                 "1:36 error: unknown controller model 'round'; did you mean 'rounds'? "
                 "(straight-line: the exact line between whole-unit targets; rounds or "
                 "truncates: that line rounded or truncated to whole units)"});
+}
+
+// Where free end points save no action, the fit is one with every target on the rounded curve:
+// each target is the curve at the action's end, from the textbook formula, rounded. Eased
+// moves of 250 to 900 ms, short and long, at tolerance 1 and 2; the cases compared are those
+// where the on-curve fit needs as many actions as the free one.
+TEST(Fitting, WhereFreeEndPointsSaveNothingEveryTargetIsOnTheRoundedCurve) {
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  const std::vector<std::string> names = {"sine-in-out", "quad-in",     "cubic-out", "quart-in-out",
+                                          "circ-out",    "back-in-out", "linear",    "expo-in-out"};
+  int ties = 0;
+  for (const std::string& name : names) {
+    const Easing easing = *parse_easing(name).easing;
+    for (const int ms : {250, 400, 600, 900}) {
+      for (const auto& [move, tol] : {std::pair{30.0, 1.0}, std::pair{60.0, 1.0},
+                                      std::pair{120.0, 2.0}, std::pair{300.0, 2.0}}) {
+        const Timeline tl = eased_move(400, 400 + move, ms, easing, tol);
+        const FitResult free = fit_timeline(tl);
+        const FitResult before = fit_timeline(tl, on_curve);
+        if (!free.shortfalls.empty() || free.actions.size() != before.actions.size()) continue;
+        ++ties;
+        for (const FittedAction& a : free.actions) {
+          const double end = a.start_ms + a.time_ms;
+          const double curve = 400 + move * testing::ease_ref::at(easing, end / ms);
+          ASSERT_EQ(a.targets.size(), 1u);
+          EXPECT_EQ(a.targets[0].position, std::lround(curve))
+              << name << " over " << ms << " ms by " << move << " at tolerance " << tol
+              << ", the action ending at " << end << " ms";
+        }
+      }
+    }
+  }
+  EXPECT_GE(ties, 20);  // of the 128
+}
+
+// A curve repeated with another tolerance is fitted for its own: the same sine-in-out, 400 to
+// 460 over 600 ms, at tolerance 1 and (after a straight return) at tolerance 2, in either
+// order. Each part needs the exact fewest actions of that curve at its own tolerance (the
+// benchmark's exhaustive reference), whatever the other part needed.
+TEST(Fitting, ARepeatedCurveWithAnotherToleranceIsFittedForItsOwn) {
+  const Easing easing = *parse_easing("sine-in-out").easing;
+  fit_reference::Piece piece;
+  piece.t1 = 600;
+  piece.from = 400;
+  piece.to = 460;
+  piece.easing = easing;
+  const int at_1 = fit_reference::free_minimum(piece, 600, 1);
+  const int at_2 = fit_reference::free_minimum(piece, 600, 2);
+  ASSERT_NE(at_1, at_2);  // so that a fit reused from the other part would show
+  for (const auto& [first, second] : {std::pair{1.0, 2.0}, std::pair{2.0, 1.0}}) {
+    Timeline tl;
+    tl.resize(1);
+    tl.add(0, segment(0, 600, 400, 460, CurveKind::Eased, easing, first));
+    tl.add(0, segment(600, 1000, 460, 400, CurveKind::Linear, easing, 1));
+    tl.add(0, segment(1000, 1600, 400, 460, CurveKind::Eased, easing, second));
+    tl.end = ExactMs(1600);
+    const FitResult fit = fit_timeline(tl);
+    EXPECT_TRUE(fit.shortfalls.empty());
+    auto actions_in = [&](std::uint32_t a, std::uint32_t b) {
+      return std::count_if(fit.actions.begin(), fit.actions.end(), [&](const FittedAction& x) {
+        return x.start_ms >= a && x.start_ms + x.time_ms <= b;
+      });
+    };
+    EXPECT_EQ(actions_in(0, 600), first == 1 ? at_1 : at_2) << "tolerance " << first;
+    EXPECT_EQ(actions_in(1000, 1600), second == 1 ? at_1 : at_2) << "tolerance " << second;
+  }
+}
+
+// A curve too long to search whole within the work budget (sine-in-out, 400 to 460 over 10 s at
+// tolerance 2: about 5 values x 10,000 ms x lines of seconds, past 40 million window updates)
+// is cut into parts searched on their own, and still fitted within tolerance at every
+// millisecond of the textbook curve, with no more actions than the fit on the curve.
+TEST(Fitting, ACurveTooLongToSearchWholeIsCutAndStillWithinTolerance) {
+  const Easing easing = *parse_easing("sine-in-out").easing;
+  const Timeline tl = eased_move(400, 460, 10000, easing, 2);
+  const FitResult fit = fit_timeline(tl);
+  EXPECT_TRUE(fit.shortfalls.empty());
+  const Motion motion(fit.actions, 400);
+  for (int t = 0; t <= 10000; ++t) {
+    const double curve = 400 + 60 * (1 - std::cos(std::numbers::pi * t / 10000.0)) / 2;
+    ASSERT_LE(std::abs(motion.at(t) - curve), 2 + 1e-6) << t << " ms";
+  }
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  EXPECT_LE(fit.actions.size(), fit_timeline(tl, on_curve).actions.size());
+}
+
+// Two servos moving together over 10 s (sine-in-out by 60 and quad-in-out by 45 at tolerance
+// 2) are too many lines to search whole within the work budget; the stretch is cut into parts
+// searched on their own, and the fit stays within tolerance at every millisecond of the
+// textbook curves with no more actions than a plain fit worked here: five equal actions of
+// 2 s, each servo's targets its curve rounded (checked here to keep both within 2).
+TEST(Fitting, ServosTooLongToSearchTogetherAreCutAndStillWithinTolerance) {
+  const int ms = 10000;
+  auto sine = [&](double t) { return 400 + 60 * (1 - std::cos(std::numbers::pi * t / ms)) / 2; };
+  auto quad = [&](double t) {
+    const double u = t / ms;
+    return 400 + 45 * (u < 0.5 ? 2 * u * u : 1 - (2 - 2 * u) * (2 - 2 * u) / 2);
+  };
+  Timeline tl;
+  tl.resize(2);
+  tl.add(0, segment(0, ms, 400, 460, CurveKind::Eased, *parse_easing("sine-in-out").easing, 2));
+  tl.add(1, segment(0, ms, 400, 445, CurveKind::Eased, *parse_easing("quad-in-out").easing, 2));
+  tl.end = ExactMs(ms);
+  const std::vector<std::function<double(double)>> curves = {sine, quad};
+  // The plain fit: both servos within 2 along the lines between their rounded curves at every
+  // 2,000th ms.
+  for (const auto& curve : curves) {
+    for (int a = 0; a < ms; a += 2000) {
+      const double from = std::round(curve(a)), to = std::round(curve(a + 2000));
+      for (int t = a; t <= a + 2000; ++t) {
+        ASSERT_LE(std::abs(from + (to - from) * (t - a) / 2000.0 - curve(t)), 2);
+      }
+    }
+  }
+  const FitResult fit = fit_timeline(tl);
+  EXPECT_TRUE(fit.shortfalls.empty());
+  EXPECT_LE(fit.actions.size(), 5u);
+  for (std::size_t s = 0; s < 2; ++s) {
+    const Motion motion(fit.actions, 400, s);
+    for (int t = 0; t <= ms; ++t) {
+      ASSERT_LE(std::abs(motion.at(t) - curves[s](t)), 2 + 1e-6) << "servo " << s << ", " << t;
+    }
+  }
+}
+
+// Below half a unit of tolerance the rounded curve is not always a free target (10.4 rounds to
+// 10, more than 0.3 from it), so the on-curve fit is not one of the free fits there; the fit
+// kept still never needs more actions than the on-curve one, nor misses more often.
+TEST(Fitting, BelowHalfAUnitTheFitNeverNeedsMoreActionsThanOnTheCurve) {
+  FitOptions on_curve;
+  on_curve.free_end_points = false;
+  int compared = 0;
+  for (const char* name : {"sine-in-out", "quad-in", "cubic-out", "linear", "circ-in"}) {
+    for (const int ms : {200, 500, 800}) {
+      for (const double tol : {0.3, 0.45}) {
+        const Timeline tl = eased_move(400, 437, ms, *parse_easing(name).easing, tol);
+        const FitResult free = fit_timeline(tl);
+        const FitResult before = fit_timeline(tl, on_curve);
+        EXPECT_LE(std::make_pair(free.shortfalls.size(), free.actions.size()),
+                  std::make_pair(before.shortfalls.size(), before.actions.size()))
+            << name << " over " << ms << " ms at tolerance " << tol;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 30);
 }
 
 // Every built-in profile fits for the straight line between whole-unit targets: what the
