@@ -28,13 +28,16 @@ bool same_content(const Stretch& x, const Stretch& y) {
 
 void SearchMemo::enter(const Stretch& in, StretchSource source, const Sampler& sample) {
   const std::uint64_t hash = content_hash(in);
-  for (Searched& earlier : stretches_) {
-    if (earlier.hash == hash && same_content(sample(earlier.source), in)) {
+  const auto [from, to] = by_hash_.equal_range(hash);
+  for (auto it = from; it != to; ++it) {
+    Searched& earlier = stretches_[it->second];
+    if (same_content(sample(earlier.source), in)) {
       current_ = earlier.searches.get();
       return;
     }
   }
-  stretches_.push_back({hash, std::move(source), std::make_unique<Searches>()});
+  by_hash_.emplace(hash, stretches_.size());
+  stretches_.push_back({std::move(source), std::make_unique<Searches>()});
   current_ = stretches_.back().searches.get();
 }
 

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -53,11 +54,11 @@ class SearchMemo {
  private:
   using Searches = std::map<SearchKey, std::pair<Path, std::size_t>>;
   struct Searched {
-    std::uint64_t hash = 0;
     StretchSource source;
     std::unique_ptr<Searches> searches;
   };
   std::vector<Searched> stretches_;
+  std::unordered_multimap<std::uint64_t, std::size_t> by_hash_;  // into stretches_
   Searches* current_ = nullptr;
 };
 
