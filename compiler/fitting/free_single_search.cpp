@@ -48,9 +48,9 @@ int greedy_on_curve_key(const Stretch& in, const SearchLimits& lim, std::size_t 
 
 // The free fit for one curved servo, exact: the fewest actions to reach each whole unit v at
 // each ms t (within tolerance, inside the limits), from every reachable (s, u) along every
-// line that stays within the band at every millisecond between; among as few actions, the
-// fewest targets off the rounded curve (so that where free end points save nothing, the fit is
-// the on-curve one). Only fits with a key below `bound` are looked for.
+// line that stays within the band at every millisecond between; among as few actions, one with
+// every target on the rounded curve where there is one (so that where free end points save
+// nothing, the fit is an on-curve one). Only fits with a key below `bound` are looked for.
 Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t first,
                         std::size_t last, int bound, std::size_t& work) {
   const std::size_t min = lim.min_ms, max = lim.max_ms;
@@ -67,12 +67,13 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
   for (std::size_t t = 0; t < len; ++t) {
     W = std::max<std::size_t>(W, static_cast<std::size_t>(std::max(high[t] - low[t] + 1, 1)));
   }
-  // A state's cost, compared as one number: its key, then its targets off the rounded curve.
+  // A state's cost, compared as one number: its key, then whether a target on the way there is
+  // off the rounded curve (the low bit, or-ed along the way).
   auto cost = [](int key, int off) {
     return static_cast<std::int64_t>(key) << 32 | static_cast<std::int64_t>(off);
   };
   const std::int64_t none = cost(kNoKey, 0);
-  std::vector<std::int64_t> best(len * W, none);
+  std::vector<std::int64_t> costs(len * W, none);
   std::vector<std::uint32_t> from_t(len * W);
   std::vector<std::uint8_t> from_v(len * W);
   std::vector<int> best_at(len, kNoKey);  // the smallest key at each t
@@ -82,7 +83,7 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
   std::vector<std::int64_t> worst_off(len, none), on_pin(len, none);
   // Raw pointers held in locals: the byte stores into from_v may alias anything, and would
   // otherwise make the compiler load every vector's data pointer again on each candidate.
-  std::int64_t* const cost_at = best.data();
+  std::int64_t* const cost_at = costs.data();
   std::uint32_t* const from_t_at = from_t.data();
   std::uint8_t* const from_v_at = from_v.data();
   int* const best_p = best_at.data();
@@ -109,7 +110,7 @@ Path free_single_search(const Stretch& in, const SearchLimits& lim, std::size_t 
   for (std::size_t s = first; s < last; ++s) {
     const int ls = low_p[s - first], hs = high_p[s - first];
     // A start can lead to a better fit only with an action to spare below the bound, and below
-    // the best fit found so far with an action to spare or as many (then fewer off the curve).
+    // the best fit found so far with an action to spare or as many (then one on the curve).
     const int k_last = K(last, 0);
     int n = 0;
     for (int v = ls; v <= hs; ++v) {
