@@ -1,8 +1,9 @@
-// What the fitting tests share, computed independently of the fitter: the controller's motion
-// rebuilt from the actions alone (each named servo in a straight line to its target, others
-// holding), the intended curve from the textbook formulas (easing_reference.hpp; Hermite pieces
-// in Bezier form), and a proof that a shortfall is unavoidable (a search over every motion the
-// controller could make around that instant).
+// What the fitting tests share, computed independently of the fitter: timelines of segments
+// written out (one servo's eased move), the controller's motion rebuilt from the actions alone
+// (each named servo in a straight line to its target, others holding), the intended curve from the
+// textbook formulas (easing_reference.hpp; Hermite pieces in Bezier form), and a proof that a
+// shortfall is unavoidable (a search over every motion the controller could make around that
+// instant).
 #pragma once
 
 #include <algorithm>
@@ -20,6 +21,29 @@ namespace seqc::compiler::fitting_check {
 
 inline constexpr std::int64_t kMinActionMs = 20;
 inline constexpr double kHoldTolerance = 1;  // the tolerance of the hold before the curve
+
+// A segment over [start, end] ms.
+inline Segment segment(int start, int end, double from, double to, CurveKind kind,
+                       const Easing& easing, double tol) {
+  Segment seg;
+  seg.start = ExactMs(start);
+  seg.end = ExactMs(end);
+  seg.from = from;
+  seg.to = to;
+  seg.kind = kind;
+  seg.easing = easing;
+  seg.tolerance = tol;
+  return seg;
+}
+
+// One servo's eased move over [0, ms], nothing before or after it.
+inline Timeline eased_move(double from, double to, int ms, const Easing& easing, double tol) {
+  Timeline tl;
+  tl.resize(1);
+  tl.add(0, segment(0, ms, from, to, CurveKind::Eased, easing, tol));
+  tl.end = ExactMs(ms);
+  return tl;
+}
 
 // The controller's motion of one servo (0 unless named), rebuilt from the actions alone: during
 // each action a straight line from where the servo is to the action's target, or a hold if the

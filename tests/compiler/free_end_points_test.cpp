@@ -1,21 +1,18 @@
-// Free end points and the controller model, checked from the outside as in fitting_test.cpp
-// (fitting_check.hpp): a hand-worked curve, never more actions than the on-curve fit, a miss
-// only where the on-curve fit misses as much, targets inside the servos' limits, no leading
-// still action, and the tolerance held under each controller model.
+// Free end points, checked from the outside as in fitting_test.cpp (fitting_check.hpp): a
+// hand-worked curve, the exact fewest actions on one curve, servos moving together within
+// tolerance, never more actions than the on-curve fit (below half a unit of tolerance too) and
+// an on-curve fit where free end points save nothing, a miss only where the on-curve fit misses
+// as much, targets inside the servos' limits, and no leading still action.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <limits>
-#include <numbers>
 #include <random>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "compiler/fitting/fitter.hpp"
-#include "compiler/frontend/profiles.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "tests/bench/fit_reference.hpp"
 #include "tests/compiler/easing_reference.hpp"
@@ -27,42 +24,8 @@ namespace {
 
 using namespace fitting_check;
 
-// A segment over [start, end] ms.
-Segment segment(int start, int end, double from, double to, CurveKind kind, const Easing& easing,
-                double tol) {
-  Segment seg;
-  seg.start = ExactMs(start);
-  seg.end = ExactMs(end);
-  seg.from = from;
-  seg.to = to;
-  seg.kind = kind;
-  seg.easing = easing;
-  seg.tolerance = tol;
-  return seg;
-}
-
-// One servo's eased move over [0, ms], nothing before or after it.
-Timeline eased_move(double from, double to, int ms, const Easing& easing, double tol) {
-  Timeline tl;
-  tl.resize(1);
-  tl.add(0, segment(0, ms, from, to, CurveKind::Eased, easing, tol));
-  tl.end = ExactMs(ms);
-  return tl;
-}
-
 TEST(Fitting, FreeEndPointsSaveAnActionOnAHandWorkedCurve) {
-  Segment seg;
-  seg.start = ExactMs(0);
-  seg.end = ExactMs(60);
-  seg.from = 0;
-  seg.to = 18;
-  seg.kind = CurveKind::Eased;
-  seg.easing = *parse_easing("quad-in").easing;
-  seg.tolerance = 1;
-  Timeline tl;
-  tl.resize(1);
-  tl.add(0, seg);
-  tl.end = ExactMs(60);
+  const Timeline tl = eased_move(0, 18, 60, *parse_easing("quad-in").easing, 1);
   const FitResult free = fit_timeline(tl);
   ASSERT_EQ(free.actions.size(), 2u);
   EXPECT_TRUE(free.shortfalls.empty());
@@ -330,106 +293,6 @@ TEST(Fitting, AnEasedMoveDoesNotBeginWithAnActionThatMovesNothing) {
   }
 }
 
-// The controller model: a fit for a controller that rounds (or truncates) its output to whole
-// units keeps that output within tolerance at every millisecond; the same curves fitted for
-// the straight line do not, put out that way, so the setting is what keeps the promise.
-TEST(Fitting, TheControllerModelIsWhatTheToleranceHoldsFor) {
-  EXPECT_EQ(controller_output(ControllerModel::StraightLine, 2.5), 2.5);
-  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.5), 3);
-  EXPECT_EQ(controller_output(ControllerModel::Rounds, 2.49), 2);
-  EXPECT_EQ(controller_output(ControllerModel::Truncates, 2.99), 2);
-  auto output = [](ControllerModel model, double line) {
-    return model == ControllerModel::Rounds ? std::floor(line + 0.5) : std::trunc(line);
-  };
-  for (ControllerModel model : {ControllerModel::Rounds, ControllerModel::Truncates}) {
-    int straight_misses = 0;
-    for (const char* name : {"sine-in-out", "quad-in-out", "cubic-out", "back-in-out"}) {
-      Segment seg;
-      seg.start = ExactMs(0);
-      seg.end = ExactMs(1500);
-      seg.from = 300;
-      seg.to = 420;
-      seg.kind = CurveKind::Eased;
-      seg.easing = *parse_easing(name).easing;
-      seg.tolerance = 1;
-      Timeline tl;
-      tl.resize(1);
-      tl.add(0, seg);
-      tl.end = ExactMs(1500);
-      Intended want;
-      want.t1 = 1500;
-      want.from = 300;
-      want.to = 420;
-      want.tolerance = 1;
-      want.easing = seg.easing;
-      FitOptions options;
-      options.model = model;
-      const FitResult fit = fit_timeline(tl, options);
-      EXPECT_TRUE(fit.shortfalls.empty()) << name;
-      const Motion motion(fit.actions, 300);
-      double worst = 0;
-      for (int t = 0; t <= 1500; ++t) {
-        const double err = std::abs(output(model, motion.at(t)) - want.at(t));
-        EXPECT_LE(err, 1 + 1e-9) << name << " at " << t;
-        worst = std::max(worst, err);
-      }
-      EXPECT_NEAR(fit.max_error, worst, 1e-6) << name;
-      const Motion straight(fit_timeline(tl).actions, 300);
-      for (int t = 0; t <= 1500; ++t) {
-        if (std::abs(output(model, straight.at(t)) - want.at(t)) > 1 + 1e-9) {
-          ++straight_misses;
-          break;
-        }
-      }
-    }
-    EXPECT_GT(straight_misses, 0);
-  }
-}
-
-// A file names its board's model in `robot:`; the program is fitted for it and carries it, so
-// that `simulate --compare` measures the same motion.
-TEST(Fitting, AFileChoosesItsControllerModel) {
-  const std::string head = "robot: {profile: xarm, controller: ";
-  const std::string body =
-      "}\nsequence:\n  - move: {claw: 300}\n    time: 500ms\n"
-      "  - move: {claw: 420}\n    time: 1500ms\n    ease: sine-in-out\n";
-  for (const auto& [word, model] : std::vector<std::pair<std::string, ControllerModel>>{
-           {"straight-line", ControllerModel::StraightLine},
-           {"rounds", ControllerModel::Rounds},
-           {"truncates", ControllerModel::Truncates}}) {
-    const CompileOutput out = testing::compile_text(head + word + body);
-    const ServoProgram& p = testing::program_of(out);
-    EXPECT_EQ(p.controller, model) << word;
-    // The claw (bus id 1) under that model, at every millisecond of the eased move, against
-    // (1 - cos(pi t)) / 2 from 300 to 420, written here.
-    std::vector<FittedAction> actions;
-    for (const Keyframe& k : p.keyframes) {
-      if (k.start_ms < 500) continue;
-      FittedAction a;
-      a.start_ms = k.start_ms - 500;
-      a.time_ms = k.time_ms;
-      for (const auto& t : k.targets) {
-        if (t.id == 1) a.targets.push_back({0, t.position});
-      }
-      actions.push_back(a);
-    }
-    const Motion motion(actions, 300);
-    for (int t = 0; t <= 1500; ++t) {
-      const double line = motion.at(t);
-      const double out_now = model == ControllerModel::Rounds      ? std::floor(line + 0.5)
-                             : model == ControllerModel::Truncates ? std::trunc(line)
-                                                                   : line;
-      const double want = 300 + 120 * (1 - std::cos(std::numbers::pi * t / 1500.0)) / 2;
-      EXPECT_LE(std::abs(out_now - want), 1 + 1e-9) << word << " at " << t;
-    }
-  }
-  EXPECT_EQ(testing::messages(testing::compile_text(head + "round" + body)),
-            std::vector<std::string>{
-                "1:36 error: unknown controller model 'round'; did you mean 'rounds'? "
-                "(straight-line: the exact line between whole-unit targets; rounds or "
-                "truncates: that line rounded or truncated to whole units)"});
-}
-
 // Where free end points save no action, the fit is one with every target on the rounded curve:
 // each target is the curve at the action's end, from the textbook formula, rounded. Eased
 // moves of 250 to 900 ms, short and long, at tolerance 1 and 2; the cases compared are those
@@ -464,97 +327,6 @@ TEST(Fitting, WhereFreeEndPointsSaveNothingEveryTargetIsOnTheRoundedCurve) {
   EXPECT_GE(ties, 20);  // of the 128
 }
 
-// A curve repeated with another tolerance is fitted for its own: the same sine-in-out, 400 to
-// 460 over 600 ms, at tolerance 1 and (after a straight return) at tolerance 2, in either
-// order. Each part needs the exact fewest actions of that curve at its own tolerance (the
-// benchmark's exhaustive reference), whatever the other part needed.
-TEST(Fitting, ARepeatedCurveWithAnotherToleranceIsFittedForItsOwn) {
-  const Easing easing = *parse_easing("sine-in-out").easing;
-  fit_reference::Piece piece;
-  piece.t1 = 600;
-  piece.from = 400;
-  piece.to = 460;
-  piece.easing = easing;
-  const int at_1 = fit_reference::free_minimum(piece, 600, 1);
-  const int at_2 = fit_reference::free_minimum(piece, 600, 2);
-  ASSERT_NE(at_1, at_2);  // so that a fit reused from the other part would show
-  for (const auto& [first, second] : {std::pair{1.0, 2.0}, std::pair{2.0, 1.0}}) {
-    Timeline tl;
-    tl.resize(1);
-    tl.add(0, segment(0, 600, 400, 460, CurveKind::Eased, easing, first));
-    tl.add(0, segment(600, 1000, 460, 400, CurveKind::Linear, easing, 1));
-    tl.add(0, segment(1000, 1600, 400, 460, CurveKind::Eased, easing, second));
-    tl.end = ExactMs(1600);
-    const FitResult fit = fit_timeline(tl);
-    EXPECT_TRUE(fit.shortfalls.empty());
-    auto actions_in = [&](std::uint32_t a, std::uint32_t b) {
-      return std::count_if(fit.actions.begin(), fit.actions.end(), [&](const FittedAction& x) {
-        return x.start_ms >= a && x.start_ms + x.time_ms <= b;
-      });
-    };
-    EXPECT_EQ(actions_in(0, 600), first == 1 ? at_1 : at_2) << "tolerance " << first;
-    EXPECT_EQ(actions_in(1000, 1600), second == 1 ? at_1 : at_2) << "tolerance " << second;
-  }
-}
-
-// A curve too long to search whole within the work budget (sine-in-out, 400 to 460 over 10 s at
-// tolerance 2: about 5 values x 10,000 ms x lines of seconds, past 40 million window updates)
-// is cut into parts searched on their own, and still fitted within tolerance at every
-// millisecond of the textbook curve, with no more actions than the fit on the curve.
-TEST(Fitting, ACurveTooLongToSearchWholeIsCutAndStillWithinTolerance) {
-  const Easing easing = *parse_easing("sine-in-out").easing;
-  const Timeline tl = eased_move(400, 460, 10000, easing, 2);
-  const FitResult fit = fit_timeline(tl);
-  EXPECT_TRUE(fit.shortfalls.empty());
-  const Motion motion(fit.actions, 400);
-  for (int t = 0; t <= 10000; ++t) {
-    const double curve = 400 + 60 * (1 - std::cos(std::numbers::pi * t / 10000.0)) / 2;
-    ASSERT_LE(std::abs(motion.at(t) - curve), 2 + 1e-6) << t << " ms";
-  }
-  FitOptions on_curve;
-  on_curve.free_end_points = false;
-  EXPECT_LE(fit.actions.size(), fit_timeline(tl, on_curve).actions.size());
-}
-
-// Two servos moving together over 10 s (sine-in-out by 60 and quad-in-out by 45 at tolerance
-// 2) are too many lines to search whole within the work budget; the stretch is cut into parts
-// searched on their own, and the fit stays within tolerance at every millisecond of the
-// textbook curves with no more actions than a plain fit worked here: five equal actions of
-// 2 s, each servo's targets its curve rounded (checked here to keep both within 2).
-TEST(Fitting, ServosTooLongToSearchTogetherAreCutAndStillWithinTolerance) {
-  const int ms = 10000;
-  auto sine = [&](double t) { return 400 + 60 * (1 - std::cos(std::numbers::pi * t / ms)) / 2; };
-  auto quad = [&](double t) {
-    const double u = t / ms;
-    return 400 + 45 * (u < 0.5 ? 2 * u * u : 1 - (2 - 2 * u) * (2 - 2 * u) / 2);
-  };
-  Timeline tl;
-  tl.resize(2);
-  tl.add(0, segment(0, ms, 400, 460, CurveKind::Eased, *parse_easing("sine-in-out").easing, 2));
-  tl.add(1, segment(0, ms, 400, 445, CurveKind::Eased, *parse_easing("quad-in-out").easing, 2));
-  tl.end = ExactMs(ms);
-  const std::vector<std::function<double(double)>> curves = {sine, quad};
-  // The plain fit: both servos within 2 along the lines between their rounded curves at every
-  // 2,000th ms.
-  for (const auto& curve : curves) {
-    for (int a = 0; a < ms; a += 2000) {
-      const double from = std::round(curve(a)), to = std::round(curve(a + 2000));
-      for (int t = a; t <= a + 2000; ++t) {
-        ASSERT_LE(std::abs(from + (to - from) * (t - a) / 2000.0 - curve(t)), 2);
-      }
-    }
-  }
-  const FitResult fit = fit_timeline(tl);
-  EXPECT_TRUE(fit.shortfalls.empty());
-  EXPECT_LE(fit.actions.size(), 5u);
-  for (std::size_t s = 0; s < 2; ++s) {
-    const Motion motion(fit.actions, 400, s);
-    for (int t = 0; t <= ms; ++t) {
-      ASSERT_LE(std::abs(motion.at(t) - curves[s](t)), 2 + 1e-6) << "servo " << s << ", " << t;
-    }
-  }
-}
-
 // Below half a unit of tolerance the rounded curve is not always a free target (10.4 rounds to
 // 10, more than 0.3 from it), so the on-curve fit is not one of the free fits there; the fit
 // kept still never needs more actions than the on-curve one, nor misses more often.
@@ -576,16 +348,6 @@ TEST(Fitting, BelowHalfAUnitTheFitNeverNeedsMoreActionsThanOnTheCurve) {
     }
   }
   EXPECT_EQ(compared, 30);
-}
-
-// Every built-in profile fits for the straight line between whole-unit targets: what the
-// protocol document describes; docs/language.md says why.
-TEST(Fitting, BuiltInProfilesFitForTheStraightLine) {
-  for (const char* name : {"xarm", "bus", "lsc-16", "lsc-32", "lsc-6", "learm"}) {
-    const RobotProfile* p = find_profile(name);
-    ASSERT_NE(p, nullptr) << name;
-    EXPECT_EQ(p->controller, ControllerModel::StraightLine) << name;
-  }
 }
 
 }  // namespace
