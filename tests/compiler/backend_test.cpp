@@ -215,7 +215,7 @@ TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
 // The program carries the robot's model (its profile's, or the file's `controller:`), which
 // simulate and --compare read. Every built-in profile names the straight line, which is also the
 // program's default, so the copy is seen only through a robot that names another: the xarm with
-// each other model. (tests/compiler/free_end_points_test.cpp compiles `controller:` itself.)
+// each other model. (tests/compiler/controller_model_test.cpp compiles `controller:` itself.)
 TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
   compiler::testing::MemoryFiles files;
   files.files["main.yaml"] = "robot: xarm\nsequence:\n  - move: {claw: 510}\n    time: 1s\n";
