@@ -23,7 +23,7 @@ if(SEQC_SANITIZE)
 endif()
 
 # seqc_library(name SOURCES ... DEPS ...): a static library rooted at the repository, so
-# headers are included as "runtime/protocol/..." or "compiler/...".
+# headers are included as "protocol/..." or "compiler/...".
 function(seqc_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(${name} STATIC ${ARG_SOURCES})

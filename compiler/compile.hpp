@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
-#include "compiler/frontend/source/source.hpp"
+#include "base/diagnostics.hpp"
+#include "base/source.hpp"
 #include "compiler/program/program.hpp"
 
 namespace seqc::compiler {

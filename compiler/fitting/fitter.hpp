@@ -39,7 +39,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/program/controller_model.hpp"
 #include "compiler/timeline/timeline.hpp"
 

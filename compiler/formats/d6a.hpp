@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "compiler/program/program.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::backend {
 

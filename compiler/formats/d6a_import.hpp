@@ -8,7 +8,7 @@
 #include <string>
 
 #include "compiler/formats/d6a.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::compiler {
 

@@ -4,10 +4,10 @@
 
 #include <optional>
 
-#include "compiler/frontend/source/units.hpp"
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
+#include "base/units.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc_stream.hpp"
 
 namespace seqc::backend {
 namespace {

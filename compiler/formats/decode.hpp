@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/lsc_frame.hpp"
+#include "base/bytes.hpp"
+#include "protocol/lsc_frame.hpp"
 
 namespace seqc::backend {
 

@@ -11,10 +11,10 @@
 #include <sstream>
 #include <vector>
 
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc_stream.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::backend {
 namespace {

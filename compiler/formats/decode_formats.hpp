@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "compiler/formats/decode.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::backend {
 

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "compiler/formats/decode_formats.hpp"
-#include "compiler/frontend/source/units.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
+#include "base/units.hpp"
+#include "protocol/lsc6_messages.hpp"
 
 namespace seqc::backend {
 namespace {

@@ -1,9 +1,9 @@
 #include "compiler/formats/listing.hpp"
-#include "compiler/frontend/source/json_text.hpp"
+#include "base/json_text.hpp"
 
 #include <fmt/format.h>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::backend {
 using compiler::json_string;

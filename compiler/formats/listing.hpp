@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/targets/servo_controller/servo_backend.hpp"
 

@@ -9,7 +9,7 @@
 #include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
-#include "compiler/frontend/source/json_text.hpp"
+#include "base/json_text.hpp"
 #include "compiler/targets/servo_controller/servo_backend.hpp"
 
 namespace seqc::backend {

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "compiler/formats/listing.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::backend {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/program/raspblock_program.hpp"
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
 

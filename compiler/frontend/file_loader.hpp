@@ -9,10 +9,10 @@
 #include <optional>
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
-#include "compiler/frontend/source/source.hpp"
+#include "base/diagnostics.hpp"
+#include "base/source.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::compiler {
 

@@ -5,7 +5,7 @@
 
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/scope_chain.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::compiler {
 namespace {

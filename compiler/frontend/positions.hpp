@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "compiler/frontend/reporter.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {

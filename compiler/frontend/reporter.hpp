@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::compiler {
 namespace {

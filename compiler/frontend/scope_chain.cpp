@@ -4,7 +4,7 @@
 
 #include "compiler/frontend/music_section.hpp"
 #include "compiler/frontend/robot_section.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::compiler {
 

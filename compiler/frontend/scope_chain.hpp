@@ -17,7 +17,7 @@
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/positions.hpp"
 #include "compiler/frontend/reporter.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"

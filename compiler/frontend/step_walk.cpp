@@ -12,8 +12,8 @@
 #include <utility>
 
 #include "compiler/frontend/music_section.hpp"
-#include "compiler/frontend/source/diagnostics.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/diagnostics.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 
 namespace seqc::compiler {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "compiler/music/tempo_map.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::music {
 

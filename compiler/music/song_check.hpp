@@ -5,7 +5,7 @@
 #pragma once
 
 #include "compiler/frontend/reporter.hpp"
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"
 #include "compiler/timeline/tempo_map.hpp"

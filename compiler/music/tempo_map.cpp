@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "compiler/frontend/source/json_text.hpp"
+#include "base/json_text.hpp"
 
 namespace seqc::music {
 namespace {

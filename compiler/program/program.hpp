@@ -14,12 +14,12 @@
 #include <variant>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/program/arm_geometry.hpp"
 #include "compiler/program/controller_model.hpp"
 #include "compiler/program/raspblock_program.hpp"
 #include "compiler/timeline/timeline.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::compiler {
 

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/timeline/timeline.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::compiler {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/timeline/exact_time.hpp"
 
 namespace seqc::compiler {

@@ -20,7 +20,7 @@
 #include <optional>
 #include <vector>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/timeline/exact_time.hpp"
 
 namespace seqc::compiler {

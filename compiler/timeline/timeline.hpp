@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/timeline/easing.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"

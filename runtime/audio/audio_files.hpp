@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::audio {
 

@@ -21,8 +21,8 @@
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 #include "runtime/player/player.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/planned_frame.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/planned_frame.hpp"
 #include "runtime/transport/port_spec.hpp"
 #include "runtime/upload/uploader.hpp"
 
@@ -68,7 +68,7 @@ struct TimedRun : Outcome {
 struct Plan {
   std::uint8_t group = 0;
   std::size_t actions = 0;
-  std::vector<PlannedFrame> frames;  // each encoded once (runtime/protocol/planned_frame.hpp)
+  std::vector<PlannedFrame> frames;  // each encoded once (protocol/planned_frame.hpp)
 };
 enum class Emit { Hex, Listing, Json };
 // Which report the CLI words: moves on a servo board, frames on a car.

@@ -6,7 +6,7 @@
 
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/boards/xarm_session.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::boards {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "runtime/boards/board.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::boards {

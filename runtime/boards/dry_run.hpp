@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "runtime/boards/board.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::boards {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
-#include "runtime/protocol/servo_target.hpp"
+#include "protocol/servo_target.hpp"
 
 namespace seqc::boards {
 

@@ -11,7 +11,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::boards {
 

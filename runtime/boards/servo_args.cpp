@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "compiler/frontend/profiles.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::boards {
 namespace {

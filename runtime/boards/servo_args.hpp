@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/result.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "base/result.hpp"
 
 namespace seqc::boards {
 

@@ -15,8 +15,8 @@
 
 #include "compiler/compile.hpp"
 #include "runtime/boards/xarm_session.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/result.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "base/result.hpp"
 
 namespace seqc::boards {
 

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "compiler/frontend/profiles.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 

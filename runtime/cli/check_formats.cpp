@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <string_view>
 
-#include "compiler/frontend/source/diagnostic_rules.hpp"
-#include "compiler/frontend/source/json_text.hpp"
+#include "base/diagnostic_rules.hpp"
+#include "base/json_text.hpp"
 
 namespace seqc::cli {
 namespace {

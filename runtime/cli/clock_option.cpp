@@ -2,7 +2,7 @@
 
 #include <ostream>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "runtime/cli/rig_file.hpp"
 
 namespace seqc::cli {

@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/clock_calibration.hpp"
 #include "runtime/cli/board_text.hpp"

@@ -12,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "compiler/frontend/profiles.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/show.hpp"
 #include "runtime/cli/check_formats.hpp"
 #include "runtime/cli/clock_option.hpp"
@@ -20,7 +20,7 @@
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/version.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 
 namespace seqc::cli {
 namespace {

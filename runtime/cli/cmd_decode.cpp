@@ -9,7 +9,7 @@
 
 #include "compiler/formats/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::cli {
 void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {

@@ -10,7 +10,7 @@
 
 #include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/svg_text.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/program_views.hpp"

@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/servo_args.hpp"
 #include "runtime/boards/xarm_queries.hpp"

@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/show.hpp"
 #include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "compiler/compile.hpp"
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/show.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"

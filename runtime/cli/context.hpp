@@ -6,7 +6,7 @@
 #include <atomic>
 #include <iosfwd>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "runtime/audio/audio_files.hpp"
 #include "runtime/audio/audio_output.hpp"
 #include "runtime/boards/hooks.hpp"

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 namespace seqc::cli {
 

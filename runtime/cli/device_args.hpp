@@ -12,7 +12,7 @@
 
 #include "compiler/compile.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::cli {
 

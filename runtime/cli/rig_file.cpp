@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::cli {

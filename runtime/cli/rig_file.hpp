@@ -14,10 +14,10 @@
 #include <string>
 #include <string_view>
 
-#include "compiler/frontend/source/diagnostics.hpp"
-#include "compiler/frontend/source/source.hpp"
+#include "base/diagnostics.hpp"
+#include "base/source.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::cli {
 

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "runtime/boards/first_move.hpp"
 #include "runtime/boards/live.hpp"
 #include "runtime/boards/ports.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "runtime/audio/audio_files.hpp"
 
 namespace seqc::cli {

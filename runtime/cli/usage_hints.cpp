@@ -2,7 +2,7 @@
 
 #include <cctype>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 
 namespace seqc::cli {
 namespace {

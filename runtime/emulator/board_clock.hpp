@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::emu {
 

@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::emu {
 

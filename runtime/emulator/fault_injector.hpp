@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "runtime/emulator/xarm_config.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::emu {
 

@@ -13,8 +13,8 @@
 
 #include "runtime/emulator/servo_model.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::emu {
 

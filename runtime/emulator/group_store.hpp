@@ -21,8 +21,8 @@
 #include <optional>
 #include <vector>
 
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/lsc_frame.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/lsc_frame.hpp"
 
 namespace seqc::emu {
 

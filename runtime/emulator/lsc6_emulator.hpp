@@ -45,8 +45,8 @@
 #include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/serial_line.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/result.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "base/result.hpp"
 
 namespace seqc::emu {
 

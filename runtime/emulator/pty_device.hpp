@@ -19,7 +19,7 @@
 #include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::emu {
 

@@ -19,7 +19,7 @@
 
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::emu {
 

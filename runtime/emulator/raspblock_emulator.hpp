@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "base/bytes.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::emu {
 

@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include "runtime/io/time_text.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::emu {
 namespace {

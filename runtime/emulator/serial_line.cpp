@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "runtime/protocol/lsc_frame.hpp"
+#include "protocol/lsc_frame.hpp"
 
 namespace seqc::emu {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::emu {
 

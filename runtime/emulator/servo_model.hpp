@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::emu {
 

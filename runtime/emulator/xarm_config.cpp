@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "runtime/emulator/board_clock.hpp"
 
 namespace seqc::emu {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::emu {
 

@@ -64,10 +64,10 @@
 #include "runtime/emulator/servo_model.hpp"
 #include "runtime/emulator/xarm_config.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/lsc_frame.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "base/bytes.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::emu {
 

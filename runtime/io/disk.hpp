@@ -1,7 +1,7 @@
 // The real file system behind compiler::FileReader.
 #pragma once
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 
 namespace seqc::io {
 

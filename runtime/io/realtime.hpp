@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::io {
 

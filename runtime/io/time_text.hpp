@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "runtime/io/clock.hpp"
 
 namespace seqc::io {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/bytes.hpp"
+#include "base/result.hpp"
 
 namespace seqc::io {
 

@@ -26,7 +26,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::player {
 

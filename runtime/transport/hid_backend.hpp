@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/bytes.hpp"
+#include "base/result.hpp"
 
 namespace seqc::transport {
 

@@ -5,7 +5,7 @@
 #include <climits>
 #include <cstring>
 
-#include "runtime/protocol/lsc_frame.hpp"
+#include "protocol/lsc_frame.hpp"
 
 namespace seqc::transport {
 namespace {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 #include "runtime/transport/hid_backend.hpp"
 #include "runtime/transport/port_spec.hpp"
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::transport {
 

@@ -22,9 +22,9 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
-#include "runtime/protocol/result.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc_stream.hpp"
+#include "base/result.hpp"
 
 namespace seqc::upload {
 

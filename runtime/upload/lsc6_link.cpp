@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::upload {
 namespace {

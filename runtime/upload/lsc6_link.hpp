@@ -18,8 +18,8 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc_stream.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::upload {

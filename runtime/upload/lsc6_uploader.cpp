@@ -9,7 +9,7 @@
 #include <variant>
 
 #include "runtime/io/time_text.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::upload {
 namespace {

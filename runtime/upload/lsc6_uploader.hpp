@@ -36,8 +36,8 @@
 
 #include <vector>
 
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/planned_frame.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "protocol/planned_frame.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/uploader.hpp"
 

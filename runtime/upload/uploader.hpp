@@ -109,8 +109,8 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/planned_frame.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/planned_frame.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::upload {

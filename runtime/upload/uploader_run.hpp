@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "runtime/io/time_text.hpp"
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/planned_frame.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/planned_frame.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::upload {

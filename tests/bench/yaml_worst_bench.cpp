@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace {

@@ -6,7 +6,7 @@
 
 #include "compiler/compile.hpp"
 #include "runtime/io/disk.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::boards::test_support {
 

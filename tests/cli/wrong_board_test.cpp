@@ -18,7 +18,7 @@
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 #include "tests/cli/device_test_util.hpp"
 
 namespace seqc::cli::test {

@@ -12,7 +12,7 @@
 #include "compiler/targets/servo_controller/servo_backend.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 #include "runtime/io/disk.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
+#include "protocol/lsc_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::backend {

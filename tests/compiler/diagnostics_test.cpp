@@ -1,5 +1,5 @@
 // Golden tests of what a person reads: the diagnostic layout is fixed here, byte for byte.
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

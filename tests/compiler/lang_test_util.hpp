@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 
 namespace seqc::compiler::testing {
 

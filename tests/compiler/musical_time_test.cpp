@@ -6,7 +6,7 @@
 #include <regex>
 
 #include "compiler/formats/plot_svg.hpp"
-#include "compiler/frontend/source/diagnostic_rules.hpp"
+#include "base/diagnostic_rules.hpp"
 #include "compiler/timeline/tempo_map.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 

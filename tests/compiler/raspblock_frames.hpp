@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler::testing {

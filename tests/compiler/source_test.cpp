@@ -1,4 +1,4 @@
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // docs/language.md.
 #include <gtest/gtest.h>
 
-#include "compiler/frontend/source/diagnostic_rules.hpp"
+#include "base/diagnostic_rules.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {

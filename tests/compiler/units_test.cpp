@@ -1,4 +1,4 @@
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <iterator>
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {

@@ -19,7 +19,7 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace fs = std::filesystem;

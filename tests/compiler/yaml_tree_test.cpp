@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 namespace seqc::emu::test {
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 
 extern char** environ;
 

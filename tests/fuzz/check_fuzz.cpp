@@ -8,7 +8,7 @@
 #include <string>
 
 #include "compiler/compile.hpp"
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 namespace {

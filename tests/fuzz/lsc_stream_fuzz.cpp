@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/lsc_stream.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc_stream.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 namespace {

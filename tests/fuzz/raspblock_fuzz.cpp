@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 using namespace seqc;

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "compiler/frontend/source/diagnostics.hpp"
+#include "base/diagnostics.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 

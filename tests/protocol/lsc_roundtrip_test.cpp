@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/lsc_frame.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
+#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc_messages.hpp"
 
 namespace seqc::lsc {
 namespace {

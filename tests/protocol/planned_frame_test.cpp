@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/protocol/planned_frame.hpp"
+#include "protocol/planned_frame.hpp"
 
 namespace seqc {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/bytes.hpp"
+#include "base/result.hpp"
 
 namespace seqc::test {
 

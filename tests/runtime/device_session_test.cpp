@@ -10,7 +10,7 @@
 #include "runtime/boards/xarm_session.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/io/clock.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::cli {

@@ -10,7 +10,7 @@
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "runtime/protocol/bytes.hpp"
+#include "base/bytes.hpp"
 #include "runtime/upload/lsc6_uploader.hpp"
 
 namespace seqc::upload {

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "compiler/frontend/source/diagnostics.hpp"
-#include "compiler/frontend/source/source.hpp"
+#include "base/diagnostics.hpp"
+#include "base/source.hpp"
 
 namespace seqc::compiler {
 

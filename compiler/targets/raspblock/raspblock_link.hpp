@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "compiler/program/raspblock_program.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::compiler {
 

@@ -21,7 +21,7 @@
 
 #include "compiler/frontend/positions.hpp"
 #include "compiler/frontend/scope_chain.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/frontend/step_walk.hpp"
 #include "compiler/targets/raspblock/raspblock_link.hpp"

@@ -7,7 +7,7 @@
 
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::compiler {
 

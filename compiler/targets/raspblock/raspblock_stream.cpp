@@ -1,6 +1,6 @@
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
 
-#include "runtime/protocol/raspblock.hpp"
+#include "protocol/raspblock.hpp"
 
 namespace seqc::backend {
 

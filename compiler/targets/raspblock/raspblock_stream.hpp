@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "compiler/frontend/source/source.hpp"
+#include "base/source.hpp"
 #include "compiler/program/raspblock_program.hpp"
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/bytes.hpp"
+#include "base/result.hpp"
 
 namespace seqc::backend {
 

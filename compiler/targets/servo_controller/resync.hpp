@@ -11,7 +11,7 @@
 
 #include "compiler/program/program.hpp"
 #include "compiler/timeline/exact_time.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/result.hpp"
 
 namespace seqc::backend {
 

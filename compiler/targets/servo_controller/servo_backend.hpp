@@ -10,19 +10,19 @@
 #include <vector>
 
 #include "compiler/program/program.hpp"
-#include "runtime/protocol/bytes.hpp"
-#include "runtime/protocol/group_download.hpp"
-#include "runtime/protocol/lsc6_messages.hpp"
-#include "runtime/protocol/lsc_messages.hpp"
-#include "runtime/protocol/planned_frame.hpp"
-#include "runtime/protocol/result.hpp"
+#include "base/bytes.hpp"
+#include "protocol/group_download.hpp"
+#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/planned_frame.hpp"
+#include "base/result.hpp"
 
 namespace seqc::backend {
 
 // One controller action per keyframe, in order.
 std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program);
 
-// One packet of the download as the uploader sends it (runtime/protocol/planned_frame.hpp).
+// One packet of the download as the uploader sends it (protocol/planned_frame.hpp).
 using seqc::DialectRequest;
 using seqc::PlannedFrame;
 

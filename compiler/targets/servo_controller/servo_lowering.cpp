@@ -13,10 +13,10 @@
 #include <fmt/format.h>
 
 #include "compiler/fitting/fitter.hpp"
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {

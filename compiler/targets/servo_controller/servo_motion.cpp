@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/timeline/easing.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 
 namespace seqc::compiler {
 

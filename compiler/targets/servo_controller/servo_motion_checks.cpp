@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/timeline/easing.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {

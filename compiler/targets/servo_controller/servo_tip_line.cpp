@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/targets/servo_controller/tip_line.hpp"
 #include "compiler/targets/servo_controller/tip_text.hpp"
-#include "runtime/protocol/group_download.hpp"
+#include "protocol/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -1,6 +1,6 @@
 // The servo-controller front end's values: positions with their limits, exact times through
 // the tempo map, and tolerances.
-#include "compiler/frontend/source/units.hpp"
+#include "base/units.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 
 namespace seqc::compiler {

@@ -1,0 +1,134 @@
+#include "base/units.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace seqc::compiler {
+namespace {
+
+std::string not_a_speed(std::string_view text) {
+  return fmt::format(
+      "'{}' is not a speed; write device units per second ('400/s') or degrees per second "
+      "('90deg/s')",
+      text);
+}
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Splits "1.5ms" into the longest decimal prefix and the rest.
+std::size_t number_length(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size() && is_digit(text[i])) ++i;
+  if (i < text.size() && text[i] == '.') {
+    std::size_t j = i + 1;
+    while (j < text.size() && is_digit(text[j])) ++j;
+    if (j > i + 1) i = j;
+  }
+  return i;
+}
+
+}  // namespace
+
+bool parse_decimal(std::string_view text, double& out) {
+  if (text.empty() || number_length(text) != text.size() || !is_digit(text[0])) return false;
+  // Decimal digits only, so this cannot fail; a hand-rolled parse avoids locale surprises.
+  double value = 0;
+  std::size_t i = 0;
+  for (; i < text.size() && text[i] != '.'; ++i) value = value * 10 + (text[i] - '0');
+  double scale = 0.1;
+  for (++i; i < text.size(); ++i, scale /= 10) value += (text[i] - '0') * scale;
+  out = value;
+  return true;
+}
+
+Result<TimeValue> parse_time(std::string_view text) {
+  const std::size_t n = number_length(text);
+  double amount = 0;
+  if (n == 0 || !parse_decimal(text.substr(0, n), amount)) {
+    return make_error(
+        fmt::format("'{}' is not a time; write it like '500ms', '1.5s' or '2b' (beats)", text));
+  }
+  const std::string_view unit = text.substr(n);
+  if (unit.empty()) {
+    return make_error("time '" + std::string(text) + "' has no unit; write '" + std::string(text) +
+                      "ms' or '" + std::string(text) + "s'");
+  }
+  if (unit == "ms") return TimeValue{amount, TimeUnit::Milliseconds};
+  if (unit == "s") return TimeValue{amount, TimeUnit::Seconds};
+  if (unit == "b") return TimeValue{amount, TimeUnit::Beats};
+  if (unit == "bar" || unit == "bars") return TimeValue{amount, TimeUnit::Bars};
+  return make_error("unknown time unit '" + std::string(unit) + "' in '" + std::string(text) +
+                    "'; use ms, s, b (beats) or bar");
+}
+
+Result<PositionValue> parse_position(std::string_view text) {
+  PositionValue v;
+  std::string_view rest = text;
+  double sign = 1;
+  if (!rest.empty() && (rest[0] == '+' || rest[0] == '-')) {
+    v.relative = true;
+    sign = rest[0] == '-' ? -1 : 1;
+    rest.remove_prefix(1);
+  }
+  if (rest.size() >= 3 && rest.substr(rest.size() - 3) == "deg") {
+    v.degrees = true;
+    rest.remove_suffix(3);
+  }
+  double amount = 0;
+  if (!parse_decimal(rest, amount)) {
+    return make_error(fmt::format(
+        "'{}' is not a position; write device units (500), degrees (90deg) or a relative move "
+        "(+50, -10deg)",
+        text));
+  }
+  if (!v.degrees && rest.find('.') != std::string_view::npos) {
+    return make_error("position '" + std::string(text) +
+                      "' is not a whole number of device units; use degrees ('" +
+                      std::string(text) + "deg') for fractions");
+  }
+  v.amount = sign * amount;
+  return v;
+}
+
+Result<SpeedValue> parse_speed(std::string_view text) {
+  SpeedValue v;
+  std::string_view rest = text;
+  if (rest.size() < 2 || rest.substr(rest.size() - 2) != "/s") {
+    return make_error(not_a_speed(text));
+  }
+  rest.remove_suffix(2);
+  if (rest.size() >= 3 && rest.substr(rest.size() - 3) == "deg") {
+    v.degrees = true;
+    rest.remove_suffix(3);
+  }
+  if (!parse_decimal(rest, v.per_second) || v.per_second <= 0) {
+    return make_error(not_a_speed(text));
+  }
+  return v;
+}
+
+std::string format_seconds(std::uint64_t ms) {
+  std::string s = std::to_string(ms / 1000);
+  std::uint64_t frac = ms % 1000;
+  if (frac != 0) {
+    std::string f = std::to_string(frac);
+    f.insert(0, 3 - f.size(), '0');
+    while (f.back() == '0') f.pop_back();
+    s += "." + f;
+  }
+  return s + " s";
+}
+
+std::string format_units(double units) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", units);
+  std::string out = buf;
+  while (!out.empty() && out.back() == '0') out.pop_back();
+  if (!out.empty() && out.back() == '.') out.pop_back();
+  return out == "-0" ? "0" : out;
+}
+
+}  // namespace seqc::compiler

@@ -1,0 +1,50 @@
+// The little value syntaxes of the language: times (500ms, 1.5s, 2b), positions (500, 90deg,
+// +50, -10deg) and speeds (400/s, 90deg/s). Each parser returns the parsed value or an error
+// message meant for a diagnostic at the value's location.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "base/result.hpp"
+
+namespace seqc::compiler {
+
+enum class TimeUnit { Milliseconds, Seconds, Beats, Bars };
+
+struct TimeValue {
+  double amount = 0;
+  TimeUnit unit = TimeUnit::Milliseconds;
+};
+
+// "500ms", "1.5s", "2b", "2bar". A bare number is an error whose message suggests the unit.
+Result<TimeValue> parse_time(std::string_view text);
+
+struct PositionValue {
+  bool relative = false;  // written with a sign: +50, -10deg
+  bool degrees = false;
+  double amount = 0;  // signed for relative values
+};
+
+// "500", "90deg", "+50", "-10deg", "+2.5deg". Device units must be whole numbers.
+Result<PositionValue> parse_position(std::string_view text);
+
+struct SpeedValue {
+  bool degrees = false;
+  double per_second = 0;
+};
+
+// "400/s" (device units per second) or "90deg/s".
+Result<SpeedValue> parse_speed(std::string_view text);
+
+// A non-negative decimal number ("12", "1.5"); false if `text` is not one.
+bool parse_decimal(std::string_view text, double& out);
+
+// A distance in device units for messages: "1", "0.5", "12.25" (at most two decimals).
+std::string format_units(double units);
+
+// "1.5 s", "750 ms", "12.5 s" style for summaries: seconds with up to 3 decimals, no trailing 0.
+std::string format_seconds(std::uint64_t ms);
+
+}  // namespace seqc::compiler
