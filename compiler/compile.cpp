@@ -1,6 +1,10 @@
-// compile_file(): load, read the robot section, and lower for the robot's kind.
+// compile_file(): the stages in order. The front end loads the file and reads its robot
+// section; the robot kind's target walks the steps to a timeline; fitting makes actions of a
+// servo controller's timeline and the target makes the program of them (the car's packets need
+// no fitting); the music stage checks the dance against its song.
 #include "compiler/compile.hpp"
 
+#include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/frontend/reporter.hpp"
@@ -19,6 +23,19 @@ void check_music(const Timeline& timeline, const CompileOptions& options, Report
 }
 
 }  // namespace
+
+ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoader& loader,
+                           Reporter& reporter, const CompileOptions& options) {
+  ServoWalk walk = walk_servo_file(robot, file, loader, reporter);
+  if (!ready_to_fit(walk, robot, reporter)) {
+    ServoProgram unfitted;
+    unfitted.robot = robot.info;
+    return unfitted;
+  }
+  const FitResult fit = fit_timeline_on_board(
+      walk.timeline, servo_fit_options(robot, options.free_end_points), options.clock_ppm);
+  return servo_program(robot, std::move(walk), fit, options.clock_ppm, reporter);
+}
 
 CompileOutput compile_file(const std::string& path, FileReader& files,
                            const CompileOptions& options) {
@@ -55,8 +72,7 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
       break;
     }
     case RobotKind::ServoController: {
-      ServoProgram program = lower_servo_program(*robot, file, loader, reporter,
-                                                 {options.clock_ppm, options.free_end_points});
+      ServoProgram program = compile_servo(*robot, file, loader, reporter, options);
       check_music(program.timeline, options, reporter);
       if (!out.diagnostics.has_errors(options.strict)) out.program = std::move(program);
       break;

@@ -50,6 +50,16 @@ struct CompileOutput {
   }
 };
 
+class FileLoader;
+class Reporter;
+struct LoadedFile;
+struct Robot;
+
+// The servo-controller stages for an already loaded file and its robot: the target's walk,
+// fitting, and the program made of the fitted actions (errors go to `reporter`).
+ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoader& loader,
+                           Reporter& reporter, const CompileOptions& options = {});
+
 // Compiles the file at `path` (as the user wrote it; includes are resolved relative to the
 // including file's directory).
 CompileOutput compile_file(const std::string& path, FileReader& files,

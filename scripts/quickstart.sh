@@ -5,7 +5,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
-"$root/scripts/build.sh"
+# The tool and what `cmake --install` copies (its man page and completions) only: the tests,
+# GoogleTest's and the benchmarks are the test command's (scripts/test.sh) to build.
+SEQC_BUILD_TARGETS="seqc seqc-docs" "$root/scripts/build.sh"
 build=${SEQC_BUILD_DIR:-$root/build}
 prefix=${SEQC_PREFIX:-/usr/local}
 sudo=""

@@ -594,4 +594,10 @@ FitResult fit_timeline(const Timeline& timeline, const FitOptions& options) {
   return Fitter(timeline, options).run();
 }
 
+FitResult fit_timeline_on_board(const Timeline& timeline, const FitOptions& options,
+                                std::int32_t clock_ppm) {
+  if (clock_ppm == 0) return fit_timeline(timeline, options);
+  return fit_timeline(timeline.stretched(1000000 + std::int64_t{clock_ppm}, 1000000), options);
+}
+
 }  // namespace seqc::compiler

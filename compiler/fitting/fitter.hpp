@@ -94,4 +94,11 @@ struct FitResult {
 
 FitResult fit_timeline(const Timeline& timeline, const FitOptions& options = {});
 
+// The timeline fitted for a board whose clock runs `clock_ppm` parts per million fast (slow when
+// negative): a board millisecond lasts 1 / (1 + e) host ms, so the author's instants are
+// stretched by (1 + e) before the fit rounds each boundary once, and the error never accumulates
+// action by action. 0 is fit_timeline() itself.
+FitResult fit_timeline_on_board(const Timeline& timeline, const FitOptions& options,
+                                std::int32_t clock_ppm);
+
 }  // namespace seqc::compiler

@@ -2,6 +2,7 @@
 // the simulator.
 #include <gtest/gtest.h>
 
+#include "compiler/compile.hpp"
 #include "compiler/formats/decode.hpp"
 #include "compiler/formats/listing.hpp"
 #include "compiler/formats/simulate.hpp"
@@ -235,7 +236,7 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
     ASSERT_TRUE(robot.has_value());
     EXPECT_EQ(robot->controller, compiler::ControllerModel::StraightLine);  // the xarm's
     robot->controller = model;
-    const compiler::ServoProgram p = compiler::lower_servo_program(*robot, file, loader, reporter);
+    const compiler::ServoProgram p = compiler::compile_servo(*robot, file, loader, reporter);
     ASSERT_FALSE(diags.has_errors(false)) << compiler::render_all(diags, sources);
     ASSERT_EQ(p.keyframes.size(), 1u);
     EXPECT_EQ(p.controller, model);

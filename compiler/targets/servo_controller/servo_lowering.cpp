@@ -1,6 +1,7 @@
-// The servo-controller front end: files, step lists and the structural steps. Motion steps
-// (move, wait, through) are in servo_motion.cpp; fitting the finished timeline into actions is
-// compiler/fitting/.
+// The servo-controller target: the walk's files, step lists and structural steps, and the
+// program made of the fitted actions. Motion steps (move, wait, through) are in
+// servo_motion.cpp; fitting the finished timeline into actions is compiler/fitting/, which the
+// driver runs between the two.
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 
 #include <algorithm>
@@ -47,55 +48,59 @@ ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& r
       robot_(robot),
       pos_(robot.info.servos.size()) {}
 
-ServoProgram ServoLowering::run(const LoadedFile& main, const ServoFitting& fitting) {
-  fitting_ = fitting;
+ServoWalk ServoLowering::run(const LoadedFile& main) {
   run_file(main, true);
-  ServoProgram program;
-  program.robot = robot_.info;
-  finish(program);
-  return program;
+  timeline_.end = now_;
+  // The lines are fitted again only once every track is walked, and only in a file without
+  // mistakes (ready_to_fit() fits nothing else).
+  if (reporter_.errors_reported() == 0) refit_lines();
+  ServoWalk walk;
+  walk.min_actions = min_actions_;
+  walk.truncated = truncated_;
+  walk.over_budget_at = over_budget_at_;
+  walk.sequence_at = sequence_at_;
+  walk.capacity = capacity();
+  for (const LineRecord& line : lines_) {
+    ServoTipLine l{line.request, {}, line.path_at};
+    std::copy_n(line.servos.begin(), 4, l.joints.begin());
+    walk.lines.push_back(std::move(l));
+  }
+  walk.timeline = std::move(timeline_);
+  return walk;
 }
 
-void ServoLowering::finish(ServoProgram& program) {
-  timeline_.end = now_;
-  // A file with mistakes makes no program: fitting it would only cost time (a long, slow curve
-  // took seconds; found by the check fuzzer).
-  if (reporter_.errors_reported() > 0) return;
-  refit_lines();
-  if (over_budget_at_) {
-    // Already more actions than a group holds before fitting (each step needs at least its
-    // count): fitting tens of thousands of steps would only cost time.
-    reporter_.error(*over_budget_at_, "the sequence needs at least " +
-                                          std::to_string(min_actions_) + "/" +
-                                          std::to_string(capacity()) + " actions; " +
-                                          group_capacity_text(robot_.profile));
-    return;
+ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
+                          Reporter& reporter) {
+  return ServoLowering(robot, loader, reporter).run(main);
+}
+
+bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter) {
+  if (reporter.errors_reported() > 0) return false;
+  if (walk.over_budget_at) {
+    // Fitting tens of thousands of steps would only cost time.
+    reporter.error(*walk.over_budget_at, "the sequence needs at least " +
+                                             std::to_string(walk.min_actions) + "/" +
+                                             std::to_string(walk.capacity) + " actions; " +
+                                             group_capacity_text(robot.profile));
+    return false;
   }
-  FitOptions fit_options;
-  fit_options.model = robot_.controller;
-  fit_options.free_end_points = fitting_.free_end_points;
-  for (const ServoInfo& s : robot_.info.servos) fit_options.limits.push_back({s.min, s.max});
-  // A board clock e fast plays a board millisecond in 1 / (1 + e) host ms: the author's
-  // instants are stretched by (1 + e) before the fit rounds each boundary once, so the error
-  // never accumulates action by action.
-  FitResult fit =
-      fitting_.clock_ppm == 0
-          ? fit_timeline(timeline_, fit_options)
-          : fit_timeline(timeline_.stretched(1000000 + std::int64_t{fitting_.clock_ppm}, 1000000),
-                         fit_options);
-  const std::uint64_t needed = std::max<std::uint64_t>(fit.actions.size(), min_actions_);
-  if (needed > capacity()) {
-    const Location at = fit.actions.size() > capacity() ? fit.actions[capacity()].source
-                                                        : fit.actions.back().source;
-    reporter_.error(at, "the sequence needs " + std::string(truncated_ ? "at least " : "") +
-                            std::to_string(needed) + "/" + std::to_string(capacity()) +
-                            " actions; " + group_capacity_text(robot_.profile));
-    fit.actions.resize(std::min<std::size_t>(fit.actions.size(), capacity()));
-  } else if (fit.actions.empty() && sequence_at_ && reporter_.errors_reported() == 0) {
-    reporter_.error(*sequence_at_, "the sequence makes no actions; a group needs at least one");
-  }
-  // One warning per curve: its worst miss, naming every servo that misses it (each 20ms
-  // action that falls short is a shortfall of its own, the same fact many times over).
+  return true;
+}
+
+FitOptions servo_fit_options(const Robot& robot, bool free_end_points) {
+  FitOptions options;
+  options.model = robot.controller;
+  options.free_end_points = free_end_points;
+  for (const ServoInfo& s : robot.info.servos) options.limits.push_back({s.min, s.max});
+  return options;
+}
+
+namespace {
+
+// One warning per curve: its worst miss, naming every servo that misses it (each 20ms action
+// that falls short is a shortfall of its own, the same fact many times over).
+void warn_shortfalls(const RobotInfo& robot, const ServoWalk& walk, const FitResult& fit,
+                     Timeline& timeline, Reporter& reporter) {
   std::vector<bool> told(fit.shortfalls.size(), false);
   for (std::size_t i = 0; i < fit.shortfalls.size(); ++i) {
     if (told[i]) continue;
@@ -113,10 +118,10 @@ void ServoLowering::finish(ServoProgram& program) {
     }
     // A curve always has a segment; should one not, the warning still points into the file.
     const Location where =
-        first.where.file != kNoFile ? first.where : sequence_at_.value_or(Location{0, 1, 1});
+        first.where.file != kNoFile ? first.where : walk.sequence_at.value_or(Location{0, 1, 1});
     std::string who;
     for (std::size_t servo : servos) {
-      who += (who.empty() ? "'" : ", '") + robot_.info.servos[servo].name + "'";
+      who += (who.empty() ? "'" : ", '") + robot.servos[servo].name + "'";
     }
     const std::string message =
         servos.size() == 1
@@ -125,21 +130,42 @@ void ServoLowering::finish(ServoProgram& program) {
                   format_seconds(worst.at_ms)
             : "even 20ms actions cannot keep servos " + who + " within " +
                   format_units(worst.tolerance) + " of this curve: up to " +
-                  format_units(worst.error) + " off ('" + robot_.info.servos[worst.servo].name +
+                  format_units(worst.error) + " off ('" + robot.servos[worst.servo].name +
                   "' at " + format_seconds(worst.at_ms) + ")";
-    reporter_.warning(where, message);
+    reporter.warning(where, message);
     for (std::size_t servo : servos) {
-      timeline_.warnings.push_back({static_cast<double>(worst.at_ms), servo, message});
+      timeline.warnings.push_back({static_cast<double>(worst.at_ms), servo, message});
     }
   }
-  for (const FittedAction& a : fit.actions) {
+}
+
+}  // namespace
+
+ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& fit_result,
+                           std::int32_t clock_ppm, Reporter& reporter) {
+  ServoProgram program;
+  program.robot = robot.info;
+  std::vector<FittedAction> actions = fit_result.actions;
+  const std::uint64_t needed = std::max<std::uint64_t>(actions.size(), walk.min_actions);
+  if (needed > walk.capacity) {
+    const Location at =
+        actions.size() > walk.capacity ? actions[walk.capacity].source : actions.back().source;
+    reporter.error(at, "the sequence needs " + std::string(walk.truncated ? "at least " : "") +
+                           std::to_string(needed) + "/" + std::to_string(walk.capacity) +
+                           " actions; " + group_capacity_text(robot.profile));
+    actions.resize(std::min<std::size_t>(actions.size(), walk.capacity));
+  } else if (actions.empty() && walk.sequence_at && reporter.errors_reported() == 0) {
+    reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");
+  }
+  warn_shortfalls(robot.info, walk, fit_result, walk.timeline, reporter);
+  for (const FittedAction& a : actions) {
     Keyframe k;
     k.start_ms = a.start_ms;
     k.time_ms = static_cast<std::uint16_t>(a.time_ms);
     k.source = a.source;
     for (const FittedTarget& t : a.targets) {
       k.targets.push_back(
-          {robot_.info.servos[t.servo].id, static_cast<std::uint16_t>(std::max(0, t.position))});
+          {robot.info.servos[t.servo].id, static_cast<std::uint16_t>(std::max(0, t.position))});
     }
     std::sort(k.targets.begin(), k.targets.end(),
               [](const lsc::ServoTarget& x, const lsc::ServoTarget& y) { return x.id < y.id; });
@@ -147,17 +173,15 @@ void ServoLowering::finish(ServoProgram& program) {
   }
   // The tip's own error on the lines, from the actions as they were fitted (all of them: a
   // group cut at its capacity is an error already).
-  for (const LineRecord& line : lines_) {
-    if (needed > capacity()) break;
-    std::array<std::size_t, 4> joints{};
-    std::copy_n(line.servos.begin(), 4, joints.begin());
+  for (const ServoTipLine& line : walk.lines) {
+    if (needed > walk.capacity) break;
     const backend::TipLineError e = backend::measure_tip_line(
-        line.request, joints, fit.actions, 1 + static_cast<double>(fitting_.clock_ppm) / 1e6);
+        line.request, line.joints, actions, 1 + static_cast<double>(clock_ppm) / 1e6);
     // Under a clock scale the line's boundaries are rounded again on the board's clock, which
     // moves the tip along the line by a fraction of a millisecond's travel: that is the scale's
     // (the budget line shows it), not another track's, so only an unscaled fit warns.
-    if (fitting_.clock_ppm == 0 && e.mm > line.request.tolerance_mm + 1e-9) {
-      reporter_.warning(
+    if (clock_ppm == 0 && e.mm > line.request.tolerance_mm + 1e-9) {
+      reporter.warning(
           line.path_at,
           fmt::format("the tip strays up to {:.2f} mm from this line (at {}), more than its "
                       "tolerance of {:g}mm: other tracks' moves during it cut the joints' "
@@ -170,12 +194,14 @@ void ServoLowering::finish(ServoProgram& program) {
       program.tip_error_at_ms = e.at_ms;
     }
   }
-  program.controller = fit_options.model;
-  program.fit_error = fit.max_error;
-  program.fit_error_at_ms = fit.max_error_at_ms;
-  program.fit_error_servo =
-      robot_.info.servos.empty() ? std::string() : robot_.info.servos[fit.max_error_servo].name;
-  program.timeline = std::move(timeline_);
+  program.controller = robot.controller;
+  program.fit_error = fit_result.max_error;
+  program.fit_error_at_ms = fit_result.max_error_at_ms;
+  program.fit_error_servo = robot.info.servos.empty()
+                                ? std::string()
+                                : robot.info.servos[fit_result.max_error_servo].name;
+  program.timeline = std::move(walk.timeline);
+  return program;
 }
 
 // ---- files and scopes -----------------------------------------------------------------------
@@ -394,9 +420,5 @@ void ServoLowering::tolerance_step(const YamlNode& value) {
   if (auto t = parse_tolerance(value)) lists_.back().tolerance = t;
 }
 
-ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                                 Reporter& reporter, const ServoFitting& fitting) {
-  return ServoLowering(robot, loader, reporter).run(main, fitting);
-}
 
 }  // namespace seqc::compiler

@@ -1,26 +1,66 @@
-// Lowers a choreography for a servo-controller robot into keyframes: resolves poses, relative
-// moves, mirroring, tempo, easing, repeats and includes; checks limits, speeds, action times
-// and the group's action budget (docs/language.md).
+// The servo-controller target, as two stages the driver (compiler/compile.cpp) runs on either
+// side of fitting:
+//
+// - walk_servo_file() lowers a choreography's steps to the timeline (docs/language.md): poses,
+//   relative moves, mirroring, tempo, easing, repeats and includes, with the checks of limits,
+//   speeds, action times and a lower bound of the actions the group needs;
+// - servo_program() turns the actions fitting made of that timeline into the program: the
+//   group's capacity checked, each curve's shortfall warned once, the keyframes with the
+//   controller's servo ids, and the tip's own error along every `path: line` move.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/robot_section.hpp"
 #include "compiler/program/program.hpp"
+#include "compiler/targets/servo_controller/tip_line.hpp"
 
 namespace seqc::compiler {
 
-// How the timeline is fitted into actions (CompileOptions' fields of the same names).
-struct ServoFitting {
-  // The timeline is fitted stretched by (1 + clock_ppm / 1e6); the program's timeline stays the
-  // author's.
-  std::int32_t clock_ppm = 0;
-  bool free_end_points = true;  // FitOptions::free_end_points
+// A `path: line` move as the walk left it: what the tip's error is measured against.
+struct ServoTipLine {
+  backend::TipLineRequest request;
+  std::array<std::size_t, 4> joints{};  // base, shoulder, elbow and wrist servos
+  Location path_at;
 };
 
-// The program is returned even when errors were reported (the caller decides); keyframes stop
-// at the group's 1,020-action budget.
-ServoProgram lower_servo_program(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                                 Reporter& reporter, const ServoFitting& fitting = {});
+// What the walk leaves for fitting.
+struct ServoWalk {
+  Timeline timeline;  // what the author meant, per servo, on exact time
+  // A lower bound of the actions (each step needs at least its count), and whether repeats
+  // stopped expanding once it passed the group's capacity.
+  std::uint64_t min_actions = 0;
+  bool truncated = false;
+  // The step that made the count pass the capacity (then the file is not fitted).
+  std::optional<Location> over_budget_at;
+  std::optional<Location> sequence_at;  // the main file's `sequence:`
+  std::vector<ServoTipLine> lines;      // every `path: line` move, in the order walked
+  std::size_t capacity = 0;             // actions one group holds on the robot's controller
+};
+
+// The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
+// whatever they are.
+ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
+                          Reporter& reporter);
+
+// Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
+// only cost time: a long, slow curve took seconds), nor when the walk alone already needs more
+// actions than a group holds (reported here).
+bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter);
+
+// How fitting treats this robot's servos: its controller's model and each servo's limits.
+FitOptions servo_fit_options(const Robot& robot, bool free_end_points);
+
+// The program from the walk and its fitted actions (fitted with servo_fit_options() on a board
+// `clock_ppm` fast). Keyframes stop at the group's capacity, which is an error.
+ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& fit,
+                           std::int32_t clock_ppm, Reporter& reporter);
 
 }  // namespace seqc::compiler

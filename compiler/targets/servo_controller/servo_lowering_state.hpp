@@ -37,7 +37,7 @@ namespace seqc::compiler {
 class ServoLowering final : public StepWalker {
  public:
   ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
-  ServoProgram run(const LoadedFile& main, const ServoFitting& fitting = {});
+  ServoWalk run(const LoadedFile& main);
 
  private:
   // ---- files and the walk's hooks (servo_lowering.cpp) --------------------------------------
@@ -57,8 +57,6 @@ class ServoLowering final : public StepWalker {
   friend class ServoBlockRun;
   void mirror_step(const YamlNode& step, const YamlNode& body);
   void tolerance_step(const YamlNode& value);
-  void finish(ServoProgram& program);
-  ServoFitting fitting_;
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
   std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);
@@ -144,7 +142,7 @@ class ServoLowering final : public StepWalker {
   // the line's own actions and its end as it was, and with the curves other servos follow
   // within the line's time as its own other servos (else the fitter would cut the joints'
   // pieces where it fits them). Where no such actions keep the tolerance the line stays as it
-  // was and finish() warns with the tip's true distance.
+  // was and servo_program() warns with the tip's true distance.
   void refit_lines();
   // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
   // short from the far end at max_speed. `targets`: the move's positions, by servo.

@@ -278,13 +278,13 @@ void ServoLowering::refit_lines() {
     backend::TipLineResult fit = backend::fit_tip_line(r);
     if (fit.problem && !followers.empty()) {
       // The curves cannot share the line's actions within their tolerances: the fitter fits
-      // them with actions of its own, as before, and finish() warns if the tip then strays.
+      // them with actions of its own, as before, and servo_program() warns if the tip then strays.
       r.others.resize(line->servos.size() - 4);
       all.servos.resize(line->servos.size());
       followers.clear();
       fit = backend::fit_tip_line(r);
     }
-    if (fit.problem) continue;  // the pieces stay as they were; finish() warns
+    if (fit.problem) continue;  // the pieces stay as they were; servo_program() warns
     std::vector<std::vector<Segment>> pieces = line_pieces(r, fit, all);
     auto speed = [](const Segment& x) {
       return std::abs(x.to - x.from) / (x.end.value() - x.start.value());
