@@ -3,7 +3,7 @@
 #include <ostream>
 
 #include "base/diagnostics.hpp"
-#include "runtime/cli/rig_file.hpp"
+#include "compiler/frontend/rig_file.hpp"
 
 namespace seqc::cli {
 
@@ -26,13 +26,13 @@ ExitCode resolve_clock_ppm(Context& ctx, const ClockScaleOptions& options, std::
     compiler::SourceManager sources;
     compiler::Diagnostics diags;
     const std::uint32_t file = sources.add(options.rig, *text);
-    const auto rig = parse_rig(sources, file, diags);
+    const auto rig = compiler::parse_rig(sources, file, diags);
     ctx.err << compiler::render_all(diags, sources, false, ctx.color);
     if (!rig) return ExitCode::InvalidInput;
     if (rig->clock_ppm) ppm = *rig->clock_ppm;
   }
   if (!options.clock_ppm.empty()) {
-    auto given = parse_clock_ppm(options.clock_ppm);
+    auto given = compiler::parse_clock_ppm(options.clock_ppm);
     if (!given) {
       ctx.err << "seqc: error: --clock-ppm: " << given.error().message << "\n";
       return ExitCode::Usage;

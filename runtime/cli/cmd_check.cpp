@@ -3,7 +3,7 @@
 // ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)", with
 // `path: line` moves "... and 0.99 mm (tip at 2.379 s)"), for a
 // streamed program its packets and duration, else its mistakes. With json or sarif, one
-// document on stdout holding every file's diagnostics (check_formats.hpp) and nothing else.
+// document on stdout holding every file's diagnostics (base/diagnostic_formats.hpp) and nothing else.
 #include <string>
 #include <vector>
 
@@ -14,7 +14,7 @@
 #include "compiler/frontend/profiles.hpp"
 #include "base/units.hpp"
 #include "compiler/show.hpp"
-#include "runtime/cli/check_formats.hpp"
+#include "base/diagnostic_formats.hpp"
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
@@ -142,10 +142,13 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
     result.code =
         unreadable ? ExitCode::FileError : (invalid ? ExitCode::InvalidInput : ExitCode::Ok);
     if (opts->format != "text") {
-      std::vector<CheckedFile> files;
-      for (const Unit& u : units) files.push_back({u.path, &u.compiled.output});
-      ctx.out << (opts->format == "json" ? diagnostics_json(files, opts->strict)
-                                         : diagnostics_sarif(files, opts->strict, kVersion));
+      std::vector<compiler::CheckedFile> files;
+      for (const Unit& u : units) {
+        const compiler::CompileOutput& o = u.compiled.output;
+        files.push_back(compiler::CheckedFile{u.path, &o.sources, &o.diagnostics, o.read_error});
+      }
+      ctx.out << (opts->format == "json" ? compiler::diagnostics_json(files, opts->strict)
+                                         : compiler::diagnostics_sarif(files, opts->strict, kVersion));
       return;
     }
     for (const Unit& u : units) {

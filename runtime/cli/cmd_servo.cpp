@@ -17,7 +17,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "runtime/cli/pose_text.hpp"
+#include "compiler/formats/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
@@ -52,7 +52,7 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
       // A line to paste under `poses:` (seqc teach adds them to a file itself).
       std::vector<std::pair<std::uint8_t, std::uint16_t>> positions;
       for (const lsc::ServoTarget& t : *answered) positions.emplace_back(t.id, t.position);
-      ctx.out << "  " << pose_line(o.name, positions, **robot) << "\n";
+      ctx.out << "  " << compiler::pose_line(o.name, positions, **robot) << "\n";
       if (positions.size() != ids->size()) {
         ctx.err << "seqc: error: " << ids->size() - positions.size()
                 << " servo(s) did not answer; the pose lacks them\n";

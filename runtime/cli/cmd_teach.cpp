@@ -13,7 +13,7 @@
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "runtime/cli/pose_text.hpp"
+#include "compiler/formats/pose_text.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
@@ -25,7 +25,7 @@ struct TeachOptions {
 };
 
 std::string next_default_name(const std::string& text) {
-  const std::vector<std::string> taken = pose_names(text);
+  const std::vector<std::string> taken = compiler::pose_names(text);
   for (int n = 1;; ++n) {
     const std::string name = "pose" + std::to_string(n);
     if (std::find(taken.begin(), taken.end(), name) == taken.end()) return name;
@@ -91,8 +91,8 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
         if (is_pose_name(name)) break;
         ctx.err << "seqc: a pose name is letters, digits and _, not starting with a digit\n";
       }
-      const std::string pose = pose_line(name, positions, *robot);
-      auto edited = add_pose(text, pose, name);
+      const std::string pose = compiler::pose_line(name, positions, *robot);
+      auto edited = compiler::add_pose(text, pose, name);
       if (!edited) {
         ctx.err << "seqc: error: " << o.file << ": " << edited.error().message << "\n";
         continue;

@@ -9,6 +9,7 @@
 // pure: the caller reads the file and renders the diagnostics.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,14 +17,13 @@
 
 #include "base/diagnostics.hpp"
 #include "base/source.hpp"
-#include "runtime/io/clock.hpp"
 #include "base/result.hpp"
 
-namespace seqc::cli {
+namespace seqc::compiler {
 
 struct Rig {
   std::optional<std::int32_t> clock_ppm;
-  std::optional<io::Duration> audio_offset;  // may be negative
+  std::optional<std::chrono::nanoseconds> audio_offset;  // may be negative
 };
 
 // The largest clock error a rig file or --clock-ppm takes, either way (20 %).
@@ -36,4 +36,4 @@ Result<std::int32_t> parse_clock_ppm(std::string_view text);
 std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32_t file,
                              compiler::Diagnostics& diags);
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler

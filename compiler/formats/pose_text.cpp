@@ -1,8 +1,8 @@
-#include "runtime/cli/pose_text.hpp"
+#include "compiler/formats/pose_text.hpp"
 
 #include <sstream>
 
-namespace seqc::cli {
+namespace seqc::compiler {
 namespace {
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -119,4 +119,4 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
   return out;
 }
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler

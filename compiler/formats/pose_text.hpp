@@ -9,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "compiler/compile.hpp"
+#include "compiler/program/program.hpp"
 #include "base/result.hpp"
 
-namespace seqc::cli {
+namespace seqc::compiler {
 
 // "NAME: {servo: position, ...}" with the robot's servo names, in the order given.
 std::string pose_line(const std::string& name,
@@ -28,4 +28,4 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
 // The names of the poses in the file's top-level `poses:` block, as written.
 std::vector<std::string> pose_names(const std::string& text);
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler

@@ -11,20 +11,26 @@
 // message and physical location, and its notes as related locations.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "compiler/compile.hpp"
+#include "base/diagnostics.hpp"
+#include "base/source.hpp"
 
-namespace seqc::cli {
+namespace seqc::compiler {
 
+// One file checked: its diagnostics with the sources they point into, or why it could not be
+// read. The pointers outlive the call.
 struct CheckedFile {
   std::string path;  // as given (or <stdin>)
-  const compiler::CompileOutput* output = nullptr;
+  const SourceManager* sources = nullptr;
+  const Diagnostics* diagnostics = nullptr;
+  std::optional<std::string> read_error;
 };
 
 std::string diagnostics_json(const std::vector<CheckedFile>& files, bool strict);
 std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict,
                               const std::string& version);
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler

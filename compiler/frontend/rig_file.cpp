@@ -1,4 +1,4 @@
-#include "runtime/cli/rig_file.hpp"
+#include "compiler/frontend/rig_file.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -7,12 +7,12 @@
 #include "base/units.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
-namespace seqc::cli {
+namespace seqc::compiler {
 namespace {
 
 constexpr std::string_view kKeys[] = {"clock_ppm", "audio_offset"};
 
-Result<io::Duration> parse_offset(std::string_view text) {
+Result<std::chrono::nanoseconds> parse_offset(std::string_view text) {
   std::string_view digits = text;
   bool negative = false;
   if (!digits.empty() && (digits.front() == '-' || digits.front() == '+')) {
@@ -25,7 +25,7 @@ Result<io::Duration> parse_offset(std::string_view text) {
   }
   const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   const auto ns = static_cast<std::int64_t>(std::llround(ms * 1e6));
-  return io::Duration{negative ? -ns : ns};
+  return std::chrono::nanoseconds{negative ? -ns : ns};
 }
 
 }  // namespace
@@ -97,4 +97,4 @@ std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32
   return rig;
 }
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler

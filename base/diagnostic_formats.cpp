@@ -1,4 +1,4 @@
-#include "runtime/cli/check_formats.hpp"
+#include "base/diagnostic_formats.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -7,12 +7,8 @@
 #include "base/diagnostic_rules.hpp"
 #include "base/json_text.hpp"
 
-namespace seqc::cli {
+namespace seqc::compiler {
 namespace {
-
-using compiler::Diagnostic;
-using compiler::json_string;
-using compiler::Severity;
 
 // One diagnostic with the notes that follow it, located.
 struct Place {
@@ -28,8 +24,8 @@ struct Entry {
   std::vector<std::pair<Place, std::string>> notes;
 };
 
-Place place_of(const compiler::Location& l, const CheckedFile& f) {
-  const compiler::SourceManager& sources = f.output->sources;
+Place place_of(const Location& l, const CheckedFile& f) {
+  const SourceManager& sources = *f.sources;
   if (l.file >= sources.file_count()) return {f.path, 0, 0};  // no file: the one checked
   Place p{sources.path(l.file), l.line, l.column};
   if (p.line > 0 && p.column == 0) p.column = 1;
@@ -39,11 +35,11 @@ Place place_of(const compiler::Location& l, const CheckedFile& f) {
 std::vector<Entry> entries(const std::vector<CheckedFile>& files) {
   std::vector<Entry> out;
   for (const CheckedFile& f : files) {
-    if (f.output->read_error) {
-      out.push_back({nullptr, *f.output->read_error, {f.path, 0, 0}, {}});
+    if (f.read_error) {
+      out.push_back({nullptr, *f.read_error, {f.path, 0, 0}, {}});
       continue;
     }
-    for (const Diagnostic& d : f.output->diagnostics.all()) {
+    for (const Diagnostic& d : f.diagnostics->all()) {
       if (d.severity == Severity::Note && !out.empty() && out.back().main != nullptr) {
         out.back().notes.emplace_back(place_of(d.location, f), d.message);
       } else if (d.severity != Severity::Note) {
@@ -60,7 +56,7 @@ std::string severity(const Entry& e, bool strict) {
 }
 
 std::string rule_id(const Entry& e) {
-  return e.main == nullptr ? "file-error" : std::string(compiler::rule_for(*e.main).id);
+  return e.main == nullptr ? "file-error" : std::string(rule_for(*e.main).id);
 }
 
 std::string message(const Entry& e) { return e.main == nullptr ? e.read_error : e.main->message; }
@@ -134,7 +130,7 @@ std::string diagnostics_json(const std::vector<CheckedFile>& files, bool strict)
 
 std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict,
                               const std::string& version) {
-  const auto& rules = compiler::diagnostic_rules();
+  const auto& rules = diagnostic_rules();
   std::string out =
       "{\n  \"$schema\": \"https://json.schemastore.org/sarif-2.1.0.json\",\n"
       "  \"version\": \"2.1.0\",\n  \"runs\": [{\n    \"tool\": {\"driver\": {\"name\": \"seqc\", "
@@ -178,4 +174,4 @@ std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict
   return out;
 }
 
-}  // namespace seqc::cli
+}  // namespace seqc::compiler
