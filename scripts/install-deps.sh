@@ -9,7 +9,7 @@ packages=(
   libsndfile1-dev libpulse-dev pulseaudio pulseaudio-utils
   python3 python3-yaml python3-jsonschema
   dpkg-dev file groff-base zsh fish pre-commit git
-  chromium python3-pil
+  chromium python3-pil eslint
 )
 # clang builds the libFuzzer targets; optional, installed when available.
 optional=(clang libclang-rt-dev)

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
+#include <string_view>
+#include <utility>
 
 #include "compiler/formats/car_path.hpp"
 #include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/preview_page_text.hpp"
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
 #include "base/json_text.hpp"
@@ -73,6 +77,30 @@ std::string script_safe(std::string json) {
     json.replace(at, 2, "<\\/");
   }
   return json;
+}
+
+// The skeleton with each @name@ of `parts` replaced by its text. Only the skeleton is scanned: an
+// "@" in a part (a title, the data) is copied as it is.
+std::string fill(std::string_view skeleton,
+                 std::initializer_list<std::pair<std::string_view, std::string_view>> parts) {
+  std::size_t size = skeleton.size();
+  for (const auto& part : parts) size += part.second.size();
+  std::string out;
+  out.reserve(size);
+  std::size_t from = 0;
+  for (std::size_t at = skeleton.find('@'); at != std::string_view::npos;
+       at = skeleton.find('@', at + 1)) {
+    const std::size_t close = skeleton.find('@', at + 1);
+    if (close == std::string_view::npos) break;
+    const std::string_view name = skeleton.substr(at + 1, close - at - 1);
+    const auto part =
+        std::find_if(parts.begin(), parts.end(), [&](const auto& p) { return p.first == name; });
+    if (part == parts.end()) continue;
+    out.append(skeleton.substr(from, at - from)).append(part->second);
+    from = close + 1;
+    at = close;
+  }
+  return out.append(skeleton.substr(from));
 }
 
 // RFC 4648 base64, for the song's data: URL.
@@ -219,30 +247,14 @@ std::string preview_page(const std::string& title, const std::vector<std::string
                                 : "";
   std::string lanes;
   for (const PreviewPart& p : parts) lanes += "<div class=\"lanes\">\n" + p.lanes_svg + "</div>\n";
-  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-         "<meta name=\"viewport\" content=\"width=device-width\">\n<title>" +
-         svg::escape(title) + "</title>\n<style>\n" + preview_style() +
-         "</style>\n</head>\n<body>\n"
-         "<header id=\"controls\">\n"
-         "<button id=\"play\" type=\"button\" title=\"play or pause (space)\">play</button>\n"
-         "<input id=\"scrub\" type=\"range\" min=\"0\" max=\"" +
-         num(end_ms) +
-         "\" step=\"1\" value=\"0\" title=\"the time\">\n"
-         "<span id=\"now\">0.00 s</span>\n"
-         "<label>speed <select id=\"speed\"><option value=\"1\">1</option>"
-         "<option value=\"0.5\">1/2</option><option value=\"0.25\">1/4</option></select></label>\n"
-         "<label><input id=\"loop\" type=\"checkbox\"> loop <span id=\"loop-unit\">bars</span> "
-         "<input id=\"loop-from\" type=\"number\" min=\"1\" value=\"1\"> to "
-         "<input id=\"loop-to\" type=\"number\" min=\"1\" value=\"1\"></label>\n"
-         "<span id=\"title\">" +
-         svg::escape(title) +
-         "</span>\n</header>\n"
-         "<div id=\"stage\"></div>\n" +
-         audio + "<div id=\"all-lanes\">\n" + lanes +
-         "</div>\n<pre id=\"seqc-state\"></pre>\n"
-         "<script id=\"seqc-data\" type=\"application/json\">" +
-         script_safe(data) + "</script>\n<script>\n" + preview_script() +
-         "</script>\n</body>\n</html>\n";
+  const std::string escaped_title = svg::escape(title), end = num(end_ms), safe = script_safe(data);
+  return fill(preview_skeleton(), {{"title", escaped_title},
+                                   {"style", preview_style()},
+                                   {"end", end},
+                                   {"audio", audio},
+                                   {"lanes", lanes},
+                                   {"data", safe},
+                                   {"script", preview_script()}});
 }
 
 }  // namespace seqc::backend

@@ -15,6 +15,12 @@
 // seeking, pausing or changing the rate of the page does the same to the audio. Past the
 // audio's end the page goes on on the wall clock.
 //
+// The page's fixed text lives as ordinary files in formats/preview/ (preview.html, preview.css
+// and the script's files), embedded at build time (preview_page_text.hpp); this file fills in
+// the title, the data, the lanes and the song. The script mirrors two pieces of the compiler
+// exactly: the controller's motion of formats/simulate.cpp in preview/motion.js and the forward
+// kinematics of program/arm_kinematics.hpp in preview/kinematics.js.
+//
 // The page's contract, which tests and screenshots rely on:
 //   - `#t=SECONDS` in the URL shows that instant, paused;
 //   - the element `seqc-state` holds JSON for the instant shown:
@@ -68,9 +74,5 @@ PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const st
 std::string preview_page(const std::string& title, const std::vector<std::string>& names,
                          const std::vector<PreviewPart>& parts, double end_ms,
                          const PreviewSong* song = nullptr);
-
-// The page's script and style (preview_script.cpp).
-const std::string& preview_script();
-const std::string& preview_style();
 
 }  // namespace seqc::backend

@@ -80,6 +80,18 @@ TEST(PreviewPage, ATitleCannotCloseTheScript) {
   EXPECT_NE(html.find("<title>a&lt;/script&gt;&lt;b&gt;.yaml</title>"), std::string::npos);
 }
 
+// The skeleton's @name@ places are filled once: none is left, and a title that looks like one
+// is copied as written, not filled again.
+TEST(PreviewPage, FillsTheSkeletonOnce) {
+  const std::string html = page_of(kArm, "@script@.yaml");
+  for (const char* place : {"@title@", "@style@", "@end@", "@audio@", "@lanes@", "@data@"}) {
+    EXPECT_EQ(html.find(place), std::string::npos) << place;
+  }
+  EXPECT_NE(html.find("<title>@script@.yaml</title>"), std::string::npos);
+  EXPECT_NE(html.find("<span id=\"title\">@script@.yaml</span>"), std::string::npos);
+  EXPECT_EQ(count(html, "\"use strict\";"), 1u);
+}
+
 TEST(PreviewPage, AShowNamesItsPerformers) {
   const auto a = compile_text(kArm);
   const auto b = compile_text("robot: lsc-16\nsequence:\n  - move: {ch1: 1600}\n    time: 1s\n");

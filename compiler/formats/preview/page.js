@@ -1,150 +1,3 @@
-// The preview page's script and style (formats/preview_html.hpp gives the page's contract).
-// The script mirrors two pieces of the compiler exactly: the controller's motion of
-// formats/simulate.cpp (each action a straight line from where the servos are to its targets,
-// servos starting at home) and the forward kinematics of program/arm_kinematics.hpp.
-#include "compiler/formats/preview_html.hpp"
-
-namespace seqc::backend {
-
-const std::string& preview_style() {
-  static const std::string style =
-      R"CSS(body { margin: 0; font: 13px sans-serif; color: #1f2937; background: #ffffff; }
-#controls { height: 48px; box-sizing: border-box; display: flex; align-items: center; gap: 12px;
-  padding: 0 8px; border-bottom: 1px solid #d1d5db; white-space: nowrap; overflow: hidden;
-  background: #f9fafb; }
-#controls button { width: 64px; }
-#scrub { width: 260px; }
-#now { font-variant-numeric: tabular-nums; width: 150px; }
-#controls input[type=number] { width: 44px; }
-#title { font-weight: bold; }
-#stage { display: flex; gap: 16px; padding: 8px; box-sizing: border-box; overflow-x: auto;
-  overflow-y: hidden; }
-.robot { position: relative; flex: none; height: 424px; }
-.robot.dials { height: 168px; }
-.robot .caption { position: absolute; left: 0; top: 0; height: 20px; line-height: 20px;
-  font-weight: bold; overflow: hidden; white-space: nowrap; }
-.robot svg { position: absolute; top: 24px; }
-.lanes svg { display: block; cursor: crosshair; }
-#seqc-state { font: 11px monospace; color: #6b7280; padding: 4px 8px; white-space: pre-wrap; }
-)CSS";
-  return style;
-}
-
-const std::string& preview_script() {
-  static const std::string script = std::string(R"JS("use strict";
-const page = JSON.parse(document.getElementById("seqc-data").textContent);
-const endMs = Math.max(page.end, 1);
-const $ = (id) => document.getElementById(id);
-
-// The one time source. Everything drawn follows clock() (seconds). With a song the <audio>
-// element is the clock: while it plays, the sequence's time is its currentTime minus the
-// downbeat, so the picture follows what is heard; seeking, pausing and the rate go to it too. The
-// wall clock carries on where the audio cannot (before it has loaded, past its end).
-const timeSource = { playing: false, at: 0, origin: 0, rate: 1 };
-const wall = () => performance.now() / 1000;
-const audio = $("song");
-const lead = page.song ? page.song.downbeat : 0;
-const audioRuns = () => audio && !audio.paused && !audio.ended && audio.readyState >= 2;
-function audioTo(seconds) {
-  if (!audio) return;
-  const at = seconds + lead;
-  if (!isNaN(audio.duration) && at >= audio.duration) {
-    audio.pause();
-    return;
-  }
-  audio.currentTime = Math.max(at, 0);
-}
-function clock() {
-  const s = timeSource;
-  if (s.playing && audioRuns()) return audio.currentTime - lead;
-  return s.playing ? s.at + (wall() - s.origin) * s.rate : s.at;
-}
-function seek(seconds) {
-  timeSource.at = Math.min(Math.max(seconds, 0), endMs / 1000);
-  timeSource.origin = wall();
-  audioTo(timeSource.at);
-}
-function play() {
-  if (clock() >= endMs / 1000) seek(loopRange() ? loopRange()[0] / 1000 : 0);
-  timeSource.at = clock();
-  timeSource.origin = wall();
-  timeSource.playing = true;
-  if (audio && (isNaN(audio.duration) || timeSource.at + lead < audio.duration)) {
-    audioTo(timeSource.at);
-    audio.playbackRate = timeSource.rate;
-    audio.play().catch(() => {});  // no sound allowed: the wall clock plays on
-  }
-}
-function pause() {
-  timeSource.at = clock();
-  timeSource.playing = false;
-  if (audio) audio.pause();
-}
-function setRate(rate) {
-  timeSource.at = clock();
-  timeSource.origin = wall();
-  timeSource.rate = rate;
-  if (audio) {
-    audio.preservesPitch = true;
-    audio.playbackRate = rate;
-  }
-}
-if (audio) {
-  // The audio's clock moved by someone else (its own controls, a test driving it): follow it.
-  audio.addEventListener("seeked", () => {
-    if (!timeSource.playing) {
-      timeSource.at = audio.currentTime - lead;
-      draw(clock());
-    }
-  });
-  // Past the song's end the dance goes on on the wall clock, from where the audio stopped.
-  audio.addEventListener("ended", () => {
-    timeSource.at = audio.duration - lead;
-    timeSource.origin = wall();
-  });
-}
-
-const round2 = (v) => Math.round(v * 100) / 100 + 0;
-const fmt = (v) => String(round2(v));
-
-// The controller's motion at t ms, as formats/simulate.cpp computes it: every action that has
-// ended by t has put its servos at their targets; the current one moves its servos in a straight
-// line from there.
-function servoPositions(p, t) {
-  const from = p.servos.map((s) => s.home);
-  const actions = p.actions;
-  let k = 0;
-  while (k < actions.length && actions[k][0] + actions[k][1] <= t) {
-    for (const [i, v] of actions[k][2]) from[i] = v;
-    ++k;
-  }
-  const now = from.slice();
-  if (k < actions.length) {
-    const [start, time, targets] = actions[k];
-    const f = Math.max(0, (t - start) / time);
-    for (const [i, v] of targets) now[i] = from[i] + (v - from[i]) * f;
-  }
-  return now;
-}
-
-// Forward kinematics (program/arm_kinematics.hpp): a joint angle is sign * (position - zero) *
-// degrees_per_unit; all angles 0 points straight up; the base turns about the vertical axis.
-function armPoints(arm, position) {
-  const rad = (j) => j.sign * (position(j.servo) - j.zero) * arm.degrees_per_unit * Math.PI / 180;
-  const base = rad(arm.joints.base);
-  const s = rad(arm.joints.shoulder);
-  const se = s + rad(arm.joints.elbow);
-  const sew = se + rad(arm.joints.wrist);
-  const plane = [[0, arm.base_height]];
-  let r = 0, z = arm.base_height;
-  for (const [length, angle] of [[arm.upper_arm, s], [arm.forearm, se], [arm.hand, sew]]) {
-    r += length * Math.sin(angle);
-    z += length * Math.cos(angle);
-    plane.push([r, z]);
-  }
-  return { plane, base, hand: sew, tip: [r * Math.cos(base), r * Math.sin(base), z] };
-}
-
 // The car's state at t ms: the last change at or before t (the board applies each packet when
 // it arrives), and its pose between the path's 20 ms samples.
 function carState(p, t) {
@@ -166,7 +19,7 @@ function carState(p, t) {
   }
   return { values, pose: { x: pose[1], y: pose[2], heading: pose[3] } };
 }
-)JS") + std::string(R"JS(
+
 // ---- drawing: each part's robot is built once as SVG text, then only attributes change.
 const SIDE = { w: 400, h: 400, scale: 0.4, r0: 200, z0: 300 };
 const sideX = (r) => SIDE.r0 + r * SIDE.scale;
@@ -268,7 +121,7 @@ function buildPart(p, index) {
 function escapeText(s) {
   return s.replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
 }
-)JS") + std::string(R"JS(
+
 // Draws part p at t ms and returns its state for seqc-state.
 function drawPart(p, index, t) {
   const prefix = "p" + index;
@@ -338,7 +191,7 @@ function drawPart(p, index, t) {
   }
   return state;
 }
-)JS") + std::string(R"JS(
+
 // ---- the page: bars, loop, controls, the frame loop.
 // Loops count bars; a tempo without a meter counts beats; no tempo, seconds.
 const barsPart = page.parts.find((p) => p.bars.length > 0) ||
@@ -454,8 +307,3 @@ function fromHash() {
 }
 window.addEventListener("hashchange", fromHash);
 if (!fromHash()) draw(0);
-)JS");
-  return script;
-}
-
-}  // namespace seqc::backend
