@@ -80,6 +80,7 @@ Result<std::vector<PlannedFrame>> plan_frames(const std::vector<lsc::Request>& s
     if (!bytes) return bytes.error();
     PlannedFrame f;
     f.request = r;
+    f.dialect = &kXarmDialect;
     f.bytes = std::move(bytes).value();
     f.index = out.size();
     f.step = lsc::group_download_step(r);
@@ -107,6 +108,7 @@ Result<std::vector<PlannedFrame>> plan_frames(const std::vector<lsc6::DownloadAc
     if (!bytes) return bytes.error();
     PlannedFrame f;
     f.request = std::move(request);
+    f.dialect = &kLsc6Dialect;
     f.bytes = std::move(bytes).value();
     f.index = out.size();
     f.is_action = true;

@@ -2,7 +2,9 @@
 // is encoded and labelled: the uploaders, the dry run, listings and size checks all read these
 // fields, so what is shown, checked and sent cannot differ. The plan is either GroupDownload
 // steps 1-5 (xArm / LSC-16 / LSC-32) or one DownloadAction per action (LSC-6); plan_frames()
-// rejects a request that does not belong to a download, or a value its encoder refuses.
+// rejects a request that does not belong to a download, or a value its encoder refuses. Each
+// frame names its row of the dialect table (dialects.hpp), so what reads a plan asks the row, not
+// the request's type, which dialect the bytes are in.
 #pragma once
 
 #include <cstddef>
@@ -12,9 +14,10 @@
 #include <vector>
 
 #include "base/bytes.hpp"
+#include "base/result.hpp"
+#include "protocol/dialects.hpp"
 #include "protocol/lsc6_messages.hpp"
 #include "protocol/lsc_messages.hpp"
-#include "base/result.hpp"
 
 namespace seqc {
 
@@ -24,6 +27,7 @@ using DialectRequest = std::variant<lsc::Request, lsc6::Request>;
 struct PlannedFrame {
   DialectRequest request;
   Bytes bytes;                          // 55 55 LEN CMD DATA, the only encoding
+  const Dialect* dialect = nullptr;     // kXarmDialect or kLsc6Dialect, as `request` is
   std::size_t index = 0;                // position in the plan
   int step = 0;                         // GroupDownload step 1-5; 0 on the LSC-6
   bool is_action = false;               // stores one action (step 4, DownloadAction)

@@ -11,8 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/dialects.hpp"
 #include "protocol/lsc_stream.hpp"
 #include "protocol/raspblock.hpp"
 
@@ -58,16 +57,6 @@ Bytes hex_bytes(std::string_view text, std::vector<std::string>& errors) {
     out.insert(out.end(), bytes->begin(), bytes->end());
   }
   return out;
-}
-
-// LSC-6 when a frame has CMD 25 (its download), the xArm dialect otherwise.
-bool looks_lsc6(ByteView bytes) {
-  lsc::FrameDecoder frames;
-  frames.feed(bytes);
-  while (auto f = frames.next()) {
-    if (f->cmd == 0x19) return true;
-  }
-  return false;
 }
 
 bool is_trace_line(std::string_view line) { return trim(line).starts_with("t="); }
@@ -117,26 +106,13 @@ FrameText describe_frames(lsc::FrameDecoder& frames, ByteView bytes,
 }
 
 using Describe = std::function<Result<std::string>(const lsc::Frame&)>;
-template <class Msg, class DescribeFn>
-Describe describer(Result<Msg> (*decode)(const lsc::Frame&), DescribeFn describe) {
-  return [decode, describe](const lsc::Frame& f) -> Result<std::string> {
-    auto m = decode(f);
-    if (!m) return m.error();
-    return describe(*m);
+// A frame described as the row's request (`sent`) or reply.
+Describe describer(const Dialect& dialect, bool sent) {
+  const auto describe = sent ? dialect.describe_request : dialect.describe_reply;
+  return [describe](const lsc::Frame& f) -> Result<std::string> {
+    if (describe == nullptr) return make_error("the board sends nothing");
+    return describe(Unit{f.cmd, f.data});
   };
-}
-Describe request_describer(bool lsc6) {
-  if (lsc6) {
-    return describer(&lsc6::decode_request,
-                     [](const lsc6::Request& r) { return lsc6::describe(r); });
-  }
-  return describer(&lsc::decode_request, [](const lsc::Request& r) { return lsc::describe(r); });
-}
-Describe reply_describer(bool lsc6) {
-  if (lsc6) {
-    return describer(&lsc6::decode_reply, [](const lsc6::Reply& r) { return lsc6::describe(r); });
-  }
-  return describer(&lsc::decode_reply, [](const lsc::Reply& r) { return lsc::describe(r); });
 }
 
 class TextTable {
@@ -157,9 +133,9 @@ class TextTable {
 };
 
 // A trace's Raspblock packets: the car answers nothing, so only what was written ("> ").
-DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines) {
+DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines, const Dialect& dialect) {
   TextTable t;
-  t.row("# trace, Raspblock packets");
+  t.row(fmt::format("# trace, {} packets", dialect.name));
   raspblock::PacketDecoder packets;
   std::size_t n = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -192,8 +168,8 @@ DecodeResult decode_raspblock_trace(const std::vector<std::string>& lines) {
   return t.finish(fmt::format("{} packet(s)", n));
 }
 
-// The dialect a trace's "# dialect: NAME" line names (seqc writes the board's name there), or
-// "" for a trace without one (traces written before it, or by hand).
+// The dialect a trace's "# dialect: NAME" line names (seqc writes its row's name there,
+// protocol/dialects.hpp), or "" for a trace without one (traces written before it, or by hand).
 std::string trace_dialect(const std::vector<std::string>& lines) {
   constexpr std::string_view kDialect = "# dialect:";
   for (const std::string& l : lines) {
@@ -206,8 +182,11 @@ std::string trace_dialect(const std::vector<std::string>& lines) {
 
 DecodeResult decode_trace(std::string_view text) {
   const std::vector<std::string> lines = split_lines(text);
-  const std::string dialect = trace_dialect(lines);
-  if (dialect == "Raspblock") return decode_raspblock_trace(lines);
+  const std::string header = trace_dialect(lines);
+  const Dialect* named = dialect_named(header);
+  if (named != nullptr && named->framing == Framing::Packets) {
+    return decode_raspblock_trace(lines, *named);
+  }
   Bytes all;
   for (const std::string& l : lines) {
     if (!is_trace_line(l)) continue;
@@ -217,12 +196,15 @@ DecodeResult decode_trace(std::string_view text) {
       all.insert(all.end(), b->begin(), b->end());
     }
   }
-  // The header's dialect when it names one; else LSC-6 when a download frame shows it.
-  const bool lsc6 = dialect.empty() ? looks_lsc6(all) : dialect == "LSC-6";
+  // The header's dialect when it names one; else the one the frames show (an LSC-6 download),
+  // and the frames' first dialect for a name no row has.
+  const Dialect& dialect = named != nullptr ? *named
+                           : header.empty() ? sniff_dialect(all, Framing::Frames)
+                                            : *all_dialects().front();
   TextTable t;
-  t.row(fmt::format("# trace, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
+  t.row(fmt::format("# trace, {} dialect", dialect.name));
   lsc::FrameDecoder sent, received;
-  const Describe req = request_describer(lsc6), rep = reply_describer(lsc6);
+  const Describe req = describer(dialect, true), rep = describer(dialect, false);
   std::size_t n = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::optional<TraceLine> line = split_trace_line(lines[i]);
@@ -288,10 +270,10 @@ DecodeResult decode_record(std::string_view text) {
     if (!f) continue;
     if (auto bytes = parse_hex(f->bytes)) all.insert(all.end(), bytes->begin(), bytes->end());
   }
-  const bool lsc6 = looks_lsc6(all);
+  const Dialect& dialect = sniff_dialect(all, Framing::Frames);
   TextTable t;
-  t.row(fmt::format("# emulator record, {} dialect", lsc6 ? "LSC-6" : "xArm / LSC-16 / LSC-32"));
-  const Describe req = request_describer(lsc6);
+  t.row(fmt::format("# emulator record, {} dialect", dialect.name));
+  const Describe req = describer(dialect, true);
   std::size_t n = 0;
   for (std::size_t i = 1; i < lines.size(); ++i) {
     if (trim(lines[i]).empty()) continue;
@@ -416,33 +398,57 @@ DecodeResult decode_raspblock(std::string_view text) {
   return t.finish(fmt::format("Raspblock: {} packet(s)", n));
 }
 
+constexpr DecodeFormat kFormats[] = {DecodeFormat::Auto,  DecodeFormat::Hex,
+                                     DecodeFormat::Lsc6,  DecodeFormat::Raspblock,
+                                     DecodeFormat::Trace, DecodeFormat::Record};
+
 }  // namespace
 
-Result<DecodeFormat> parse_decode_format(std::string_view name) {
-  for (DecodeFormat f : {DecodeFormat::Auto, DecodeFormat::Hex, DecodeFormat::Lsc6,
-                         DecodeFormat::Raspblock, DecodeFormat::Trace, DecodeFormat::Record}) {
-    if (name == to_string(f)) return f;
+const Dialect* dialect_of(DecodeFormat format) {
+  switch (format) {
+    case DecodeFormat::Hex:
+      return &kXarmDialect;
+    case DecodeFormat::Lsc6:
+      return &kLsc6Dialect;
+    case DecodeFormat::Raspblock:
+      return &kRaspblockDialect;
+    default:
+      return nullptr;
   }
-  return make_error("unknown format '" + std::string(name) +
-                    "'; expected auto, hex, lsc6, raspblock, trace or record");
 }
 
-const char* to_string(DecodeFormat format) {
+std::vector<std::string> decode_format_names() {
+  std::vector<std::string> names{"auto"};
+  for (const Dialect* d : all_dialects()) names.emplace_back(d->decode_name);
+  names.emplace_back("trace");
+  names.emplace_back("record");
+  return names;
+}
+
+Result<DecodeFormat> parse_decode_format(std::string_view name) {
+  for (DecodeFormat f : kFormats) {
+    if (name == to_string(f)) return f;
+  }
+  const std::vector<std::string> names = decode_format_names();
+  std::string expected;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    expected += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return make_error("unknown format '" + std::string(name) + "'; expected " + expected);
+}
+
+std::string_view to_string(DecodeFormat format) {
+  if (const Dialect* d = dialect_of(format)) return d->decode_name;
   switch (format) {
     case DecodeFormat::Auto:
       return "auto";
-    case DecodeFormat::Hex:
-      return "hex";
-    case DecodeFormat::Lsc6:
-      return "lsc6";
-    case DecodeFormat::Raspblock:
-      return "raspblock";
     case DecodeFormat::Trace:
       return "trace";
     case DecodeFormat::Record:
       return "record";
+    default:
+      return "?";
   }
-  return "?";
 }
 
 DecodeFormat detect_format(std::string_view text) {
@@ -453,8 +459,11 @@ DecodeFormat detect_format(std::string_view text) {
   }
   std::vector<std::string> errors;
   const Bytes bytes = hex_bytes(text, errors);
-  if (bytes.size() >= 2 && bytes[0] == 0xff && bytes[1] == 0xfe) return DecodeFormat::Raspblock;
-  return looks_lsc6(bytes) ? DecodeFormat::Lsc6 : DecodeFormat::Hex;
+  const Dialect& dialect = sniff_dialect(bytes);
+  for (DecodeFormat f : kFormats) {
+    if (dialect_of(f) == &dialect) return f;
+  }
+  return DecodeFormat::Hex;
 }
 
 DecodeResult decode_text(std::string_view text, DecodeFormat format) {

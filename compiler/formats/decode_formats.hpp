@@ -2,27 +2,35 @@
 // commented `--dry-run` listing), in either servo-controller dialect (xArm / LSC-16 / LSC-32, or
 // LSC-6), the Raspblock's timed hex packets, `--trace` files (both directions, each reply
 // decoded) and the emulators' `--record` CSV (the controllers' received frames, the car's state
-// changes). detect_format() tells them apart from the text; `--from` forces one.
+// changes). detect_format() tells them apart from the text; `--from` forces one. Which dialect
+// bytes are in comes from the dialect table (protocol/dialects.hpp): a trace's header names its
+// row, and the rows' sniffs tell hex frames and headerless traces apart.
 #pragma once
 
 #include <string>
 #include <string_view>
+#include <vector>
 
-#include "compiler/formats/decode.hpp"
 #include "base/result.hpp"
+#include "compiler/formats/decode.hpp"
+#include "protocol/dialects.hpp"
 
 namespace seqc::backend {
 
 enum class DecodeFormat { Auto, Hex, Lsc6, Raspblock, Trace, Record };
 
-// "auto", "hex", "lsc6", "raspblock", "trace", "record".
+// Every `--from` choice, in the order help lists them: "auto", each dialect's decode_name in
+// table order ("hex", "lsc6", "raspblock"), "trace", "record".
+std::vector<std::string> decode_format_names();
 Result<DecodeFormat> parse_decode_format(std::string_view name);
-const char* to_string(DecodeFormat format);
+std::string_view to_string(DecodeFormat format);
+// The dialect whose hex frames or packets `format` reads; null for Auto, Trace and Record.
+const Dialect* dialect_of(DecodeFormat format);
 
 // What `text` is, never Auto: a trace starts its lines with t=, a record with one of the two
-// CSV headers,
-// Raspblock packets with ff fe, and hex frames holding an LSC-6 download (CMD 25) or LSC-6
-// answers only are that dialect's.
+// CSV headers; other text is hex, in the dialect its bytes sniff as (sniff_dialect: Raspblock
+// packets open with ff fe, frames holding an LSC-6 download (CMD 25) are that dialect's, and other
+// frames the xArm dialect's).
 DecodeFormat detect_format(std::string_view text);
 
 // Decodes `text` as `format` (Auto: detect_format). Bytes that are not frames, frames that do

@@ -17,12 +17,13 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
+#include "protocol/dialects.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "protocol/planned_frame.hpp"
 #include "runtime/emulator/emulator_serve.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 #include "runtime/player/player.hpp"
-#include "protocol/lsc_messages.hpp"
-#include "protocol/planned_frame.hpp"
 #include "runtime/transport/port_spec.hpp"
 #include "runtime/upload/uploader.hpp"
 
@@ -88,6 +89,9 @@ struct Board {
   std::string_view called;  // "the controller", "the board"
   // "servo controller", "Raspblock board": boards that share ports and commands.
   std::string_view family;
+  // Its row of the dialect table (protocol/dialects.hpp): what a trace of it names in its header,
+  // so `seqc decode` reads the trace in that dialect.
+  const Dialect* dialect = nullptr;
 
   // ports
   std::uint32_t baud = 0;     // a serial port's default rate

@@ -24,8 +24,6 @@ namespace {
 
 constexpr std::uint32_t kUartBaud = 9600;
 constexpr std::string_view kEmulators[] = {"lsc6"};
-// How listings describe the group's storage.
-constexpr std::string_view kStorage = " (LSC-6 dialect)";
 
 Result<Plan> plan(const compiler::CompileOutput& output, std::uint8_t group) {
   const compiler::ServoProgram* program = output.servo_program();
@@ -43,7 +41,9 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit, std
     case Emit::Hex:
       return backend::render_hex(planned->frames);
     case Emit::Listing:
-      return backend::render_listing(program, planned->frames, group, output.sources, kStorage);
+      // How the listing describes the group's storage: " (LSC-6 dialect)".
+      return backend::render_listing(program, planned->frames, group, output.sources,
+                                     " (" + std::string(kLsc6Dialect.name) + " dialect)");
     case Emit::Json:
       return backend::render_json(program, planned->frames, group, output.sources);
   }
@@ -79,8 +79,10 @@ Bytes acknowledge(ByteView frame) {
 }
 
 std::string comment(std::size_t /*index*/, ByteView frame) {
-  const auto request = request_of(frame);
-  return request ? lsc6::describe(*request) : "?";
+  const auto unit = kLsc6Dialect.decode(frame);
+  if (!unit) return "?";
+  const auto text = kLsc6Dialect.describe_request(*unit);
+  return text ? *text : "?";
 }
 
 Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::CompileOutput& output) {
@@ -262,6 +264,7 @@ const Board kLsc6Board = {
     .name = "LSC-6",
     .called = "the board",
     .family = "servo controller",
+    .dialect = &kLsc6Dialect,
     .baud = kUartBaud,
     .over_hid = false,
     .discoverable = true,

@@ -68,6 +68,7 @@ const Board kRaspblockBoard = {
     .name = "Raspblock",
     .called = "the board",
     .family = "Raspblock board",
+    .dialect = &kRaspblockDialect,
     .baud = raspblock::kBaud,
     .over_hid = false,
     .discoverable = false,

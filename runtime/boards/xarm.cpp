@@ -335,6 +335,7 @@ const Board kXarmBoard = {
     .name = "xArm / LSC-16 / LSC-32",
     .called = "the controller",
     .family = "servo controller",
+    .dialect = &kXarmDialect,
     .baud = kUartBaud,
     .over_hid = true,
     .discoverable = true,

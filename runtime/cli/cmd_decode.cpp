@@ -1,6 +1,7 @@
 // seqc decode FILE|- [--from FORMAT]: what seqc wrote or recorded (compile hex, --dry-run,
 // --trace, the emulators' --record, Raspblock packets, either servo-controller dialect) back
-// into a readable table; exit 1 if anything is inconsistent.
+// into a readable table; exit 1 if anything is inconsistent. The dialect choices of --from are the
+// dialect table's (protocol/dialects.hpp).
 #include <iterator>
 #include <sstream>
 #include <string>
@@ -22,7 +23,7 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--from", *from,
                   "auto (default: told apart by content), hex (xArm/LSC-16/LSC-32\n"
                   "frames), lsc6, raspblock, trace or record")
-      ->check(CLI::IsMember({"auto", "hex", "lsc6", "raspblock", "trace", "record"}));
+      ->check(CLI::IsMember(backend::decode_format_names()));
   cmd->callback([&ctx, &result, file, from] {
     std::string text;
     if (*file == "-") {

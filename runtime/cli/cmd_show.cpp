@@ -14,7 +14,6 @@
 // downbeat as heard (music_play.hpp). With --realtime the start and the performance (from the
 // song's start with --music) run under SCHED_FIFO; the uploads before do not.
 #include <algorithm>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,9 +31,9 @@
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/music_play.hpp"
 #include "runtime/cli/realtime_option.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
-#include "runtime/upload/trace_transport.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -45,11 +44,10 @@ constexpr io::Duration kReplyTimeout = std::chrono::seconds(1);
 struct Stage {  // one performer, opened
   const compiler::Performer* performer = nullptr;
   const boards::Board* board = nullptr;
-  std::ofstream trace_file;  // --trace: PREFIX-NAME.trace
+  // --trace: PREFIX-NAME.trace, and the port's own transport while port->transport is the
+  // tracing one in front of it. Declared before the port, so it outlives it.
+  Trace trace;
   std::optional<boards::OpenedPort> port;
-  // With --trace, the port's own transport; port->transport is then the tracing one in front of
-  // it. Destroyed first: the tracing transport never touches it on its way out.
-  std::unique_ptr<io::Transport> untraced;
 };
 
 ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
@@ -61,11 +59,7 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
   }
   if (!trace_prefix.empty()) {
     const std::string path = trace_prefix + "-" + p.name + ".trace";
-    stage.trace_file.open(path, std::ios::out | std::ios::trunc);
-    if (!stage.trace_file) {
-      ctx.err << "seqc: error: --trace " << path << ": cannot write the file\n";
-      return ExitCode::FileError;
-    }
+    if (const ExitCode e = stage.trace.open(ctx, path); e != ExitCode::Ok) return e;
   }
   stage.board = &boards::board_for(p.output);
   const boards::PortRequest request{p.port, stage.board};
@@ -76,11 +70,7 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
     return e.code;
   }
   stage.port = std::move(opened.port);
-  if (stage.trace_file.is_open()) {
-    stage.untraced = std::move(stage.port->transport);
-    stage.port->transport = std::make_unique<upload::TraceTransport>(
-        *stage.untraced, *stage.port->clock, stage.trace_file, stage.board->name);
-  }
+  stage.trace.wrap_in_place(stage.port->transport, *stage.port->clock, *stage.board);
   return ExitCode::Ok;
 }
 
@@ -320,9 +310,9 @@ void add_show_command(CLI::App& app, Context& ctx, Outcome& result) {
       "show", "Perform a show: upload every stored performer, then start all at one instant");
   cmd->add_option("FILE", o->file, "Show file (.yaml: show, performers)")->required();
   cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
-  cmd->add_option("--trace", o->trace,
-                  "Write every byte exchanged with each performer's board, with times, to "
-                  "PREFIX-NAME.trace (docs/trace.md; `seqc decode` reads each)");
+  add_trace_option(*cmd, o->trace,
+                   "Write every byte exchanged with each performer's board, with times, to "
+                   "PREFIX-NAME.trace (docs/trace.md; `seqc decode` reads each)");
   cmd->add_flag("--force", o->force,
                 "Start even if a performer's first move is too fast from where its "
                 "servos are");

@@ -9,7 +9,6 @@
 // group and the song together. With --realtime the starts that keep time (on the downbeat with
 // --music, at each bar line with --resync) run under SCHED_FIFO; the upload itself does not.
 #include <algorithm>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,9 +30,9 @@
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/music_play.hpp"
 #include "runtime/cli/realtime_option.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
-#include "runtime/upload/trace_transport.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -268,14 +267,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     }
   }
 
-  std::ofstream trace_file;
-  if (!a.trace.empty()) {
-    trace_file.open(a.trace, std::ios::out | std::ios::trunc);
-    if (!trace_file) {
-      ctx.err << "seqc: error: --trace " << a.trace << ": cannot write the file\n";
-      return ExitCode::FileError;
-    }
-  }
+  Trace trace;
+  if (const ExitCode e = trace.open(ctx, a.trace); e != ExitCode::Ok) return e;
 
   const boards::PortRequest request{a.port, &board};
   boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
@@ -286,12 +279,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   }
   boards::OpenedPort& port = *opened.port;
   io::Clock& clock = *port.clock;
-  std::unique_ptr<upload::TraceTransport> trace;
-  io::Transport* transport = port.transport.get();
-  if (trace_file.is_open()) {
-    trace = std::make_unique<upload::TraceTransport>(*transport, clock, trace_file, board.name);
-    transport = trace.get();
-  }
+  io::Transport* transport = &trace.wrap(*port.transport, clock, board);
 
   if (const auto i = boards::first_too_big(plan, *transport)) {
     ctx.err << "seqc: error: " << a.file << ": " << plan.frames[*i].short_what << " is a "
@@ -305,7 +293,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (ctx.verbosity > 0) {
     ctx.err << "upload: " << plural(plan.actions, "action") << " into group " << a.group
             << (pieces ? " and on, " + plural(pieces->size(), "piece") : std::string()) << " on "
-            << transport->describe() << " (" << board.name << " dialect)\n";
+            << transport->describe() << " (" << board.dialect->name << " dialect)\n";
   }
   const boards::Line line{*transport, clock, ctx.interrupted};
   if (pieces)
@@ -399,8 +387,8 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
                       run);
   add_music_options(*cmd, a->music, run);
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
-  cmd->add_option("--trace", a->trace,
-                  "Write every byte sent and received, with times, to this file (docs/trace.md)");
+  add_trace_option(*cmd, a->trace,
+                   "Write every byte sent and received, with times, to this file (docs/trace.md)");
   cmd->add_flag("--strict", a->strict, "Treat warnings as errors");
   add_clock_options(*cmd, a->clock);
   cmd->add_option("--retries", a->retries,

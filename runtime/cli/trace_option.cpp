@@ -1,13 +1,12 @@
 #include "runtime/cli/trace_option.hpp"
 
 #include <ostream>
+#include <utility>
 
 namespace seqc::cli {
 
-void add_trace_option(CLI::App& cmd, std::string& path) {
-  cmd.add_option("--trace", path,
-                 "Write every byte exchanged with the board, with times, to FILE "
-                 "(docs/trace.md; `seqc decode FILE` reads it)");
+void add_trace_option(CLI::App& cmd, std::string& path, const std::string& help) {
+  cmd.add_option("--trace", path, help);
 }
 
 ExitCode Trace::open(Context& ctx, const std::string& path) {
@@ -22,8 +21,15 @@ ExitCode Trace::open(Context& ctx, const std::string& path) {
 
 io::Transport& Trace::wrap(io::Transport& inner, io::Clock& clock, const boards::Board& board) {
   if (!file_.is_open()) return inner;
-  transport_ = std::make_unique<upload::TraceTransport>(inner, clock, file_, board.name);
+  transport_ = std::make_unique<upload::TraceTransport>(inner, clock, file_, board.dialect);
   return *transport_;
+}
+
+void Trace::wrap_in_place(std::unique_ptr<io::Transport>& slot, io::Clock& clock,
+                          const boards::Board& board) {
+  if (!file_.is_open()) return;
+  untraced_ = std::move(slot);
+  slot = std::make_unique<upload::TraceTransport>(*untraced_, clock, file_, board.dialect);
 }
 
 }  // namespace seqc::cli

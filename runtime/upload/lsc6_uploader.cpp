@@ -8,8 +8,9 @@
 #include <type_traits>
 #include <variant>
 
-#include "runtime/io/time_text.hpp"
+#include "protocol/dialects.hpp"
 #include "protocol/lsc_messages.hpp"
+#include "runtime/io/time_text.hpp"
 
 namespace seqc::upload {
 namespace {
@@ -174,7 +175,8 @@ Lsc6Run::Flow Lsc6Run::exchange(std::size_t i) {
         return fatal(UploadStatus::OtherDialect,
                      "the board on " + link_.transport().describe() +
                          " does not answer a DownloadAction but answers GetBatteryVoltage with "
-                         "its voltage: it speaks the xArm / LSC-16 / LSC-32 dialect");
+                         "its voltage: it speaks the " +
+                         std::string(kXarmDialect.name) + " dialect");
       }
     }
     if (w.ok()) break;

@@ -6,10 +6,10 @@
 namespace seqc::upload {
 
 TraceTransport::TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out,
-                               std::string_view dialect)
+                               const Dialect* dialect)
     : inner_(inner), clock_(clock), out_(out), start_(clock.now()) {
   out_ << "# seqc trace of " << inner_.describe() << "; t in seconds, > to the device, < from it\n";
-  if (!dialect.empty()) out_ << "# dialect: " << dialect << "\n";
+  if (dialect != nullptr) out_ << "# dialect: " << dialect->name << "\n";
   out_.flush();
 }
 

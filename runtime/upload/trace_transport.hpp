@@ -13,8 +13,8 @@
 
 #include <iosfwd>
 #include <string>
-#include <string_view>
 
+#include "protocol/dialects.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 
@@ -23,11 +23,12 @@ namespace seqc::upload {
 class TraceTransport final : public io::Transport {
  public:
   // `inner`, `clock` and `out` must outlive the decorator. Writes a header line naming the
-  // device first and, when `dialect` is given, a line naming the board's dialect ("# dialect:
-  // LSC-6"), from which `seqc decode` reads the frames (an LSC-6 session without a download looks
-  // like the xArm dialect's frames, and the Raspblock's packets are no frames at all).
+  // device first and, when `dialect` is given, a line naming its row of the dialect table
+  // ("# dialect: LSC-6", protocol/dialects.hpp), from which `seqc decode` reads the frames (an
+  // LSC-6 session without a download looks like the xArm dialect's frames, and the Raspblock's
+  // packets are no frames at all).
   TraceTransport(io::Transport& inner, io::Clock& clock, std::ostream& out,
-                 std::string_view dialect = {});
+                 const Dialect* dialect = nullptr);
 
   Status write(ByteView bytes) override;
   io::ReadResult read(std::span<std::uint8_t> buffer, io::TimePoint deadline) override;

@@ -1,5 +1,6 @@
 #include "runtime/upload/uploader.hpp"
 
+#include "protocol/dialects.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/uploader_run.hpp"
 
@@ -234,7 +235,8 @@ auto Uploader::Run::probe() -> Flow {
     return fatal(UploadStatus::OtherDialect,
                  "the board on " + link().transport().describe() +
                      " ignores GetBatteryVoltage and answers a DownloadAction with 55 55 02 19: "
-                     "it speaks the LSC-6 dialect");
+                     "it speaks the " +
+                     std::string(kLsc6Dialect.name) + " dialect");
   }
   return fatal(UploadStatus::NoAnswer,
                "no reply from a controller on " + link().transport().describe() + " (asked " +

@@ -65,6 +65,7 @@ TEST(PlannedFrame, GroupDownloadStepsAreEncodedAndLabelled) {
     EXPECT_EQ(f.short_what, short_what[i]);
     EXPECT_EQ(f.fields, fields[i]);
     EXPECT_EQ(f.request, DialectRequest{steps[i]});
+    EXPECT_EQ(f.dialect, &kXarmDialect);
   }
 }
 
@@ -87,6 +88,8 @@ TEST(PlannedFrame, Lsc6ActionsAreEncodedAndLabelled) {
   EXPECT_EQ(first.short_what, "action 1");
   EXPECT_EQ(first.fields, "download action | group 1 | total 2 | index 0 | time 500 ms | servos 2");
   EXPECT_EQ(first.request, DialectRequest{lsc6::Request{actions[0]}});
+  EXPECT_EQ(first.dialect, &kLsc6Dialect);
+  EXPECT_TRUE(first.dialect->sniff(first.bytes));
 
   const PlannedFrame& pause = (*plan)[1];
   EXPECT_EQ(to_hex(pause.bytes), "55 55 08 19 01 02 01 00 64 00");
