@@ -52,6 +52,7 @@ ServoProgram ServoLowering::run(const LoadedFile& main, const ServoFitting& fitt
   run_file(main, true);
   ServoProgram program;
   program.robot = robot_.info;
+  program.group_capacity = capacity();
   finish(program);
   return program;
 }
