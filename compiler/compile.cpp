@@ -30,6 +30,7 @@ ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoade
   if (!ready_to_fit(walk, robot, reporter)) {
     ServoProgram unfitted;
     unfitted.robot = robot.info;
+    unfitted.group_capacity = walk.capacity;
     return unfitted;
   }
   const FitResult fit = fit_timeline_on_board(

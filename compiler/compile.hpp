@@ -5,7 +5,9 @@
 // mistake it finds into Diagnostics, and returns a program only when there is no error (with
 // options.strict, no warning either). It runs the stages in order: the front end reads the
 // file and its robot section, the robot kind's target lowers the steps to a timeline and then to
-// actions (fitting) or packets, and the music stage checks the dance against its song.
+// actions (fitting) or packets, and the music stage checks the dance against its song. A
+// command that takes a choreography or a show calls load() (load.hpp), which reads the file once
+// and calls this or load_show() with the text it read.
 #pragma once
 
 #include <optional>

@@ -16,12 +16,6 @@ bool ShowOutput::ok(bool strict) const {
   return !performers.empty();
 }
 
-bool is_show_file(FileReader& files, const std::string& path) {
-  if (const auto bytes = files.size(path); bytes && *bytes > YamlLimits{}.max_bytes) return false;
-  const auto text = files.read(path);
-  return text && is_show_text(*text);
-}
-
 bool is_show_text(const std::string& text) {
   std::istringstream in(text);
   std::string line;

@@ -37,11 +37,9 @@ struct ShowOutput {
   bool ok(bool strict = false) const;  // the show file and every performer compiled
 };
 
-// Whether `text` is a show file (a top-level `show:` key), cheaply, before loading it.
+// Whether `text` is a show file (a top-level `show:` key), cheaply, before parsing it
+// (load.hpp tells the two kinds of file apart with it).
 bool is_show_text(const std::string& text);
-// Whether the file at `path` is a show file; a file over the loader's size limit is not read
-// (it is no show, and compiling it reports the limit).
-bool is_show_file(FileReader& files, const std::string& path);
 
 ShowOutput load_show(const std::string& path, FileReader& files,
                      const CompileOptions& options = {});

@@ -7,6 +7,7 @@
 // compiler itself never chooses between boards. Nothing here depends on the front end.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -65,6 +66,9 @@ struct Keyframe {
 struct ServoProgram {
   RobotInfo robot;
   std::vector<Keyframe> keyframes;
+  // How many actions one stored group holds on the profile's board: the budget the lowering
+  // kept keyframes within, set once there so that no reader works it out again.
+  std::size_t group_capacity = 0;
   // What the author meant, per servo (by index into robot.servos), before fitting.
   Timeline timeline;
   // The largest distance between the compiled motion and the intended curve, and where.

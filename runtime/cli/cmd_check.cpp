@@ -11,16 +11,13 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compiler/frontend/profiles.hpp"
 #include "base/units.hpp"
-#include "compiler/show.hpp"
 #include "base/diagnostic_formats.hpp"
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/version.hpp"
-#include "protocol/group_download.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -38,30 +35,25 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
                            std::int32_t clock_ppm) {
   std::vector<Unit> out;
   const std::string shown = given == "-" ? kStdinName : given;
-  if (given != "-") {
-    if (compiler::is_show_file(ctx.files, given)) {
-      compiler::ShowOutput show = compiler::load_show(given, ctx.files, {strict});
-      Unit self{shown, shown, {}, true, show.performers.size()};
-      self.compiled.output.sources = std::move(show.sources);
-      self.compiled.output.diagnostics = std::move(show.diagnostics);
-      self.compiled.output.read_error = show.read_error;
-      self.compiled.code = show.read_error ? ExitCode::FileError
-                           : self.compiled.output.diagnostics.has_errors(strict)
-                               ? ExitCode::InvalidInput
-                               : ExitCode::Ok;
-      out.push_back(std::move(self));
-      for (compiler::Performer& p : show.performers) {
-        if (p.output.read_error) continue;  // reported in the show file, where it is named
-        Unit u{p.file, p.file + " (" + p.name + ")", {}, false, 0};
-        u.compiled.code = p.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
-        u.compiled.output = std::move(p.output);
-        out.push_back(std::move(u));
-      }
-      return out;
-    }
+  Loaded loaded = load_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm);
+  if (!loaded.file.is_show()) {
+    out.push_back({shown, shown, {std::move(loaded.file.program()), loaded.code}, false, 0});
+    return out;
   }
-  Unit u{shown, shown, compile_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm), false, 0};
-  out.push_back(std::move(u));
+  compiler::ShowOutput& show = loaded.file.show();
+  Unit self{shown, shown, {}, true, show.performers.size()};
+  self.compiled.output.sources = std::move(show.sources);
+  self.compiled.output.diagnostics = std::move(show.diagnostics);
+  self.compiled.code =
+      self.compiled.output.diagnostics.has_errors(strict) ? ExitCode::InvalidInput : ExitCode::Ok;
+  out.push_back(std::move(self));
+  for (compiler::Performer& p : show.performers) {
+    if (p.output.read_error) continue;  // reported in the show file, where it is named
+    Unit u{p.file, p.file + " (" + p.name + ")", {}, false, 0};
+    u.compiled.code = p.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
+    u.compiled.output = std::move(p.output);
+    out.push_back(std::move(u));
+  }
   return out;
 }
 
@@ -96,8 +88,7 @@ std::string summary(const Unit& u, bool strict) {
       fit = p->fit_error > 0 ? units + " and " + tip : tip;
     }
     return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {}{}\n", u.label,
-                       p->keyframes.size(),
-                       compiler::group_capacity(compiler::find_profile(p->robot.profile)),
+                       p->keyframes.size(), p->group_capacity,
                        static_cast<double>(p->duration_ms()) / 1000.0, fit, warned);
   }
   const std::size_t errors = d.error_count() + (strict ? d.warning_count() : 0);

@@ -8,12 +8,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compiler/formats/plot_svg.hpp"
-#include "compiler/formats/svg_text.hpp"
 #include "base/units.hpp"
-#include "compiler/show.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/program_views.hpp"
+#include "compiler/formats/svg_text.hpp"
 #include "runtime/boards/board.hpp"
-#include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -32,49 +31,45 @@ std::optional<double> window_ms(Context& ctx, const std::string& option, const s
 }
 
 // The title names the group a stored program is for, else the board that plays it.
-std::string plot_program(const compiler::CompileOutput& output, const std::string& name, int group,
-                         backend::PlotOptions options) {
+std::string titled_plot(const compiler::CompileOutput& output, const std::string& name, int group,
+                        backend::PlotOptions options) {
   const boards::Board& board = boards::board_for(output);
   options.title = board.plan != nullptr ? name + ", group " + std::to_string(group)
                                         : name + " (" + std::string(board.name) + ")";
-  return boards::plot(output, options);
+  return backend::plot_program(*output.program, options);
 }
 
 // A show: every performer's picture on one time axis (the longest performer's), stacked as
 // nested <svg> elements in one document.
-ExitCode plot_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
-                   backend::PlotOptions options, std::string& svg) {
-  ExitCode loaded = ExitCode::Ok;
-  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
-  if (loaded != ExitCode::Ok) return loaded;
+std::string plot_show(const compiler::ShowOutput& show, const std::string& name,
+                      backend::PlotOptions options) {
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, double(boards::length_ms(p.output)));
+    end = std::max(end, double(backend::length_ms(*p.output.program)));
   }
   if (!options.from_ms) options.from_ms = 0;
   if (!options.to_ms) options.to_ms = end;
   std::string body;
   double y = 36;
   for (const compiler::Performer& p : show.performers) {
-    std::string part = plot_program(p.output, p.name + ": " + p.file, p.group, options);
+    std::string part = titled_plot(p.output, p.name + ": " + p.file, p.group, options);
     const auto h = part.find("height=\"");
     const double height = std::atof(part.c_str() + h + 8);
     part.insert(part.find("<svg") + 4, " y=\"" + std::to_string(static_cast<int>(y)) + "\"");
     body += part;
     y += height + 10;
   }
-  svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
-        std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
-        std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
-        backend::svg::escape(name) +
-        "</title>\n<rect width=\"1100\" "
-        "height=\"" +
-        std::to_string(static_cast<int>(y)) +
-        "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
-        "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
-        backend::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
-        " performers, one clock)</text>\n" + body + "</svg>\n";
-  return ExitCode::Ok;
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
+         std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
+         std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
+         backend::svg::escape(name) +
+         "</title>\n<rect width=\"1100\" "
+         "height=\"" +
+         std::to_string(static_cast<int>(y)) +
+         "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
+         "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
+         backend::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
+         " performers, one clock)</text>\n" + body + "</svg>\n";
 }
 
 }  // namespace
@@ -115,21 +110,20 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     }
     const std::string name = o->file == "-" ? std::string(kStdinName)
                                             : std::filesystem::path(o->file).filename().string();
-    std::string svg;
-    if (o->file != "-" && compiler::is_show_file(ctx.files, o->file)) {
-      result.code = plot_show(ctx, o->file, name, o->strict, options, svg);
-    } else {
-      Compiled c = compile_and_report(ctx, o->file, o->strict, SongCheck::Decode);
-      result.code = c.code;
-      if (c.code == ExitCode::Ok) {
-        // A file with `music:` gets its song drawn under the lanes.
-        std::optional<backend::PlotSong> song;
-        if (ctx.songs != nullptr) song = boards::plot_song(c.output, *ctx.songs);
-        options.song = song ? &*song : nullptr;
-        svg = plot_program(c.output, name, o->group, options);
-      }
-    }
+    const Loaded loaded = load_and_report(ctx, o->file, o->strict, SongCheck::Decode);
+    result.code = loaded.code;
     if (result.code != ExitCode::Ok) return;
+    std::string svg;
+    if (loaded.file.is_show()) {
+      svg = plot_show(loaded.file.show(), name, options);
+    } else {
+      const compiler::CompileOutput& output = loaded.file.program();
+      // A file with `music:` gets its song drawn under the lanes.
+      std::optional<backend::PlotSong> song;
+      if (ctx.songs != nullptr) song = backend::plot_song(*output.program, *ctx.songs);
+      options.song = song ? &*song : nullptr;
+      svg = titled_plot(output, name, o->group, options);
+    }
     result.code = write_output(ctx, o->output, svg);
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(svg.size()) + " bytes");

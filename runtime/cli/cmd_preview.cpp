@@ -10,9 +10,8 @@
 #include <CLI/CLI.hpp>
 
 #include "compiler/formats/preview_html.hpp"
-#include "compiler/show.hpp"
+#include "compiler/formats/program_views.hpp"
 #include "runtime/boards/board.hpp"
-#include "runtime/boards/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -26,29 +25,24 @@ std::string part_title(const compiler::CompileOutput& output, const std::string&
                                : name + " (" + std::string(board.name) + ")";
 }
 
-ExitCode preview_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
-                      std::string& html) {
-  ExitCode loaded = ExitCode::Ok;
-  compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
-  if (loaded != ExitCode::Ok) return loaded;
+std::string preview_show(const compiler::ShowOutput& show, const std::string& name) {
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, static_cast<double>(boards::length_ms(p.output)));
+    end = std::max(end, static_cast<double>(backend::length_ms(*p.output.program)));
   }
   std::vector<std::string> names;
   std::vector<backend::PreviewPart> parts;
   for (const compiler::Performer& p : show.performers) {
-    auto part = boards::preview_part(
-        p.output, part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group),
-        end);
+    auto part = backend::preview_part(
+        *p.output.program,
+        part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group), end);
     if (!part) continue;
     names.push_back(p.name);
     parts.push_back(std::move(*part));
   }
-  html = backend::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
+  return backend::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
                                    " performers, one clock), " + name,
                                names, parts, end);
-  return ExitCode::Ok;
 }
 
 }  // namespace
@@ -71,26 +65,26 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->callback([&ctx, &result, o] {
     const std::string name = o->file == "-" ? std::string(kStdinName)
                                             : std::filesystem::path(o->file).filename().string();
+    const Loaded loaded = load_and_report(ctx, o->file, o->strict);
+    result.code = loaded.code;
+    if (result.code != ExitCode::Ok) return;
     std::string html;
-    if (o->file != "-" && compiler::is_show_file(ctx.files, o->file)) {
-      result.code = preview_show(ctx, o->file, name, o->strict, html);
+    if (loaded.file.is_show()) {
+      html = preview_show(loaded.file.show(), name);
     } else {
-      Compiled c = compile_and_report(ctx, o->file, o->strict);
-      result.code = c.code;
-      if (c.code == ExitCode::Ok) {
-        const double end = static_cast<double>(boards::length_ms(c.output));
-        const std::string title = part_title(c.output, name, o->group);
-        // A file with `music:` brings its song: drawn under the lanes and played with the page.
-        std::optional<backend::PlotSong> picture;
-        if (ctx.songs != nullptr) picture = boards::plot_song(c.output, *ctx.songs);
-        const std::optional<backend::PreviewSong> song = boards::preview_song(c.output, ctx.files);
-        if (auto part = boards::preview_part(c.output, title, end, picture ? &*picture : nullptr)) {
-          html =
-              backend::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
-        }
+      const compiler::CompileOutput& output = loaded.file.program();
+      const double end = static_cast<double>(backend::length_ms(*output.program));
+      const std::string title = part_title(output, name, o->group);
+      // A file with `music:` brings its song: drawn under the lanes and played with the page.
+      std::optional<backend::PlotSong> picture;
+      if (ctx.songs != nullptr) picture = backend::plot_song(*output.program, *ctx.songs);
+      const std::optional<backend::PreviewSong> song =
+          backend::preview_song(*output.program, ctx.files);
+      if (auto part =
+              backend::preview_part(*output.program, title, end, picture ? &*picture : nullptr)) {
+        html = backend::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
       }
     }
-    if (result.code != ExitCode::Ok) return;
     result.code = write_output(ctx, o->output, html);
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(html.size()) + " bytes");

@@ -8,8 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/units.hpp"
-#include "compiler/show.hpp"
-#include "runtime/boards/program_views.hpp"
+#include "compiler/formats/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/io/disk.hpp"
@@ -29,8 +28,8 @@ struct SimulateOptions {
 // cannot be simulated (said).
 bool simulate_one(Context& ctx, const compiler::CompileOutput& output, const std::string& name,
                   const SimulateOptions& o, std::string& csv) {
-  const boards::Simulated sim =
-      boards::simulate(output, static_cast<std::uint32_t>(o.step_ms), o.compare);
+  const backend::Simulated sim =
+      backend::simulate(*output.program, static_cast<std::uint32_t>(o.step_ms), o.compare);
   if (!sim.ok) {
     ctx.err << "seqc: error: " << name << ": this robot kind cannot be simulated\n";
     return false;
@@ -63,10 +62,7 @@ ExitCode write_csv(Context& ctx, const std::string& path, const std::string& csv
   return ExitCode::Ok;
 }
 
-ExitCode simulate_show(Context& ctx, const SimulateOptions& o) {
-  ExitCode loaded = ExitCode::Ok;
-  compiler::ShowOutput show = load_show_and_report(ctx, o.file, o.strict, loaded);
-  if (loaded != ExitCode::Ok) return loaded;
+ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const SimulateOptions& o) {
   const bool to_stdout = o.output.empty() || o.output == "-";
   for (const compiler::Performer& p : show.performers) {
     std::string csv;
@@ -101,15 +97,15 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
                 "difference from the compiled motion and when");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
   cmd->callback([&ctx, &result, opts] {
-    if (opts->file != "-" && compiler::is_show_file(ctx.files, opts->file)) {
-      result.code = simulate_show(ctx, *opts);
+    const Loaded loaded = load_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
+    result.code = loaded.code;
+    if (result.code != ExitCode::Ok) return;
+    if (loaded.file.is_show()) {
+      result.code = simulate_show(ctx, loaded.file.show(), *opts);
       return;
     }
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
-    result.code = c.code;
-    if (!c.output.program) return;
     std::string csv;
-    if (!simulate_one(ctx, c.output, opts->file, *opts, csv)) {
+    if (!simulate_one(ctx, loaded.file.program(), opts->file, *opts, csv)) {
       result.code = ExitCode::InvalidInput;
       return;
     }

@@ -23,39 +23,56 @@ class StdinFirstReader final : public compiler::FileReader {
   compiler::FileReader& rest_;
 };
 
-Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict,
-                      compiler::SongReader* songs, std::int32_t clock_ppm) {
+compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
+                                         std::int32_t clock_ppm) {
   compiler::CompileOptions options{strict};
-  options.songs = songs;
+  options.songs = song == SongCheck::Decode ? ctx.songs : nullptr;
   options.clock_ppm = clock_ppm;
-  Compiled c{compiler::compile_file(path, files, options)};
-  if (c.output.read_error) {
-    c.code = ExitCode::FileError;
-  } else {
-    c.code = c.output.program ? ExitCode::Ok : ExitCode::InvalidInput;
+  return options;
+}
+
+ExitCode program_code(const compiler::CompileOutput& output) {
+  if (output.read_error) return ExitCode::FileError;
+  return output.program ? ExitCode::Ok : ExitCode::InvalidInput;
+}
+
+ExitCode show_code(const compiler::ShowOutput& show, bool strict) {
+  if (show.read_error) return ExitCode::FileError;
+  return show.ok(strict) ? ExitCode::Ok : ExitCode::InvalidInput;
+}
+
+// The file's read error, or its diagnostics and for a show every performer's.
+void report(Context& ctx, const compiler::Loaded& file, bool strict) {
+  if (const std::optional<std::string>& error = file.read_error()) {
+    ctx.err << "seqc: error: " << *error << "\n";
+    return;
   }
-  return c;
+  ctx.err << compiler::render_all(file.diagnostics(), file.sources(), strict, ctx.color);
+  if (!file.is_show()) return;
+  for (const compiler::Performer& p : file.show().performers) {
+    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
+  }
 }
 
 }  // namespace
 
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
                          std::int32_t clock_ppm) {
-  compiler::SongReader* songs = song == SongCheck::Decode ? ctx.songs : nullptr;
+  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm);
+  Compiled c;
   if (path == "-") {
     std::string text;
     if (ctx.in != nullptr) {
       text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
     }
     StdinFirstReader reader(std::move(text), ctx.files);
-    return compile_from(reader, kStdinName, strict, songs, clock_ppm);
+    c.output = compiler::compile_file(kStdinName, reader, options);
+  } else {
+    c.output = compiler::compile_file(path, ctx.files, options);
   }
-  return compile_from(ctx.files, path, strict, songs, clock_ppm);
+  c.code = program_code(c.output);
+  return c;
 }
-
-}  // namespace seqc::cli
-
-namespace seqc::cli {
 
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
                             std::int32_t clock_ppm) {
@@ -66,6 +83,27 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
   }
   ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
   return c;
+}
+
+Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
+                    std::int32_t clock_ppm) {
+  if (path == "-") {
+    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm);
+    return {compiler::Loaded(std::move(c.output)), c.code};
+  }
+  compiler::Loaded file = compiler::load(
+      path, ctx.files,
+      {compile_options(ctx, strict, song, clock_ppm), compiler::CompileOptions{strict}});
+  const ExitCode code =
+      file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
+  return {std::move(file), code};
+}
+
+Loaded load_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
+                       std::int32_t clock_ppm) {
+  Loaded l = load_quietly(ctx, path, strict, song, clock_ppm);
+  report(ctx, l.file, strict);
+  return l;
 }
 
 ExitCode write_output(Context& ctx, const std::string& path, const std::string& data) {
@@ -82,18 +120,10 @@ ExitCode write_output(Context& ctx, const std::string& path, const std::string& 
 
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
                                           ExitCode& code) {
-  compiler::ShowOutput show = compiler::load_show(path, ctx.files, {strict});
-  if (show.read_error) {
-    ctx.err << "seqc: error: " << *show.read_error << "\n";
-    code = ExitCode::FileError;
-    return show;
-  }
-  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
-  for (const compiler::Performer& p : show.performers) {
-    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
-  }
-  code = show.ok(strict) ? ExitCode::Ok : ExitCode::InvalidInput;
-  return show;
+  compiler::Loaded show(compiler::load_show(path, ctx.files, {strict}));
+  report(ctx, show, strict);
+  code = show_code(show.show(), strict);
+  return std::move(show.show());
 }
 
 }  // namespace seqc::cli

@@ -1,14 +1,16 @@
-// Shared by the offline subcommands: compile one file and report on stderr the way every
-// subcommand does (diagnostics, coloured when ctx.color, or "seqc: error: cannot read ..." for
-// a file error). The path "-" reads the file from standard input; it is called <stdin> in
-// diagnostics and its includes resolve from the current directory.
+// Shared by the offline subcommands: compile one file, or load one that may be a show, and
+// report on stderr the way every subcommand does (diagnostics, coloured when ctx.color, or
+// "seqc: error: cannot read ..." for a file error). The path "-" reads a choreography from
+// standard input; it is called <stdin> in diagnostics and its includes resolve from the current
+// directory.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-#include "compiler/compile.hpp"
 #include "base/diagnostics.hpp"
+#include "compiler/compile.hpp"
+#include "compiler/load.hpp"
 #include "compiler/show.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
@@ -26,8 +28,8 @@ inline constexpr const char* kStdinName = "<stdin>";
 // on stderr why it could not (FileError).
 ExitCode write_output(Context& ctx, const std::string& path, const std::string& data);
 
-// Loads a show file and prints its diagnostics and every performer's (for `seqc show` and
-// `seqc plot`). code: Ok, FileError (the show file cannot be read) or InvalidInput.
+// Loads a show file and prints its diagnostics and every performer's (for `seqc show`).
+// code: Ok, FileError (the show file cannot be read) or InvalidInput.
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
                                           ExitCode& code);
 
@@ -42,5 +44,22 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
 // Compiles and prints the diagnostics (or the file error) on ctx.err.
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
                             SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+
+// A file given to a command that takes a choreography or a show (check, plot, simulate,
+// preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)
+// or InvalidInput (it, or for a show any performer, has errors).
+struct Loaded {
+  compiler::Loaded file;
+  ExitCode code = ExitCode::Ok;
+};
+
+// Loads without printing anything: a choreography compiled as compile_quietly() compiles it
+// (`song`, `clock_ppm`), a show's performers with `strict` alone. "-" is a choreography.
+Loaded load_quietly(Context& ctx, const std::string& path, bool strict,
+                    SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+// Loads and prints the diagnostics (or the file error) on ctx.err: a show file's own, then
+// every performer's.
+Loaded load_and_report(Context& ctx, const std::string& path, bool strict,
+                       SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
 
 }  // namespace seqc::cli

@@ -30,7 +30,7 @@ ARROWS = {
                                    "compiler/frontend", "compiler/program", "compiler/timeline"},
     "compiler/formats": {"base", "protocol", "compiler/frontend", "compiler/program",
                          "compiler/timeline", "compiler/targets/servo_controller",
-                         "compiler/targets/raspblock"},
+                         "compiler/targets/raspblock", "compiler/music"},
     "compiler/music": {"base", "compiler/frontend", "compiler/timeline"},
     # The runtime: the OS boundaries first, the board table and the command line last.
     "runtime/io": {"base"},

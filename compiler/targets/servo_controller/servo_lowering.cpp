@@ -145,6 +145,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
                            std::int32_t clock_ppm, Reporter& reporter) {
   ServoProgram program;
   program.robot = robot.info;
+  program.group_capacity = walk.capacity;
   std::vector<FittedAction> actions = fit_result.actions;
   const std::uint64_t needed = std::max<std::uint64_t>(actions.size(), walk.min_actions);
   if (needed > walk.capacity) {

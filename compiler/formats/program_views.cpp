@@ -1,0 +1,90 @@
+#include "compiler/formats/program_views.hpp"
+
+#include <filesystem>
+
+#include "compiler/formats/raspblock_simulate.hpp"
+#include "compiler/music/beat_analysis.hpp"
+
+namespace seqc::backend {
+
+std::uint64_t length_ms(const compiler::Program& program) {
+  if (const auto* p = std::get_if<compiler::ServoProgram>(&program)) return p->duration_ms();
+  if (const auto* p = std::get_if<compiler::RaspblockProgram>(&program)) return p->duration_ms;
+  return 0;
+}
+
+std::optional<PlotSong> plot_song(const compiler::Program& program, compiler::SongReader& songs) {
+  const auto* servo = std::get_if<compiler::ServoProgram>(&program);
+  if (servo == nullptr || !servo->timeline.song) return std::nullopt;
+  const compiler::Song& song = *servo->timeline.song;
+  Result<compiler::SongSamples> decoded = songs.read(song.file);
+  if (!decoded) return std::nullopt;
+  PlotSong out;
+  out.label = std::filesystem::path(song.file).filename().string();
+  out.sample_rate = decoded->sample_rate;
+  out.downbeat_s = song.downbeat.value() / 1000.0;
+  music::BeatOptions options;
+  options.tempo_hint = song.bpm;
+  if (song.beats_per_bar > 0) options.meter = music::Meter{song.beats_per_bar, 4};
+  if (auto found = music::analyze_beats(decoded->samples, decoded->sample_rate, options)) {
+    out.beats_s = std::move(found->beats_s);
+  }
+  out.samples = std::move(decoded->samples);
+  return out;
+}
+
+std::string plot_program(const compiler::Program& program, const PlotOptions& options) {
+  if (const auto* p = std::get_if<compiler::ServoProgram>(&program)) {
+    return plot_servo_program(*p, options);
+  }
+  if (const auto* p = std::get_if<compiler::RaspblockProgram>(&program)) {
+    return plot_car_program(*p, options);
+  }
+  return "";
+}
+
+std::optional<PreviewPart> preview_part(const compiler::Program& program, const std::string& title,
+                                        double end_ms, const PlotSong* song) {
+  if (const auto* p = std::get_if<compiler::ServoProgram>(&program)) {
+    return preview_servo_part(*p, title, end_ms, song);
+  }
+  if (const auto* p = std::get_if<compiler::RaspblockProgram>(&program)) {
+    return preview_car_part(*p, title, end_ms);
+  }
+  return std::nullopt;
+}
+
+std::optional<PreviewSong> preview_song(const compiler::Program& program,
+                                        compiler::FileReader& files) {
+  const auto* servo = std::get_if<compiler::ServoProgram>(&program);
+  if (servo == nullptr || !servo->timeline.song) return std::nullopt;
+  const compiler::Song& song = *servo->timeline.song;
+  const std::string mime = audio_mime(song.file);
+  if (mime.empty()) return std::nullopt;
+  Result<std::string> bytes = files.read(song.file);
+  if (!bytes) return std::nullopt;
+  return PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
+}
+
+Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool compare) {
+  Simulated out;
+  if (const auto* servo = std::get_if<compiler::ServoProgram>(&program)) {
+    const Simulation sim = simulate(*servo, step_ms, compare);
+    if (compare) out.differences = compare_with_intent(*servo);
+    out.csv = to_csv(sim);
+    out.duration_ms = sim.duration_ms;
+    out.steps = servo->keyframes.size();
+    out.steps_are = "actions";
+    out.ok = true;
+  } else if (const auto* car = std::get_if<compiler::RaspblockProgram>(&program)) {
+    const CarSimulation sim = simulate_car(*car, step_ms);
+    out.csv = to_csv(sim);
+    out.duration_ms = sim.duration_ms;
+    out.steps = car->packets.size();
+    out.steps_are = "packets";
+    out.ok = true;
+  }
+  return out;
+}
+
+}  // namespace seqc::backend

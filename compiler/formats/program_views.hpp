@@ -1,0 +1,64 @@
+// `seqc plot`, `seqc simulate` and `seqc preview`'s performers for whichever kind of program a
+// file compiles to: a servo controller's keyframes or the car's packet stream, as an SVG
+// picture, as positions over time (CSV) or as a part of the preview page. This is the one place
+// that tells the two kinds apart for them, as a board's `render` does for `seqc compile --emit`,
+// so the commands never ask which kind a program is. No words: the CLI writes the result and
+// says the summary.
+//
+// The song of a `music:` block is the only input besides the program, and it comes through the
+// caller's readers (base/source.hpp): plot_song() decodes the audio through a SongReader (in
+// seqc, libsndfile behind runtime/audio's AudioReader) and finds its beats (compiler/music);
+// preview_song() reads the file's bytes through a FileReader. Nothing here opens a file itself.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "base/source.hpp"
+#include "compiler/formats/plot_svg.hpp"
+#include "compiler/formats/preview_html.hpp"
+#include "compiler/formats/simulate.hpp"
+#include "compiler/program/program.hpp"
+
+namespace seqc::backend {
+
+// How long the program runs: when its last move (or packet's effect) ends.
+std::uint64_t length_ms(const compiler::Program& program);
+
+// The program as a picture (plot_svg); "" for a kind it cannot draw.
+std::string plot_program(const compiler::Program& program, const PlotOptions& options);
+
+// The song of a file with `music:` as the plot draws it under the lanes: decoded through
+// `songs`, with the beats found in it (the file's tempo as the hint between half and double
+// readings, its meter given). nullopt without a song or when it cannot be decoded (the check
+// has said why); no beats when none are steady enough to find.
+std::optional<PlotSong> plot_song(const compiler::Program& program, compiler::SongReader& songs);
+
+// The program as one performer of `seqc preview`'s page (preview_html), on a time axis of
+// `end_ms`, with `song` (plot_song) under its lanes when given; nullopt for a kind it cannot
+// show.
+std::optional<PreviewPart> preview_part(const compiler::Program& program, const std::string& title,
+                                        double end_ms, const PlotSong* song = nullptr);
+
+// The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
+// type a browser plays; nullopt without a song, when it cannot be read or is of another type.
+std::optional<PreviewSong> preview_song(const compiler::Program& program,
+                                        compiler::FileReader& files);
+
+struct Simulated {
+  bool ok = false;  // false: a kind of program that cannot be simulated
+  std::string csv;  // a sample every step_ms from 0, and the final instant
+  std::uint64_t duration_ms = 0;
+  std::size_t steps = 0;       // what the program is made of, counted ...
+  std::string_view steps_are;  // ... and named: "actions", "packets"
+  // With `compare` (servo programs): each servo's largest difference between the compiled
+  // motion and the intended curve, and when.
+  std::vector<Difference> differences;
+};
+Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool compare);
+
+}  // namespace seqc::backend
