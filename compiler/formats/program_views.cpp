@@ -5,7 +5,7 @@
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/music/beat_analysis.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 std::uint64_t length_ms(const compiler::Program& program) {
   if (const auto* p = std::get_if<compiler::ServoProgram>(&program)) return p->duration_ms();
@@ -13,11 +13,11 @@ std::uint64_t length_ms(const compiler::Program& program) {
   return 0;
 }
 
-std::optional<PlotSong> plot_song(const compiler::Program& program, compiler::SongReader& songs) {
+std::optional<PlotSong> plot_song(const compiler::Program& program, seqc::SongReader& songs) {
   const auto* servo = std::get_if<compiler::ServoProgram>(&program);
   if (servo == nullptr || !servo->timeline.song) return std::nullopt;
   const compiler::Song& song = *servo->timeline.song;
-  Result<compiler::SongSamples> decoded = songs.read(song.file);
+  Result<seqc::SongSamples> decoded = songs.read(song.file);
   if (!decoded) return std::nullopt;
   PlotSong out;
   out.label = std::filesystem::path(song.file).filename().string();
@@ -55,7 +55,7 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 }
 
 std::optional<PreviewSong> preview_song(const compiler::Program& program,
-                                        compiler::FileReader& files) {
+                                        seqc::FileReader& files) {
   const auto* servo = std::get_if<compiler::ServoProgram>(&program);
   if (servo == nullptr || !servo->timeline.song) return std::nullopt;
   const compiler::Song& song = *servo->timeline.song;
@@ -87,4 +87,4 @@ Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

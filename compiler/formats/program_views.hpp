@@ -24,7 +24,7 @@
 #include "compiler/formats/simulate.hpp"
 #include "compiler/program/program.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // How long the program runs: when its last move (or packet's effect) ends.
 std::uint64_t length_ms(const compiler::Program& program);
@@ -36,7 +36,7 @@ std::string plot_program(const compiler::Program& program, const PlotOptions& op
 // `songs`, with the beats found in it (the file's tempo as the hint between half and double
 // readings, its meter given). nullopt without a song or when it cannot be decoded (the check
 // has said why); no beats when none are steady enough to find.
-std::optional<PlotSong> plot_song(const compiler::Program& program, compiler::SongReader& songs);
+std::optional<PlotSong> plot_song(const compiler::Program& program, seqc::SongReader& songs);
 
 // The program as one performer of `seqc preview`'s page (preview_html), on a time axis of
 // `end_ms`, with `song` (plot_song) under its lanes when given; nullopt for a kind it cannot
@@ -47,7 +47,7 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; nullopt without a song, when it cannot be read or is of another type.
 std::optional<PreviewSong> preview_song(const compiler::Program& program,
-                                        compiler::FileReader& files);
+                                        seqc::FileReader& files);
 
 struct Simulated {
   bool ok = false;  // false: a kind of program that cannot be simulated
@@ -61,4 +61,4 @@ struct Simulated {
 };
 Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool compare);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -39,7 +39,7 @@ LiveReport play_live(const Board& board, const compiler::CompileOutput& output, 
       report.origins.push_back({k.start_ms, k.source});
   }
   // The last move ends then, not when it is sent.
-  report.length_ms = output.program ? backend::length_ms(*output.program) : 0;
+  report.length_ms = output.program ? compiler::length_ms(*output.program) : 0;
   const io::Duration length = std::chrono::milliseconds(report.length_ms);
   io::Transport& transport = line.transport;
 

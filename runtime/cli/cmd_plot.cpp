@@ -21,31 +21,31 @@ namespace {
 
 // "1.5s" or "500ms" (beats need the file's tempo: not here).
 std::optional<double> window_ms(Context& ctx, const std::string& option, const std::string& text) {
-  auto t = compiler::parse_time(text);
+  auto t = seqc::parse_time(text);
   if (!t ||
-      (t->unit != compiler::TimeUnit::Milliseconds && t->unit != compiler::TimeUnit::Seconds)) {
+      (t->unit != seqc::TimeUnit::Milliseconds && t->unit != seqc::TimeUnit::Seconds)) {
     ctx.err << "seqc: error: " << option << " " << text << ": give a time in ms or s, e.g. 1.5s\n";
     return std::nullopt;
   }
-  return t->unit == compiler::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
+  return t->unit == seqc::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
 }
 
 // The title names the group a stored program is for, else the board that plays it.
 std::string titled_plot(const compiler::CompileOutput& output, const std::string& name, int group,
-                        backend::PlotOptions options) {
+                        compiler::PlotOptions options) {
   const boards::Board& board = boards::board_for(output);
   options.title = board.plan != nullptr ? name + ", group " + std::to_string(group)
                                         : name + " (" + std::string(board.name) + ")";
-  return backend::plot_program(*output.program, options);
+  return compiler::plot_program(*output.program, options);
 }
 
 // A show: every performer's picture on one time axis (the longest performer's), stacked as
 // nested <svg> elements in one document.
 std::string plot_show(const compiler::ShowOutput& show, const std::string& name,
-                      backend::PlotOptions options) {
+                      compiler::PlotOptions options) {
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, double(backend::length_ms(*p.output.program)));
+    end = std::max(end, double(compiler::length_ms(*p.output.program)));
   }
   if (!options.from_ms) options.from_ms = 0;
   if (!options.to_ms) options.to_ms = end;
@@ -62,13 +62,13 @@ std::string plot_show(const compiler::ShowOutput& show, const std::string& name,
   return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
          std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
          std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
-         backend::svg::escape(name) +
+         compiler::svg::escape(name) +
          "</title>\n<rect width=\"1100\" "
          "height=\"" +
          std::to_string(static_cast<int>(y)) +
          "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
          "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
-         backend::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
+         compiler::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
          " performers, one clock)</text>\n" + body + "</svg>\n";
 }
 
@@ -94,7 +94,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--to", o->to, "End of the time window, e.g. 10s (default: the end)");
   cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
   cmd->callback([&ctx, &result, o] {
-    backend::PlotOptions options;
+    compiler::PlotOptions options;
     if (!o->from.empty() && !(options.from_ms = window_ms(ctx, "--from", o->from))) {
       result.code = ExitCode::Usage;
       return;
@@ -119,8 +119,8 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` gets its song drawn under the lanes.
-      std::optional<backend::PlotSong> song;
-      if (ctx.songs != nullptr) song = backend::plot_song(*output.program, *ctx.songs);
+      std::optional<compiler::PlotSong> song;
+      if (ctx.songs != nullptr) song = compiler::plot_song(*output.program, *ctx.songs);
       options.song = song ? &*song : nullptr;
       svg = titled_plot(output, name, o->group, options);
     }

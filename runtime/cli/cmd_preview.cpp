@@ -28,19 +28,19 @@ std::string part_title(const compiler::CompileOutput& output, const std::string&
 std::string preview_show(const compiler::ShowOutput& show, const std::string& name) {
   double end = 0;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, static_cast<double>(backend::length_ms(*p.output.program)));
+    end = std::max(end, static_cast<double>(compiler::length_ms(*p.output.program)));
   }
   std::vector<std::string> names;
-  std::vector<backend::PreviewPart> parts;
+  std::vector<compiler::PreviewPart> parts;
   for (const compiler::Performer& p : show.performers) {
-    auto part = backend::preview_part(
+    auto part = compiler::preview_part(
         *p.output.program,
         part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group), end);
     if (!part) continue;
     names.push_back(p.name);
     parts.push_back(std::move(*part));
   }
-  return backend::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
+  return compiler::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
                                    " performers, one clock), " + name,
                                names, parts, end);
 }
@@ -73,16 +73,16 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
       html = preview_show(loaded.file.show(), name);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
-      const double end = static_cast<double>(backend::length_ms(*output.program));
+      const double end = static_cast<double>(compiler::length_ms(*output.program));
       const std::string title = part_title(output, name, o->group);
       // A file with `music:` brings its song: drawn under the lanes and played with the page.
-      std::optional<backend::PlotSong> picture;
-      if (ctx.songs != nullptr) picture = backend::plot_song(*output.program, *ctx.songs);
-      const std::optional<backend::PreviewSong> song =
-          backend::preview_song(*output.program, ctx.files);
+      std::optional<compiler::PlotSong> picture;
+      if (ctx.songs != nullptr) picture = compiler::plot_song(*output.program, *ctx.songs);
+      const std::optional<compiler::PreviewSong> song =
+          compiler::preview_song(*output.program, ctx.files);
       if (auto part =
-              backend::preview_part(*output.program, title, end, picture ? &*picture : nullptr)) {
-        html = backend::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
+              compiler::preview_part(*output.program, title, end, picture ? &*picture : nullptr)) {
+        html = compiler::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
       }
     }
     result.code = write_output(ctx, o->output, html);

@@ -82,9 +82,9 @@ void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResul
 }
 
 // --resync's pieces, or why the file cannot be cut (said on ctx.err): before any port opens.
-std::optional<std::vector<backend::ResyncPiece>> resync_pieces(
+std::optional<std::vector<compiler::ResyncPiece>> resync_pieces(
     Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output, std::int32_t ppm) {
-  auto pieces = backend::split_at_bars(*output.servo_program(), a.resync, ppm);
+  auto pieces = compiler::split_at_bars(*output.servo_program(), a.resync, ppm);
   if (!pieces) {
     ctx.err << "seqc: error: " << a.file << ": " << pieces.error().message << "\n";
     return std::nullopt;
@@ -101,7 +101,7 @@ std::optional<std::vector<backend::ResyncPiece>> resync_pieces(
 
 // --resync: the pieces stored one group each, then started by the computer at their bar lines.
 ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output,
-                    const boards::Board& board, const std::vector<backend::ResyncPiece>& pieces,
+                    const boards::Board& board, const std::vector<compiler::ResyncPiece>& pieces,
                     const boards::Line& line, upload::UploadObserver* progress,
                     upload::ProgressPrinter& printer, const upload::UploadOptions& options,
                     const std::optional<boards::FirstMoveTooFast>& too_fast) {
@@ -224,7 +224,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     return ExitCode::InvalidInput;
   }
   const boards::Plan& plan = *planned;
-  std::optional<std::vector<backend::ResyncPiece>> pieces;
+  std::optional<std::vector<compiler::ResyncPiece>> pieces;
   if (a.resync > 0) {
     pieces = resync_pieces(ctx, a, c.output, ppm);
     if (!pieces) return ExitCode::InvalidInput;

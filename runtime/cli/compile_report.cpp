@@ -9,9 +9,9 @@ namespace seqc::cli {
 namespace {
 
 // Serves <stdin> from the text read once; every other path (includes) from the disk.
-class StdinFirstReader final : public compiler::FileReader {
+class StdinFirstReader final : public seqc::FileReader {
  public:
-  StdinFirstReader(std::string text, compiler::FileReader& rest)
+  StdinFirstReader(std::string text, seqc::FileReader& rest)
       : text_(std::move(text)), rest_(rest) {}
   seqc::Result<std::string> read(const std::string& path) override {
     if (path == kStdinName) return text_;
@@ -20,7 +20,7 @@ class StdinFirstReader final : public compiler::FileReader {
 
  private:
   std::string text_;
-  compiler::FileReader& rest_;
+  seqc::FileReader& rest_;
 };
 
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
@@ -47,10 +47,10 @@ void report(Context& ctx, const compiler::Loaded& file, bool strict) {
     ctx.err << "seqc: error: " << *error << "\n";
     return;
   }
-  ctx.err << compiler::render_all(file.diagnostics(), file.sources(), strict, ctx.color);
+  ctx.err << seqc::render_all(file.diagnostics(), file.sources(), strict, ctx.color);
   if (!file.is_show()) return;
   for (const compiler::Performer& p : file.show().performers) {
-    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
+    ctx.err << seqc::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
   }
 }
 
@@ -81,7 +81,7 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
     ctx.err << "seqc: error: " << *c.output.read_error << "\n";
     return c;
   }
-  ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
+  ctx.err << seqc::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
   return c;
 }
 

@@ -15,6 +15,7 @@
 
 namespace {
 
+using namespace seqc;
 using namespace seqc::compiler;
 
 struct Outcome {

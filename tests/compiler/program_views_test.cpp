@@ -10,10 +10,10 @@
 #include "compiler/formats/program_views.hpp"
 #include "runtime/io/disk.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
-class MemoryFiles final : public compiler::FileReader {
+class ViewFiles final : public seqc::FileReader {
  public:
   std::map<std::string, std::string> files;
   Result<std::string> read(const std::string& path) override {
@@ -38,7 +38,7 @@ sequence:
 )";
 
 compiler::CompileOutput compile_try() {
-  MemoryFiles files;
+  ViewFiles files;
   files.files["try.yaml"] = kProgram;
   return compiler::compile_file("try.yaml", files);
 }
@@ -92,4 +92,4 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
 }
 
 }  // namespace
-}  // namespace seqc::backend
+}  // namespace seqc::compiler
