@@ -7,7 +7,7 @@
 #include "base/diagnostic_rules.hpp"
 #include "base/json_text.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 namespace {
 
 // One diagnostic with the notes that follow it, located.
@@ -174,4 +174,4 @@ std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict
   return out;
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

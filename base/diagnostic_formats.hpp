@@ -18,7 +18,7 @@
 #include "base/diagnostics.hpp"
 #include "base/source.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 // One file checked: its diagnostics with the sources they point into, or why it could not be
 // read. The pointers outlive the call.
@@ -33,4 +33,4 @@ std::string diagnostics_json(const std::vector<CheckedFile>& files, bool strict)
 std::string diagnostics_sarif(const std::vector<CheckedFile>& files, bool strict,
                               const std::string& version);
 
-}  // namespace seqc::compiler
+}  // namespace seqc

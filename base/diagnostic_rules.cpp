@@ -4,7 +4,7 @@
 #include <array>
 #include <string>
 
-namespace seqc::compiler {
+namespace seqc {
 namespace {
 
 struct Row {
@@ -81,4 +81,4 @@ const DiagnosticRule& rule_for(const Diagnostic& d) {
   return rows().back().rule;
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -10,7 +10,7 @@
 
 #include "base/diagnostics.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 struct DiagnosticRule {
   std::string_view id;     // "unknown-key"
@@ -23,4 +23,4 @@ const std::vector<DiagnosticRule>& diagnostic_rules();
 // The rule of a diagnostic (notes take the rule of what they annotate; pass that one).
 const DiagnosticRule& rule_for(const Diagnostic& d);
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-namespace seqc::compiler {
+namespace seqc {
 
 void Diagnostics::error(Location at, std::string message) {
   list_.push_back({Severity::Error, at, std::move(message)});
@@ -138,4 +138,4 @@ std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool
   return out;
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

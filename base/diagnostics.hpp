@@ -13,7 +13,7 @@
 
 #include "base/source.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 enum class Severity { Error, Warning, Note };
 
@@ -55,4 +55,4 @@ std::string render_all(const Diagnostics& ds, const SourceManager& sources, bool
 // The closest candidate to `word` by edit distance, or "" if none is close enough.
 std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates);
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -6,7 +6,7 @@
 
 #include "base/diagnostics.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 namespace {
 
@@ -64,4 +64,4 @@ std::string did_you_mean(std::string_view word, const std::vector<std::string>& 
   return best != nullptr ? *best : std::string();
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-namespace seqc::compiler {
+namespace seqc {
 namespace {
 
 // Length of the valid UTF-8 sequence at s[i], or 0 (overlongs, surrogates and code points
@@ -73,4 +73,4 @@ std::string json_string(std::string_view s) {
   return out + "\"";
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-namespace seqc::compiler {
+namespace seqc {
 
 std::string json_string(std::string_view s);
 
-}  // namespace seqc::compiler
+}  // namespace seqc

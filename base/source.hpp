@@ -10,7 +10,7 @@
 
 #include "base/result.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 // 1-based line and column (columns count bytes, as clang does). file is an index into
 // SourceManager; line 0 means "no location" (e.g. a command-line option).
@@ -71,4 +71,4 @@ class SourceManager {
   std::vector<File> files_;
 };
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace seqc::compiler {
+namespace seqc {
 
 namespace {
 // Out-of-range file indexes quote nothing rather than crash: a diagnostic with a stale index
@@ -43,4 +43,4 @@ std::string_view SourceManager::line(std::uint32_t file, std::uint32_t line) con
   return std::string_view(f.text).substr(begin, end - begin);
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-namespace seqc::compiler {
+namespace seqc {
 namespace {
 
 std::string not_a_speed(std::string_view text) {
@@ -131,4 +131,4 @@ std::string format_units(double units) {
   return out == "-0" ? "0" : out;
 }
 
-}  // namespace seqc::compiler
+}  // namespace seqc

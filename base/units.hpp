@@ -9,7 +9,7 @@
 
 #include "base/result.hpp"
 
-namespace seqc::compiler {
+namespace seqc {
 
 enum class TimeUnit { Milliseconds, Seconds, Beats, Bars };
 
@@ -47,4 +47,4 @@ std::string format_units(double units);
 // "1.5 s", "750 ms", "12.5 s" style for summaries: seconds with up to 3 decimals, no trailing 0.
 std::string format_seconds(std::uint64_t ms);
 
-}  // namespace seqc::compiler
+}  // namespace seqc

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 std::vector<CarPose> car_path(const CarSimulation& sim) {
   std::vector<CarPose> out{CarPose{}};
@@ -21,4 +21,4 @@ std::vector<CarPose> car_path(const CarSimulation& sim) {
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -8,7 +8,7 @@
 
 #include "compiler/formats/raspblock_simulate.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct CarPose {
   double x = 0, y = 0, heading = 0;  // cm right, cm forward (up), degrees clockwise from up
@@ -18,4 +18,4 @@ struct CarPose {
 // until the next sample.
 std::vector<CarPose> car_path(const CarSimulation& sim);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

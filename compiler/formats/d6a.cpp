@@ -7,7 +7,7 @@
 #include <map>
 #include <memory>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 struct DbCloser {
@@ -224,4 +224,4 @@ Result<D6aTable> d6a_from_program(const compiler::ServoProgram& program) {
   return table;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -14,7 +14,7 @@
 #include "compiler/program/program.hpp"
 #include "base/result.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct D6aRow {
   std::int64_t index = 0;      // [Index], as stored
@@ -42,4 +42,4 @@ Result<std::string> write_d6a(const D6aTable& table);
 // at least 6. A servo with id 0 (an LSC channel 0) has no column: that is an error.
 Result<D6aTable> d6a_from_program(const compiler::ServoProgram& program);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

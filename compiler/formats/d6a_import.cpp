@@ -7,7 +7,7 @@
 
 namespace seqc::compiler {
 
-Result<std::string> choreography_from_d6a(const backend::D6aTable& table,
+Result<std::string> choreography_from_d6a(const compiler::D6aTable& table,
                                           const ImportOptions& options) {
   const std::string profile_name =
       !options.profile.empty() ? options.profile : (table.servo_columns == 6 ? "xarm" : "bus");
@@ -47,7 +47,7 @@ Result<std::string> choreography_from_d6a(const backend::D6aTable& table,
   out += "sequence:\n";
   std::vector<int> previous;
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    const backend::D6aRow& row = table.rows[r];
+    const compiler::D6aRow& row = table.rows[r];
     const std::string where = fmt::format("row {} (Index {})", r + 1, row.index);
     if (row.time_ms < static_cast<int>(lsc::kMinActionMs) ||
         row.time_ms > static_cast<int>(lsc::kMaxActionMs)) {

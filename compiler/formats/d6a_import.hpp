@@ -20,7 +20,7 @@ struct ImportOptions {
 
 // The YAML text, or an error naming the row and column that cannot become an action (a time
 // outside 20-30,000 ms, a position outside the profile's range, an id the profile lacks).
-Result<std::string> choreography_from_d6a(const backend::D6aTable& table,
+Result<std::string> choreography_from_d6a(const compiler::D6aTable& table,
                                           const ImportOptions& options);
 
 }  // namespace seqc::compiler

@@ -9,7 +9,7 @@
 #include "protocol/lsc_messages.hpp"
 #include "protocol/lsc_stream.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 // What an open download announced, to check the steps that follow against.
@@ -34,7 +34,7 @@ class Decoder {
     }
     out_.table +=
         fmt::format("# {} frame(s), {} action(s), {} total, {} issue(s)\n", out_.frames,
-                    out_.actions, compiler::format_seconds(total_ms_), out_.issues.size());
+                    out_.actions, seqc::format_seconds(total_ms_), out_.issues.size());
     return std::move(out_);
   }
 
@@ -186,4 +186,4 @@ void walk_frames(ByteView bytes, std::size_t& frames,
 
 DecodeResult decode_frames(ByteView bytes) { return Decoder{}.run(bytes); }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

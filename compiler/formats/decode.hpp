@@ -9,7 +9,7 @@
 #include "base/bytes.hpp"
 #include "protocol/lsc_frame.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct DecodeResult {
   std::string table;                // the text `seqc decode` prints
@@ -28,4 +28,4 @@ void walk_frames(ByteView bytes, std::size_t& frames,
                  const std::function<void(const lsc::Frame&)>& on_frame,
                  const std::function<void(std::string)>& issue);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

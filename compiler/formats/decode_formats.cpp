@@ -15,7 +15,7 @@
 #include "protocol/lsc_stream.hpp"
 #include "protocol/raspblock.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 std::vector<std::string> split_lines(std::string_view text) {
@@ -492,4 +492,4 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format) {
   return r;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -15,7 +15,7 @@
 #include "compiler/formats/decode.hpp"
 #include "protocol/dialects.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 enum class DecodeFormat { Auto, Hex, Lsc6, Raspblock, Trace, Record };
 
@@ -43,4 +43,4 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format);
 // (indices in order from 0, one total, one group, the last index closing it).
 DecodeResult decode_lsc6_frames(ByteView bytes);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

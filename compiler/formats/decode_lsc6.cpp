@@ -8,7 +8,7 @@
 #include "base/units.hpp"
 #include "protocol/lsc6_messages.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 class Lsc6Decoder {
@@ -27,7 +27,7 @@ class Lsc6Decoder {
     }
     out_.table +=
         fmt::format("# LSC-6: {} frame(s), {} action(s), {} total, {} issue(s)\n", out_.frames,
-                    out_.actions, compiler::format_seconds(total_ms_), out_.issues.size());
+                    out_.actions, seqc::format_seconds(total_ms_), out_.issues.size());
     return std::move(out_);
   }
 
@@ -123,4 +123,4 @@ class Lsc6Decoder {
 
 DecodeResult decode_lsc6_frames(ByteView bytes) { return Lsc6Decoder{}.run(bytes); }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

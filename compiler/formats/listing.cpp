@@ -5,8 +5,8 @@
 
 #include "base/units.hpp"
 
-namespace seqc::backend {
-using compiler::json_string;
+namespace seqc::compiler {
+using seqc::json_string;
 namespace {
 
 std::string servo_label(const compiler::ServoProgram& program, std::uint8_t id) {
@@ -16,7 +16,7 @@ std::string servo_label(const compiler::ServoProgram& program, std::uint8_t id) 
 
 }  // namespace
 
-std::string location_text(const compiler::Location& at, const compiler::SourceManager& sources) {
+std::string location_text(const seqc::Location& at, const seqc::SourceManager& sources) {
   if (at.line == 0 || at.file >= sources.file_count()) return "";
   return fmt::format("{}:{}:{}", sources.path(at.file), at.line, at.column);
 }
@@ -29,11 +29,11 @@ std::string render_hex(const std::vector<PlannedFrame>& plan) {
 
 std::string render_listing(const compiler::ServoProgram& program,
                            const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                           const compiler::SourceManager& sources, std::string_view storage) {
+                           const seqc::SourceManager& sources, std::string_view storage) {
   const std::size_t n = program.keyframes.size();
   std::string out = fmt::format("# robot {}, group {}: {} action{}{}, {} frames, {}\n",
                                 program.robot.profile, group, n, n == 1 ? "" : "s", storage,
-                                plan.size(), compiler::format_seconds(program.duration_ms()));
+                                plan.size(), seqc::format_seconds(program.duration_ms()));
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const PlannedFrame& p = plan[i];
     out += fmt::format("frame {}: {}\n", i + 1, to_hex(p.bytes));
@@ -56,7 +56,7 @@ std::string render_listing(const compiler::ServoProgram& program,
 
 std::string render_json(const compiler::ServoProgram& program,
                         const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                        const compiler::SourceManager& sources) {
+                        const seqc::SourceManager& sources) {
   std::string out = "{\n";
   out += fmt::format("  \"robot\": {},\n  \"group\": {},\n  \"duration_ms\": {},\n",
                      json_string(program.robot.profile), group, program.duration_ms());
@@ -90,4 +90,4 @@ std::string render_json(const compiler::ServoProgram& program,
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -8,9 +8,9 @@
 
 #include "base/source.hpp"
 #include "compiler/program/program.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // One serial frame per line: lowercase two-digit hex separated by single spaces, send order.
 std::string render_hex(const std::vector<PlannedFrame>& plan);
@@ -20,15 +20,15 @@ std::string render_hex(const std::vector<PlannedFrame>& plan);
 // heading's count of actions, as the board stores them: " in 2 blocks", " (LSC-6 dialect)".
 std::string render_listing(const compiler::ServoProgram& program,
                            const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                           const compiler::SourceManager& sources, std::string_view storage);
+                           const seqc::SourceManager& sources, std::string_view storage);
 
 // {"robot": ..., "group": ..., "duration_ms": ..., "servos": [...], "keyframes": [...],
 //  "frames": ["55 55 ...", ...]}
 std::string render_json(const compiler::ServoProgram& program,
                         const std::vector<PlannedFrame>& plan, std::uint8_t group,
-                        const compiler::SourceManager& sources);
+                        const seqc::SourceManager& sources);
 
 // "walk.yaml:12:5" for a location (or "" for none).
-std::string location_text(const compiler::Location& at, const compiler::SourceManager& sources);
+std::string location_text(const seqc::Location& at, const seqc::SourceManager& sources);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

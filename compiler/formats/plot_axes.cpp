@@ -7,7 +7,7 @@
 
 #include "compiler/formats/svg_text.hpp"
 
-namespace seqc::backend::plot {
+namespace seqc::compiler::plot {
 
 using svg::num;
 
@@ -71,4 +71,4 @@ std::string markers(const compiler::Timeline& tl, const Frame& f, double top, do
   return out;
 }
 
-}  // namespace seqc::backend::plot
+}  // namespace seqc::compiler::plot

@@ -9,7 +9,7 @@
 
 #include "compiler/timeline/timeline.hpp"
 
-namespace seqc::backend::plot {
+namespace seqc::compiler::plot {
 
 inline constexpr double kWidth = 1100, kLeft = 150, kRight = 24;
 
@@ -26,4 +26,4 @@ std::string time_axis(const Frame& f, double y);
 // Each marker inside the window as a dashed line with its label, alternating two rows.
 std::string markers(const compiler::Timeline& tl, const Frame& f, double top, double bottom);
 
-}  // namespace seqc::backend::plot
+}  // namespace seqc::compiler::plot

@@ -9,7 +9,7 @@
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 using svg::num;
@@ -149,4 +149,4 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
   return svg::document(kWidth, panel_top + kPanel + 30, options.title, body);
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -6,7 +6,7 @@
 
 #include "compiler/formats/svg_text.hpp"
 
-namespace seqc::backend::plot {
+namespace seqc::compiler::plot {
 
 using svg::num;
 
@@ -50,4 +50,4 @@ std::string song_lane(const PlotSong& song, const Frame& f, double y0) {
   return out + "</g>\n";
 }
 
-}  // namespace seqc::backend::plot
+}  // namespace seqc::compiler::plot

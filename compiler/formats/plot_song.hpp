@@ -16,7 +16,7 @@
 
 #include "compiler/formats/plot_axes.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct PlotSong {
   std::string label;           // the audio file's name, shown beside the lane
@@ -34,4 +34,4 @@ inline constexpr double kSongLane = 72;
 std::string song_lane(const PlotSong& song, const Frame& f, double y0);
 
 }  // namespace plot
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

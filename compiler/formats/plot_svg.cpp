@@ -12,7 +12,7 @@
 #include "compiler/formats/simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 using svg::num;
@@ -215,4 +215,4 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
   return svg::document(kWidth, height, options.title, body);
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

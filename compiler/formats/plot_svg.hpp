@@ -25,7 +25,7 @@
 #include "compiler/program/program.hpp"
 #include "compiler/program/raspblock_program.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct PlotOptions {
   std::string title;               // e.g. the file name
@@ -37,4 +37,4 @@ struct PlotOptions {
 std::string plot_servo_program(const compiler::ServoProgram& program, const PlotOptions& options);
 std::string plot_car_program(const compiler::RaspblockProgram& program, const PlotOptions& options);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

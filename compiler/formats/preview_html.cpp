@@ -14,12 +14,12 @@
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
 #include "base/json_text.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
-using compiler::json_string;
+using seqc::json_string;
 using svg::num;
 
 // The plot picture as inline SVG in HTML: without the XML namespace attribute (HTML puts an
@@ -257,4 +257,4 @@ std::string preview_page(const std::string& title, const std::vector<std::string
                                    {"script", preview_script()}});
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -42,7 +42,7 @@
 #include "compiler/program/program.hpp"
 #include "compiler/program/raspblock_program.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // One performer of the page: what its script reads and its lanes picture.
 struct PreviewPart {
@@ -75,4 +75,4 @@ std::string preview_page(const std::string& title, const std::vector<std::string
                          const std::vector<PreviewPart>& parts, double end_ms,
                          const PreviewSong* song = nullptr);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -8,7 +8,7 @@
 
 #include <string_view>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // preview.html: the page with @title@ (twice), @style@, @end@, @audio@, @lanes@, @data@ and
 // @script@ where preview_page() puts its parts.
@@ -22,4 +22,4 @@ std::string_view preview_style();
 // style nor the script holds an end tag of its element (the build refuses them).
 std::string_view preview_script();
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -6,7 +6,7 @@
 #include "compiler/formats/listing.hpp"
 #include "protocol/raspblock.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 std::string time_column(std::uint32_t at_ms) {
@@ -34,7 +34,7 @@ std::string render_stream_hex(const std::vector<StreamFrame>& frames) {
 
 std::string render_stream_listing(const compiler::RaspblockProgram& program,
                                   const std::vector<StreamFrame>& frames,
-                                  const compiler::SourceManager& sources) {
+                                  const seqc::SourceManager& sources) {
   std::string out;
   std::size_t bytes = 0;
   for (std::size_t i = 0; i < frames.size() && i < program.packets.size(); ++i) {
@@ -70,4 +70,4 @@ std::string render_stream_json(const compiler::RaspblockProgram& program,
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -10,7 +10,7 @@
 #include "compiler/program/raspblock_program.hpp"
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // One frame per line: the send time in ms right-aligned in 6 columns, " ms  ", then the bytes
 // as lowercase hex: "     0 ms  ff fe 03 08 01 00 00 00 00 00 00 01 0d".
@@ -20,11 +20,11 @@ std::string render_stream_hex(const std::vector<StreamFrame>& frames);
 //   "   500 ms  ff fe 02 04 ...  GimbalServos horizontal=1600 vertical=1500  (car.yaml:12:5)"
 std::string render_stream_listing(const compiler::RaspblockProgram& program,
                                   const std::vector<StreamFrame>& frames,
-                                  const compiler::SourceManager& sources);
+                                  const seqc::SourceManager& sources);
 
 // {"robot": "raspblock", "baud": 115200, "duration_ms": N, "bytes": N,
 //  "frames": [{"at_ms": 0, "hex": "ff fe ...", "packet": "Rocker x=0 y=0 z=0"}, ...]}
 std::string render_stream_json(const compiler::RaspblockProgram& program,
                                const std::vector<StreamFrame>& frames);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -4,7 +4,7 @@
 #include <type_traits>
 #include <variant>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 void apply(CarState& s, const raspblock::Packet& packet) {
@@ -60,4 +60,4 @@ std::string to_csv(const CarSimulation& sim) {
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

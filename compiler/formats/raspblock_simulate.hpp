@@ -13,7 +13,7 @@
 
 #include "compiler/program/raspblock_program.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct CarState {
   int x = 0, y = 0, z = 0;  // rocker speeds (0 until driven)
@@ -37,4 +37,4 @@ CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint3
 // "time_ms,x,y,z,pan,tilt,servo1,servo2,servo3,servo4\n0,0,0,0,1500,1500,,,,\n...".
 std::string to_csv(const CarSimulation& sim);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

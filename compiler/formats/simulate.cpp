@@ -4,9 +4,9 @@
 #include <cstdio>
 
 #include "compiler/program/arm_kinematics.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 namespace {
 
@@ -174,4 +174,4 @@ std::string to_csv(const Simulation& sim) {
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

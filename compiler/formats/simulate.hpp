@@ -12,7 +12,7 @@
 
 #include "compiler/program/program.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct Simulation {
   std::vector<std::string> columns;  // servo names, ascending id (servos the program moves)
@@ -49,4 +49,4 @@ struct Difference {
 };
 std::vector<Difference> compare_with_intent(const compiler::ServoProgram& program);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace seqc::backend::svg {
+namespace seqc::compiler::svg {
 
 std::string escape(std::string_view text) {
   std::string out;
@@ -92,4 +92,4 @@ std::string document(double width, double height, const std::string& title,
          rect(0, 0, width, height, "fill=\"#ffffff\"") + body + "</svg>\n";
 }
 
-}  // namespace seqc::backend::svg
+}  // namespace seqc::compiler::svg

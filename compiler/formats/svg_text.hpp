@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-namespace seqc::backend::svg {
+namespace seqc::compiler::svg {
 
 std::string escape(std::string_view text);  // & < > " for text and attributes
 std::string num(double v);                  // at most two decimals, no trailing zeros
@@ -20,4 +20,4 @@ double nice_step(double span, int target);
 std::string document(double width, double height, const std::string& title,
                      const std::string& body);
 
-}  // namespace seqc::backend::svg
+}  // namespace seqc::compiler::svg

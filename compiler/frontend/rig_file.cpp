@@ -19,11 +19,11 @@ Result<std::chrono::nanoseconds> parse_offset(std::string_view text) {
     negative = digits.front() == '-';
     digits.remove_prefix(1);
   }
-  auto time = compiler::parse_time(digits);
-  if (!time || time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
+  auto time = seqc::parse_time(digits);
+  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
     return make_error("audio_offset is a time in ms or s, e.g. 40ms or -0.02s");
   }
-  const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   const auto ns = static_cast<std::int64_t>(std::llround(ms * 1e6));
   return std::chrono::nanoseconds{negative ? -ns : ns};
 }
@@ -50,8 +50,8 @@ Result<std::int32_t> parse_clock_ppm(std::string_view text) {
   return static_cast<std::int32_t>(negative ? -v : v);
 }
 
-std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32_t file,
-                             compiler::Diagnostics& diags) {
+std::optional<Rig> parse_rig(const seqc::SourceManager& sources, std::uint32_t file,
+                             seqc::Diagnostics& diags) {
   const std::size_t errors_before = diags.error_count();
   auto root = compiler::load_yaml(sources, file, diags);
   if (!root) return std::nullopt;
@@ -88,7 +88,7 @@ std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32
     }
     std::string message = "unknown rig key '" + key + "'";
     const std::string best =
-        compiler::did_you_mean(key, std::vector<std::string>(std::begin(kKeys), std::end(kKeys)));
+        seqc::did_you_mean(key, std::vector<std::string>(std::begin(kKeys), std::end(kKeys)));
     if (!best.empty()) message += "; did you mean '" + best + "'?";
     message += " (known: clock_ppm, audio_offset)";
     diags.error(e.first.location, message);

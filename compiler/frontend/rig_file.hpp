@@ -33,7 +33,7 @@ inline constexpr std::int32_t kMaxRigClockPpm = 200000;
 Result<std::int32_t> parse_clock_ppm(std::string_view text);
 
 // Reads file `file` of `sources` as a rig file; nullopt when it has errors (in `diags`).
-std::optional<Rig> parse_rig(const compiler::SourceManager& sources, std::uint32_t file,
-                             compiler::Diagnostics& diags);
+std::optional<Rig> parse_rig(const seqc::SourceManager& sources, std::uint32_t file,
+                             seqc::Diagnostics& diags);
 
 }  // namespace seqc::compiler

@@ -21,7 +21,7 @@ std::string yaml_scalar(const std::string& s) {
   if (plain && (s.front() == '-' || s == "null" || s == "true" || s == "false" || s == "~")) {
     plain = false;
   }
-  return plain ? s : compiler::json_string(s);
+  return plain ? s : seqc::json_string(s);
 }
 
 std::string meter_text(const Meter& m) {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 ArmPoints arm_points(const compiler::ArmGeometry& arm,
                      const std::function<double(std::string_view)>& position) {
@@ -36,4 +36,4 @@ ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

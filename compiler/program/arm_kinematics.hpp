@@ -18,7 +18,7 @@
 
 #include "compiler/program/arm_geometry.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct ArmPoints {
   // x, y, z in mm of the shoulder axis, the elbow, the wrist and the tip.
@@ -34,4 +34,4 @@ ArmPoints arm_points(const compiler::ArmGeometry& arm,
 // order: the form for callers that evaluate the tip at every millisecond of a move.
 ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -35,7 +35,7 @@ enum class LiveStatus {
 // where the source writes it.
 struct FrameOrigin {
   std::uint64_t start_ms = 0;
-  compiler::Location source;
+  seqc::Location source;
 };
 
 struct LiveReport {

@@ -8,7 +8,7 @@
 #include <variant>
 
 #include "compiler/formats/listing.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
@@ -28,7 +28,7 @@ constexpr std::string_view kEmulators[] = {"lsc6"};
 Result<Plan> plan(const compiler::CompileOutput& output, std::uint8_t group) {
   const compiler::ServoProgram* program = output.servo_program();
   if (program == nullptr) return make_error("the program is not a servo program");
-  auto frames = backend::plan_lsc6_download(*program, group);
+  auto frames = compiler::plan_lsc6_download(*program, group);
   if (!frames) return frames.error();
   return Plan{group, program->keyframes.size(), std::move(frames).value()};
 }
@@ -39,13 +39,13 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit, std
   const compiler::ServoProgram& program = *output.servo_program();
   switch (emit) {
     case Emit::Hex:
-      return backend::render_hex(planned->frames);
+      return compiler::render_hex(planned->frames);
     case Emit::Listing:
       // How the listing describes the group's storage: " (LSC-6 dialect)".
-      return backend::render_listing(program, planned->frames, group, output.sources,
+      return compiler::render_listing(program, planned->frames, group, output.sources,
                                      " (" + std::string(kLsc6Dialect.name) + " dialect)");
     case Emit::Json:
-      return backend::render_json(program, planned->frames, group, output.sources);
+      return compiler::render_json(program, planned->frames, group, output.sources);
   }
   return make_error("unknown output form");
 }

@@ -14,14 +14,14 @@ std::uint64_t length_ms(const compiler::CompileOutput& output) {
   return 0;
 }
 
-std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output,
-                                           compiler::SongReader& songs) {
+std::optional<compiler::PlotSong> plot_song(const compiler::CompileOutput& output,
+                                           seqc::SongReader& songs) {
   const compiler::ServoProgram* program = output.servo_program();
   if (program == nullptr || !program->timeline.song) return std::nullopt;
   const compiler::Song& song = *program->timeline.song;
-  Result<compiler::SongSamples> decoded = songs.read(song.file);
+  Result<seqc::SongSamples> decoded = songs.read(song.file);
   if (!decoded) return std::nullopt;
-  backend::PlotSong out;
+  compiler::PlotSong out;
   out.label = std::filesystem::path(song.file).filename().string();
   out.sample_rate = decoded->sample_rate;
   out.downbeat_s = song.downbeat.value() / 1000.0;
@@ -35,53 +35,53 @@ std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output
   return out;
 }
 
-std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options) {
+std::string plot(const compiler::CompileOutput& output, const compiler::PlotOptions& options) {
   if (const compiler::ServoProgram* p = output.servo_program()) {
-    return backend::plot_servo_program(*p, options);
+    return compiler::plot_servo_program(*p, options);
   }
   if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
-    return backend::plot_car_program(*p, options);
+    return compiler::plot_car_program(*p, options);
   }
   return "";
 }
 
-std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+std::optional<compiler::PreviewPart> preview_part(const compiler::CompileOutput& output,
                                                  const std::string& title, double end_ms,
-                                                 const backend::PlotSong* song) {
+                                                 const compiler::PlotSong* song) {
   if (const compiler::ServoProgram* p = output.servo_program()) {
-    return backend::preview_servo_part(*p, title, end_ms, song);
+    return compiler::preview_servo_part(*p, title, end_ms, song);
   }
   if (const compiler::RaspblockProgram* p = output.raspblock_program()) {
-    return backend::preview_car_part(*p, title, end_ms);
+    return compiler::preview_car_part(*p, title, end_ms);
   }
   return std::nullopt;
 }
 
-std::optional<backend::PreviewSong> preview_song(const compiler::CompileOutput& output,
-                                                 compiler::FileReader& files) {
+std::optional<compiler::PreviewSong> preview_song(const compiler::CompileOutput& output,
+                                                 seqc::FileReader& files) {
   const compiler::ServoProgram* program = output.servo_program();
   if (program == nullptr || !program->timeline.song) return std::nullopt;
   const compiler::Song& song = *program->timeline.song;
-  const std::string mime = backend::audio_mime(song.file);
+  const std::string mime = compiler::audio_mime(song.file);
   if (mime.empty()) return std::nullopt;
   Result<std::string> bytes = files.read(song.file);
   if (!bytes) return std::nullopt;
-  return backend::PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
+  return compiler::PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
 }
 
 Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare) {
   Simulated out;
   if (const compiler::ServoProgram* program = output.servo_program()) {
-    const backend::Simulation sim = backend::simulate(*program, step_ms, compare);
-    if (compare) out.differences = backend::compare_with_intent(*program);
-    out.csv = backend::to_csv(sim);
+    const compiler::Simulation sim = compiler::simulate(*program, step_ms, compare);
+    if (compare) out.differences = compiler::compare_with_intent(*program);
+    out.csv = compiler::to_csv(sim);
     out.duration_ms = sim.duration_ms;
     out.steps = program->keyframes.size();
     out.steps_are = "actions";
     out.ok = true;
   } else if (const compiler::RaspblockProgram* car = output.raspblock_program()) {
-    const backend::CarSimulation sim = backend::simulate_car(*car, step_ms);
-    out.csv = backend::to_csv(sim);
+    const compiler::CarSimulation sim = compiler::simulate_car(*car, step_ms);
+    out.csv = compiler::to_csv(sim);
     out.duration_ms = sim.duration_ms;
     out.steps = car->packets.size();
     out.steps_are = "packets";

@@ -23,25 +23,25 @@ namespace seqc::boards {
 std::uint64_t length_ms(const compiler::CompileOutput& output);
 
 // The program as a picture (formats/plot_svg); "" without a program.
-std::string plot(const compiler::CompileOutput& output, const backend::PlotOptions& options);
+std::string plot(const compiler::CompileOutput& output, const compiler::PlotOptions& options);
 
 // The song of a file with `music:` as the plot draws it under the lanes: decoded through
 // `songs`, with the beats found in it (the file's tempo as the hint between half and double
 // readings, its meter given). nullopt without a song or when it cannot be decoded (the check
 // has said why); no beats when none are steady enough to find.
-std::optional<backend::PlotSong> plot_song(const compiler::CompileOutput& output,
-                                           compiler::SongReader& songs);
+std::optional<compiler::PlotSong> plot_song(const compiler::CompileOutput& output,
+                                           seqc::SongReader& songs);
 
 // The program as one performer of `seqc preview`'s page (formats/preview_html), on a time axis
 // of `end_ms`, with `song` (plot_song) under its lanes when given; nullopt without a program.
-std::optional<backend::PreviewPart> preview_part(const compiler::CompileOutput& output,
+std::optional<compiler::PreviewPart> preview_part(const compiler::CompileOutput& output,
                                                  const std::string& title, double end_ms,
-                                                 const backend::PlotSong* song = nullptr);
+                                                 const compiler::PlotSong* song = nullptr);
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; nullopt without a song, when it cannot be read or is of another type.
-std::optional<backend::PreviewSong> preview_song(const compiler::CompileOutput& output,
-                                                 compiler::FileReader& files);
+std::optional<compiler::PreviewSong> preview_song(const compiler::CompileOutput& output,
+                                                 seqc::FileReader& files);
 
 struct Simulated {
   bool ok = false;  // false: no program of a kind that can be simulated
@@ -51,7 +51,7 @@ struct Simulated {
   std::string_view steps_are;  // ... and named: "actions", "packets"
   // With `compare` (servo programs): each servo's largest difference between the compiled
   // motion and the intended curve, and when.
-  std::vector<backend::Difference> differences;
+  std::vector<compiler::Difference> differences;
 };
 Simulated simulate(const compiler::CompileOutput& output, std::uint32_t step_ms, bool compare);
 

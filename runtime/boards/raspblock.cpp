@@ -17,10 +17,10 @@ namespace {
 
 constexpr std::string_view kEmulators[] = {"raspblock"};
 
-Result<std::vector<backend::StreamFrame>> stream_of(const compiler::CompileOutput& output) {
+Result<std::vector<compiler::StreamFrame>> stream_of(const compiler::CompileOutput& output) {
   const compiler::RaspblockProgram* car = output.raspblock_program();
   if (car == nullptr) return make_error("the program is not a Raspblock program");
-  return backend::plan_stream(*car);
+  return compiler::plan_stream(*car);
 }
 
 // The stream has no group: `group` does not apply.
@@ -31,11 +31,11 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit,
   const compiler::RaspblockProgram& car = *output.raspblock_program();
   switch (emit) {
     case Emit::Hex:
-      return backend::render_stream_hex(*frames);
+      return compiler::render_stream_hex(*frames);
     case Emit::Listing:
-      return backend::render_stream_listing(car, *frames, output.sources);
+      return compiler::render_stream_listing(car, *frames, output.sources);
     case Emit::Json:
-      return backend::render_stream_json(car, *frames);
+      return compiler::render_stream_json(car, *frames);
   }
   return make_error("unknown output form");
 }
@@ -44,7 +44,7 @@ Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::CompileO
   auto frames = stream_of(output);
   if (!frames) return frames.error();
   std::vector<player::ScheduledFrame> out;
-  for (backend::StreamFrame& f : *frames) {
+  for (compiler::StreamFrame& f : *frames) {
     out.push_back({std::chrono::milliseconds(f.at_ms), std::move(f.bytes)});
   }
   return out;
@@ -80,7 +80,7 @@ const Board kRaspblockBoard = {
     .unconfirmed_run = "",
     .live_frames = live_frames,
     .probe = nullptr,
-    .safe_stop = backend::stop_frame,
+    .safe_stop = compiler::stop_frame,
     .measure_departure = false,
     .check_schedule = false,
     .wait_for_end = false,

@@ -13,7 +13,7 @@ io::Duration ResyncRun::latest_start() const {
 }
 
 std::vector<player::ScheduledFrame> resync_starts(const Board& board,
-                                                  const std::vector<backend::ResyncPiece>& pieces,
+                                                  const std::vector<compiler::ResyncPiece>& pieces,
                                                   std::uint8_t first_group) {
   std::vector<player::ScheduledFrame> out;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
@@ -28,7 +28,7 @@ std::vector<player::ScheduledFrame> resync_starts(const Board& board,
 }
 
 ResyncRun store_pieces(const Board& board, const Line& line, const compiler::CompileOutput& output,
-                       const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                       const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                        const upload::UploadOptions& options, upload::UploadObserver* observer) {
   ResyncRun r;
   const compiler::ServoProgram* dance = output.servo_program();
@@ -59,7 +59,7 @@ ResyncRun store_pieces(const Board& board, const Line& line, const compiler::Com
 }
 
 void start_pieces(const Board& board, const Line& line,
-                  const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                  const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                   const upload::UploadOptions& options, ResyncRun& r) {
   if (!r.stored()) return;
   r.starts = resync_starts(board, pieces, first_group);
@@ -75,7 +75,7 @@ void start_pieces(const Board& board, const Line& line,
 
 ResyncRun store_and_start(const Board& board, const Line& line,
                           const compiler::CompileOutput& output,
-                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                          const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                           const upload::UploadOptions& options, upload::UploadObserver* observer) {
   ResyncRun r = store_pieces(board, line, output, pieces, first_group, options, observer);
   start_pieces(board, line, pieces, first_group, options, r);

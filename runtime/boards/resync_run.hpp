@@ -31,26 +31,26 @@ struct ResyncRun {
 
 // The starts of `pieces` (groups first_group, first_group + 1, ...) as a schedule.
 std::vector<player::ScheduledFrame> resync_starts(const Board& board,
-                                                  const std::vector<backend::ResyncPiece>& pieces,
+                                                  const std::vector<compiler::ResyncPiece>& pieces,
                                                   std::uint8_t first_group);
 
 // Requires board.plan, board.upload, board.run_frame. `output` is the compiled dance (its robot
 // is kept for every piece). Stops at the first piece that does not store.
 ResyncRun store_pieces(const Board& board, const Line& line, const compiler::CompileOutput& output,
-                       const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                       const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                        const upload::UploadOptions& options, upload::UploadObserver* observer);
 
 // Once r.stored() (else nothing): options.may_run (if set) is asked before the first start, as
 // an upload asks it before its run, then every piece is started at its time. Apart from the
 // storing, so a caller can keep time (`--realtime`) over the starts alone.
 void start_pieces(const Board& board, const Line& line,
-                  const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                  const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                   const upload::UploadOptions& options, ResyncRun& r);
 
 // store_pieces, then start_pieces.
 ResyncRun store_and_start(const Board& board, const Line& line,
                           const compiler::CompileOutput& output,
-                          const std::vector<backend::ResyncPiece>& pieces, std::uint8_t first_group,
+                          const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                           const upload::UploadOptions& options, upload::UploadObserver* observer);
 
 }  // namespace seqc::boards

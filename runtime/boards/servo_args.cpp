@@ -179,12 +179,12 @@ Result<std::vector<lsc::ServoTarget>> checked_targets(
 }
 
 Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* field) {
-  auto time = compiler::parse_time(text);
+  auto time = seqc::parse_time(text);
   if (!time) return make_error(std::string(field) + ": " + time.error().message);
-  if (time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
+  if (time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
     return make_error(std::string(field) + ": beats need a tempo; give ms or s");
   }
-  const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   if (ms != std::floor(ms)) {
     return make_error(std::string(field) + ": " + quoted(text) + " is not whole milliseconds");
   }

@@ -11,13 +11,13 @@
 
 namespace seqc::boards {
 
-class AudioSongReader final : public compiler::SongReader {
+class AudioSongReader final : public seqc::SongReader {
  public:
   explicit AudioSongReader(audio::AudioReader& audio) : audio_(audio) {}
-  Result<compiler::SongSamples> read(const std::string& path) override {
+  Result<seqc::SongSamples> read(const std::string& path) override {
     Result<audio::MonoAudio> a = audio_.read(path);
     if (!a) return a.error();
-    return compiler::SongSamples{std::move(a->samples), a->sample_rate};
+    return seqc::SongSamples{std::move(a->samples), a->sample_rate};
   }
 
  private:

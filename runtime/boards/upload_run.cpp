@@ -27,7 +27,7 @@ upload::UploadOptions upload_options(const UploadRequest& request, const Board& 
 ResyncCut cut_for_resync(const compiler::ServoProgram& program, std::uint32_t bars,
                          std::int32_t clock_ppm, std::uint8_t first_group) {
   ResyncCut cut;
-  auto pieces = backend::split_at_bars(program, bars, clock_ppm);
+  auto pieces = compiler::split_at_bars(program, bars, clock_ppm);
   if (!pieces) {
     cut.error = pieces.error().message;
     return cut;

@@ -42,10 +42,10 @@ upload::UploadOptions upload_options(const UploadRequest& request, const Board& 
                                      const std::atomic<bool>* interrupted,
                                      std::optional<FirstMoveTooFast>& too_fast);
 
-// `--resync BARS`: the dance cut every `bars` bars (backend::split_at_bars, times pre-scaled by
+// `--resync BARS`: the dance cut every `bars` bars (compiler::split_at_bars, times pre-scaled by
 // `clock_ppm`), piece k for group first_group + k. Before any port opens.
 struct ResyncCut {
-  std::vector<backend::ResyncPiece> pieces;
+  std::vector<compiler::ResyncPiece> pieces;
   std::string error;           // not empty: the dance cannot be cut there, and there are no pieces
   std::size_t last_group = 0;  // the last piece's group; above 254 the pieces do not fit
   bool fits() const { return error.empty() && last_group <= 254; }

@@ -11,7 +11,7 @@
 #include <variant>
 
 #include "compiler/formats/listing.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
@@ -43,7 +43,7 @@ Result<const compiler::ServoProgram*> servo_program(const compiler::CompileOutpu
 Result<Plan> plan(const compiler::CompileOutput& output, std::uint8_t group) {
   auto program = servo_program(output);
   if (!program) return program.error();
-  auto frames = backend::plan_download(**program, group);
+  auto frames = compiler::plan_download(**program, group);
   if (!frames) return frames.error();
   return Plan{group, (*program)->keyframes.size(), std::move(frames).value()};
 }
@@ -61,12 +61,12 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit, std
   const compiler::ServoProgram& program = *output.servo_program();
   switch (emit) {
     case Emit::Hex:
-      return backend::render_hex(planned->frames);
+      return compiler::render_hex(planned->frames);
     case Emit::Listing:
-      return backend::render_listing(program, planned->frames, group, output.sources,
+      return compiler::render_listing(program, planned->frames, group, output.sources,
                                      storage(program));
     case Emit::Json:
-      return backend::render_json(program, planned->frames, group, output.sources);
+      return compiler::render_json(program, planned->frames, group, output.sources);
   }
   return make_error("unknown output form");
 }

@@ -163,7 +163,7 @@ std::string first_move_text(const boards::FirstMoveTooFast& fast) {
   return fmt::format(
       "'{}' is at {}; reaching {} in {} is {:.0f} units/s, above its max_speed {:.0f}/s; slow the "
       "first move or pass --force",
-      fast.name, fast.from, fast.to, compiler::format_seconds(fast.time_ms), fast.speed,
+      fast.name, fast.from, fast.to, seqc::format_seconds(fast.time_ms), fast.speed,
       fast.max_speed);
 }
 

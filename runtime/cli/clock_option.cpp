@@ -23,11 +23,11 @@ ExitCode resolve_clock_ppm(Context& ctx, const ClockScaleOptions& options, std::
       ctx.err << "seqc: error: --rig: " << text.error().message << "\n";
       return ExitCode::FileError;
     }
-    compiler::SourceManager sources;
-    compiler::Diagnostics diags;
+    seqc::SourceManager sources;
+    seqc::Diagnostics diags;
     const std::uint32_t file = sources.add(options.rig, *text);
     const auto rig = compiler::parse_rig(sources, file, diags);
-    ctx.err << compiler::render_all(diags, sources, false, ctx.color);
+    ctx.err << seqc::render_all(diags, sources, false, ctx.color);
     if (!rig) return ExitCode::InvalidInput;
     if (rig->clock_ppm) ppm = *rig->clock_ppm;
   }

@@ -67,7 +67,7 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
 
 // The summary line of a unit (text form).
 std::string summary(const Unit& u, bool strict) {
-  const compiler::Diagnostics& d = u.compiled.output.diagnostics;
+  const seqc::Diagnostics& d = u.compiled.output.diagnostics;
   const std::string warned =
       d.warning_count() ? ", " + plural(d.warning_count(), "warning") : std::string();
   if (u.show && u.compiled.code == ExitCode::Ok) {
@@ -75,7 +75,7 @@ std::string summary(const Unit& u, bool strict) {
   }
   if (const compiler::RaspblockProgram* car = u.compiled.output.raspblock_program()) {
     return fmt::format("{}: ok ({}, {}){}\n", u.label, plural(car->packets.size(), "packet"),
-                       compiler::format_seconds(car->duration_ms), warned);
+                       seqc::format_seconds(car->duration_ms), warned);
   }
   if (const compiler::ServoProgram* p = u.compiled.output.servo_program()) {
     // The group's budget: actions used, duration, and the largest distance between the
@@ -85,13 +85,13 @@ std::string summary(const Unit& u, bool strict) {
     // they are 0.
     const std::string units =
         p->fit_error > 0
-            ? fmt::format("{} units ({} at {:.3f} s)", compiler::format_units(p->fit_error),
+            ? fmt::format("{} units ({} at {:.3f} s)", seqc::format_units(p->fit_error),
                           p->fit_error_servo, p->fit_error_at_ms / 1000.0)
             : "0 units";
     std::string fit = units;
     if (p->tip_error_mm) {
       const std::string tip =
-          fmt::format("{} mm (tip at {:.3f} s)", compiler::format_units(*p->tip_error_mm),
+          fmt::format("{} mm (tip at {:.3f} s)", seqc::format_units(*p->tip_error_mm),
                       p->tip_error_at_ms / 1000.0);
       fit = p->fit_error > 0 ? units + " and " + tip : tip;
     }
@@ -157,7 +157,7 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
         ctx.err << "seqc: error: " << *out.read_error << "\n";
         continue;
       }
-      ctx.err << compiler::render_all(out.diagnostics, out.sources, opts->strict, ctx.color);
+      ctx.err << seqc::render_all(out.diagnostics, out.sources, opts->strict, ctx.color);
       ctx.out << summary(u, opts->strict);
     }
   });

@@ -43,7 +43,7 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result) {
       }
       bytes = std::move(*read);
     }
-    auto table = backend::read_d6a(bytes);
+    auto table = compiler::read_d6a(bytes);
     if (!table) {
       ctx.err << "seqc: error: " << o->file << ": " << table.error().message << "\n";
       result.code = ExitCode::InvalidInput;
@@ -104,8 +104,8 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    auto table = backend::d6a_from_program(*program);
-    auto bytes = table ? backend::write_d6a(*table) : Result<std::string>(table.error());
+    auto table = compiler::d6a_from_program(*program);
+    auto bytes = table ? compiler::write_d6a(*table) : Result<std::string>(table.error());
     if (!bytes) {
       ctx.err << "seqc: error: " << o->file << ": " << bytes.error().message << "\n";
       result.code = ExitCode::InvalidInput;

@@ -23,7 +23,7 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--from", *from,
                   "auto (default: told apart by content), hex (xArm/LSC-16/LSC-32\n"
                   "frames), lsc6, raspblock, trace or record")
-      ->check(CLI::IsMember(backend::decode_format_names()));
+      ->check(CLI::IsMember(compiler::decode_format_names()));
   cmd->callback([&ctx, &result, file, from] {
     std::string text;
     if (*file == "-") {
@@ -42,8 +42,8 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
       }
       text = std::move(*read);
     }
-    backend::DecodeResult decoded =
-        backend::decode_text(text, backend::parse_decode_format(*from).value());
+    compiler::DecodeResult decoded =
+        compiler::decode_text(text, compiler::parse_decode_format(*from).value());
     ctx.out << decoded.table;
     if (!decoded.issues.empty()) {
       ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size() << " inconsistenc"

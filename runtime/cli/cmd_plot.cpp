@@ -22,18 +22,18 @@ namespace {
 
 // "1.5s" or "500ms" (beats need the file's tempo: not here).
 std::optional<double> window_ms(Context& ctx, const std::string& option, const std::string& text) {
-  auto t = compiler::parse_time(text);
+  auto t = seqc::parse_time(text);
   if (!t ||
-      (t->unit != compiler::TimeUnit::Milliseconds && t->unit != compiler::TimeUnit::Seconds)) {
+      (t->unit != seqc::TimeUnit::Milliseconds && t->unit != seqc::TimeUnit::Seconds)) {
     ctx.err << "seqc: error: " << option << " " << text << ": give a time in ms or s, e.g. 1.5s\n";
     return std::nullopt;
   }
-  return t->unit == compiler::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
+  return t->unit == seqc::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
 }
 
 // The title names the group a stored program is for, else the board that plays it.
 std::string plot_program(const compiler::CompileOutput& output, const std::string& name, int group,
-                         backend::PlotOptions options) {
+                         compiler::PlotOptions options) {
   const boards::Board& board = boards::board_for(output);
   options.title = board.plan != nullptr ? name + ", group " + std::to_string(group)
                                         : name + " (" + std::string(board.name) + ")";
@@ -43,7 +43,7 @@ std::string plot_program(const compiler::CompileOutput& output, const std::strin
 // A show: every performer's picture on one time axis (the longest performer's), stacked as
 // nested <svg> elements in one document.
 ExitCode plot_show(Context& ctx, const std::string& path, const std::string& name, bool strict,
-                   backend::PlotOptions options, std::string& svg) {
+                   compiler::PlotOptions options, std::string& svg) {
   ExitCode loaded = ExitCode::Ok;
   compiler::ShowOutput show = load_show_and_report(ctx, path, strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
@@ -66,13 +66,13 @@ ExitCode plot_show(Context& ctx, const std::string& path, const std::string& nam
   svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
         std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
         std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
-        backend::svg::escape(name) +
+        compiler::svg::escape(name) +
         "</title>\n<rect width=\"1100\" "
         "height=\"" +
         std::to_string(static_cast<int>(y)) +
         "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
         "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
-        backend::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
+        compiler::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
         " performers, one clock)</text>\n" + body + "</svg>\n";
   return ExitCode::Ok;
 }
@@ -99,7 +99,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--to", o->to, "End of the time window, e.g. 10s (default: the end)");
   cmd->add_flag("--strict", o->strict, "Treat warnings as errors");
   cmd->callback([&ctx, &result, o] {
-    backend::PlotOptions options;
+    compiler::PlotOptions options;
     if (!o->from.empty() && !(options.from_ms = window_ms(ctx, "--from", o->from))) {
       result.code = ExitCode::Usage;
       return;
@@ -123,7 +123,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = c.code;
       if (c.code == ExitCode::Ok) {
         // A file with `music:` gets its song drawn under the lanes.
-        std::optional<backend::PlotSong> song;
+        std::optional<compiler::PlotSong> song;
         if (ctx.songs != nullptr) song = boards::plot_song(c.output, *ctx.songs);
         options.song = song ? &*song : nullptr;
         svg = plot_program(c.output, name, o->group, options);

@@ -36,7 +36,7 @@ ExitCode preview_show(Context& ctx, const std::string& path, const std::string& 
     end = std::max(end, static_cast<double>(boards::length_ms(p.output)));
   }
   std::vector<std::string> names;
-  std::vector<backend::PreviewPart> parts;
+  std::vector<compiler::PreviewPart> parts;
   for (const compiler::Performer& p : show.performers) {
     auto part = boards::preview_part(
         p.output, part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group),
@@ -45,7 +45,7 @@ ExitCode preview_show(Context& ctx, const std::string& path, const std::string& 
     names.push_back(p.name);
     parts.push_back(std::move(*part));
   }
-  html = backend::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
+  html = compiler::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
                                    " performers, one clock), " + name,
                                names, parts, end);
   return ExitCode::Ok;
@@ -81,12 +81,12 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
         const double end = static_cast<double>(boards::length_ms(c.output));
         const std::string title = part_title(c.output, name, o->group);
         // A file with `music:` brings its song: drawn under the lanes and played with the page.
-        std::optional<backend::PlotSong> picture;
+        std::optional<compiler::PlotSong> picture;
         if (ctx.songs != nullptr) picture = boards::plot_song(c.output, *ctx.songs);
-        const std::optional<backend::PreviewSong> song = boards::preview_song(c.output, ctx.files);
+        const std::optional<compiler::PreviewSong> song = boards::preview_song(c.output, ctx.files);
         if (auto part = boards::preview_part(c.output, title, end, picture ? &*picture : nullptr)) {
           html =
-              backend::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
+              compiler::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
         }
       }
     }

@@ -94,7 +94,7 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
     summary += (summary.empty() ? "" : ", ") + servo_label(t.id, *robot) + " to " +
                std::to_string(t.position);
   }
-  const std::string said = "moving " + summary + " over " + compiler::format_seconds(*ms);
+  const std::string said = "moving " + summary + " over " + seqc::format_seconds(*ms);
   const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.move == nullptr) return refuse_command(ctx, board, o.device.command);
   return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {

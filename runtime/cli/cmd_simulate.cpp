@@ -35,12 +35,12 @@ bool simulate_one(Context& ctx, const compiler::CompileOutput& output, const std
     ctx.err << "seqc: error: " << name << ": this robot kind cannot be simulated\n";
     return false;
   }
-  for (const backend::Difference& d : sim.differences) {
-    ctx.err << "seqc: " << d.servo << ": largest difference " << compiler::format_units(d.largest)
-            << " units at " << compiler::format_seconds(d.at_ms) << "\n";
+  for (const compiler::Difference& d : sim.differences) {
+    ctx.err << "seqc: " << d.servo << ": largest difference " << seqc::format_units(d.largest)
+            << " units at " << seqc::format_seconds(d.at_ms) << "\n";
   }
   ctx.err << "seqc: " << name << ": " << sim.steps << " " << sim.steps_are << ", "
-          << compiler::format_seconds(sim.duration_ms) << "\n";
+          << seqc::format_seconds(sim.duration_ms) << "\n";
   csv = sim.csv;
   return true;
 }

@@ -35,12 +35,12 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
     return ExitCode::FileError;
   }
   std::string text = std::move(*read);
-  compiler::SourceManager sources;
-  compiler::Diagnostics diags;
+  seqc::SourceManager sources;
+  seqc::Diagnostics diags;
   const std::optional<compiler::RobotInfo> robot =
       compiler::robot_of_text(o.file, text, sources, diags);
   if (!robot) {
-    ctx.err << compiler::render_all(diags, sources, false, ctx.color);
+    ctx.err << seqc::render_all(diags, sources, false, ctx.color);
     return ExitCode::InvalidInput;
   }
   const std::vector<std::uint8_t> ids = boards::readable_servos(*robot);

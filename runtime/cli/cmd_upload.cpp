@@ -87,7 +87,7 @@ void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResul
 }
 
 // --resync's pieces, or why the file cannot be cut (said on ctx.err): before any port opens.
-std::optional<std::vector<backend::ResyncPiece>> resync_pieces(
+std::optional<std::vector<compiler::ResyncPiece>> resync_pieces(
     Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output, std::int32_t ppm) {
   boards::ResyncCut cut = boards::cut_for_resync(*output.servo_program(), a.resync, ppm,
                                                  static_cast<std::uint8_t>(a.group));
@@ -104,7 +104,7 @@ std::optional<std::vector<backend::ResyncPiece>> resync_pieces(
 
 // --resync: the pieces stored one group each, then started by the computer at their bar lines.
 ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output,
-                    const boards::Board& board, const std::vector<backend::ResyncPiece>& pieces,
+                    const boards::Board& board, const std::vector<compiler::ResyncPiece>& pieces,
                     const boards::Line& line, upload::UploadObserver* progress,
                     upload::ProgressPrinter& printer, const upload::UploadOptions& options,
                     const std::optional<boards::FirstMoveTooFast>& too_fast) {
@@ -225,7 +225,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     return ExitCode::InvalidInput;
   }
   const boards::Plan& plan = *planned;
-  std::optional<std::vector<backend::ResyncPiece>> pieces;
+  std::optional<std::vector<compiler::ResyncPiece>> pieces;
   if (a.resync > 0) {
     pieces = resync_pieces(ctx, a, c.output, ppm);
     if (!pieces) return ExitCode::InvalidInput;

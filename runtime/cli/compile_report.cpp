@@ -9,9 +9,9 @@ namespace seqc::cli {
 namespace {
 
 // Serves <stdin> from the text read once; every other path (includes) from the disk.
-class StdinFirstReader final : public compiler::FileReader {
+class StdinFirstReader final : public seqc::FileReader {
  public:
-  StdinFirstReader(std::string text, compiler::FileReader& rest)
+  StdinFirstReader(std::string text, seqc::FileReader& rest)
       : text_(std::move(text)), rest_(rest) {}
   seqc::Result<std::string> read(const std::string& path) override {
     if (path == kStdinName) return text_;
@@ -20,11 +20,11 @@ class StdinFirstReader final : public compiler::FileReader {
 
  private:
   std::string text_;
-  compiler::FileReader& rest_;
+  seqc::FileReader& rest_;
 };
 
-Compiled compile_from(compiler::FileReader& files, const std::string& path, bool strict,
-                      compiler::SongReader* songs, std::int32_t clock_ppm) {
+Compiled compile_from(seqc::FileReader& files, const std::string& path, bool strict,
+                      seqc::SongReader* songs, std::int32_t clock_ppm) {
   compiler::CompileOptions options{strict};
   options.songs = songs;
   options.clock_ppm = clock_ppm;
@@ -41,7 +41,7 @@ Compiled compile_from(compiler::FileReader& files, const std::string& path, bool
 
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
                          std::int32_t clock_ppm) {
-  compiler::SongReader* songs = song == SongCheck::Decode ? ctx.songs : nullptr;
+  seqc::SongReader* songs = song == SongCheck::Decode ? ctx.songs : nullptr;
   if (path == "-") {
     std::string text;
     if (ctx.in != nullptr) {
@@ -64,7 +64,7 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
     ctx.err << "seqc: error: " << *c.output.read_error << "\n";
     return c;
   }
-  ctx.err << compiler::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
+  ctx.err << seqc::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
   return c;
 }
 
@@ -88,9 +88,9 @@ compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path,
     code = ExitCode::FileError;
     return show;
   }
-  ctx.err << compiler::render_all(show.diagnostics, show.sources, strict, ctx.color);
+  ctx.err << seqc::render_all(show.diagnostics, show.sources, strict, ctx.color);
   for (const compiler::Performer& p : show.performers) {
-    ctx.err << compiler::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
+    ctx.err << seqc::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
   }
   code = show.ok(strict) ? ExitCode::Ok : ExitCode::InvalidInput;
   return show;

@@ -19,7 +19,7 @@ struct Context {
   std::ostream& out;  // data
   std::ostream& err;  // diagnostics, progress, "seqc: error: ..."
   io::Clock& clock;
-  compiler::FileReader& files;
+  seqc::FileReader& files;
   bool err_is_terminal = false;  // progress bar vs plain lines
   // Set by the SIGINT handler; long-running commands poll it and stop cleanly.
   const std::atomic<bool>* interrupted = nullptr;
@@ -39,7 +39,7 @@ struct Context {
   int verbosity = 0;
   bool color = false;  // diagnostics in colour (--color, NO_COLOR, err_is_terminal)
   // Decodes a choreography's `music:` song for the commands that check it; null: not checked.
-  compiler::SongReader* songs = nullptr;
+  seqc::SongReader* songs = nullptr;
   // --music: where a song is decoded (null: libsndfile on the disk) and played (null: no audio).
   audio::AudioReader* audio_files = nullptr;
   audio::AudioOutputFactory* audio_output = nullptr;

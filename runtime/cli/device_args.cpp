@@ -7,12 +7,12 @@
 namespace seqc::cli {
 
 Result<io::Duration> parse_timeout(std::string_view text) {
-  auto time = compiler::parse_time(text);
+  auto time = seqc::parse_time(text);
   if (!time) return make_error("--timeout: " + time.error().message);
-  if (time->unit == compiler::TimeUnit::Beats || time->unit == compiler::TimeUnit::Bars) {
+  if (time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
     return make_error("--timeout: give ms or s");
   }
-  const double ms = time->unit == compiler::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   if (ms <= 0 || ms > 3600.0 * 1000) {
     return make_error("--timeout must be more than 0 and at most 1 hour, got '" +
                       std::string(text) + "'");

@@ -24,14 +24,14 @@ namespace {
 std::string where(const compiler::CompileOutput& compiled, const boards::LiveReport& r,
                   std::size_t move) {
   if (move >= r.origins.size()) return "";
-  const compiler::Location& at = r.origins[move].source;
-  if (at.file == compiler::kNoFile || at.file >= compiled.sources.file_count()) return "";
+  const seqc::Location& at = r.origins[move].source;
+  if (at.file == seqc::kNoFile || at.file >= compiled.sources.file_count()) return "";
   return " (" + compiled.sources.path(at.file) + ":" + std::to_string(at.line) + ")";
 }
 
 // "0.5 s": when the step a move comes from starts.
 std::string start_of(const boards::LiveReport& r, std::size_t move) {
-  return move < r.origins.size() ? compiler::format_seconds(r.origins[move].start_ms) : "?";
+  return move < r.origins.size() ? seqc::format_seconds(r.origins[move].start_ms) : "?";
 }
 
 std::string link_text(const io::Transport& t) {
@@ -90,7 +90,7 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
     case boards::LiveStatus::Played: {
       if (ctx.verbosity < 0) return ExitCode::Ok;
       const player::LatenessSummary late = player::summarize(r.play.left_lateness);
-      ctx.err << "seqc: played " << sent << " moves, " << compiler::format_seconds(r.length_ms)
+      ctx.err << "seqc: played " << sent << " moves, " << seqc::format_seconds(r.length_ms)
               << "; moves left the port late by p50 " << io::ms_text(late.p50, 1) << ", p99 "
               << io::ms_text(late.p99, 1) << ", max " << io::ms_text(late.max, 1)
               << " (measured once each had left)\n";
@@ -122,7 +122,7 @@ ExitCode word_stream(Context& ctx, const boards::LiveReport& r) {
     case boards::LiveStatus::InterruptedAtEnd: {
       if (ctx.verbosity < 0) return ExitCode::Ok;
       const player::LatenessSummary late = player::summarize(p.lateness);
-      ctx.err << "seqc: played " << p.sent << " frames in " << compiler::format_seconds(r.length_ms)
+      ctx.err << "seqc: played " << p.sent << " frames in " << seqc::format_seconds(r.length_ms)
               << "; lateness p50 " << io::ms_text(late.p50, 2) << ", p99 "
               << io::ms_text(late.p99, 2) << ", max " << io::ms_text(late.max, 2) << "\n";
       return ExitCode::Ok;
@@ -161,7 +161,7 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
     if (ctx.verbosity >= 0 && !board.unprobed_note.empty()) {
       ctx.err << "seqc: note: " << board.unprobed_note << "\n";
     }
-    const std::string length = compiler::format_seconds(r.length_ms);
+    const std::string length = seqc::format_seconds(r.length_ms);
     if (ctx.verbosity >= 0 && moves) {
       ctx.err << "seqc: playing " << r.frames.size() << " moves (" << length << ") live on "
               << t.describe() << "; Ctrl-C stops\n";

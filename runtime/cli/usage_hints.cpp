@@ -74,7 +74,7 @@ std::optional<std::string> find_unknown_word(const CLI::App& app,
       if (!known_option(current, key)) {
         std::string title = current == &app ? "seqc" : "seqc " + current->get_name();
         return with_hint("unknown option '" + name + "' for '" + title + "'",
-                         compiler::did_you_mean(name, option_names(current)));
+                         seqc::did_you_mean(name, option_names(current)));
       }
       if (word.find('=') == std::string::npos && name == key && takes_value(current, key)) ++i;
       continue;
@@ -87,7 +87,7 @@ std::optional<std::string> find_unknown_word(const CLI::App& app,
     if (!subcommand_names(*current).empty() && current->get_require_subcommand_min() > 0) {
       const std::string what = current == &app ? "command" : current->get_name() + " command";
       return with_hint("unknown " + what + " '" + word + "'",
-                       compiler::did_you_mean(word, subcommand_names(*current)));
+                       seqc::did_you_mean(word, subcommand_names(*current)));
     }
     positional_seen = true;
   }
@@ -101,7 +101,7 @@ const CLI::App* find_subcommand(const CLI::App& app, const std::vector<std::stri
     const CLI::App* sub = child(*current, n);
     if (sub == nullptr) {
       unknown = with_hint("no help for '" + n + "': unknown command",
-                          compiler::did_you_mean(n, subcommand_names(*current)));
+                          seqc::did_you_mean(n, subcommand_names(*current)));
       return nullptr;
     }
     current = sub;

@@ -44,7 +44,7 @@ constexpr FaultKey kKeys[] = {
 
 std::string unknown_key_message(std::string_view key) {
   std::string msg = "unknown fault '" + std::string(key) + "'";
-  const std::string best = compiler::did_you_mean(key, [] {
+  const std::string best = seqc::did_you_mean(key, [] {
     std::vector<std::string> keys;
     for (const FaultKey& k : kKeys) keys.emplace_back(k.key);
     return keys;

@@ -1,11 +1,11 @@
-// The real file system behind compiler::FileReader.
+// The real file system behind seqc::FileReader.
 #pragma once
 
 #include "base/source.hpp"
 
 namespace seqc::io {
 
-class DiskFileReader final : public compiler::FileReader {
+class DiskFileReader final : public seqc::FileReader {
  public:
   // Files larger than max_bytes are refused unread, so a huge file cannot exhaust memory.
   explicit DiskFileReader(std::size_t max_bytes = 16u << 20) : max_bytes_(max_bytes) {}

@@ -40,11 +40,11 @@ inline std::string stamp_text(TimePoint t) {
   return text;
 }
 
-// "250 ms" below a second, else compiler::format_seconds ("1.5 s").
+// "250 ms" below a second, else seqc::format_seconds ("1.5 s").
 inline std::string duration_text(Duration d) {
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
   if (ms < 1000) return std::to_string(ms) + " ms";
-  return compiler::format_seconds(static_cast<std::uint64_t>(ms));
+  return seqc::format_seconds(static_cast<std::uint64_t>(ms));
 }
 
 }  // namespace seqc::io

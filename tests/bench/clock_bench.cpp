@@ -33,7 +33,7 @@ namespace {
 
 using namespace seqc;
 
-class OneFile final : public compiler::FileReader {
+class OneFile final : public seqc::FileReader {
  public:
   explicit OneFile(std::string text) : text_(std::move(text)) {}
   Result<std::string> read(const std::string&) override { return text_; }
@@ -90,7 +90,7 @@ std::optional<double> play_resynced(const boards::Board& board, const boards::Li
   OneFile file(dance());
   const compiler::CompileOutput out = compiler::compile_file("dance.yaml", file, {});
   if (out.servo_program() == nullptr) return std::nullopt;
-  auto pieces = backend::split_at_bars(*out.servo_program(), bars);
+  auto pieces = compiler::split_at_bars(*out.servo_program(), bars);
   if (!pieces) return std::nullopt;
   pieces_out = pieces->size();
   const boards::ResyncRun r = boards::store_and_start(board, line, out, *pieces, 10, {}, nullptr);

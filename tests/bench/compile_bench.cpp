@@ -37,7 +37,7 @@
 
 namespace {
 
-class OneFile final : public seqc::compiler::FileReader {
+class OneFile final : public seqc::FileReader {
  public:
   explicit OneFile(std::string text) : text_(std::move(text)) {}
   seqc::Result<std::string> read(const std::string&) override { return text_; }

@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const auto& program = *compiled.raspblock_program();
-  auto one = backend::plan_stream(program);
+  auto one = compiler::plan_stream(program);
   if (!one) return 1;
   // Repeat the dance until the stream lasts `minutes`, then compress its times by `scale`.
   std::vector<player::ScheduledFrame> frames;

@@ -13,7 +13,7 @@
 namespace seqc::boards {
 namespace {
 
-class MemoryFiles final : public compiler::FileReader {
+class MemoryFiles final : public seqc::FileReader {
  public:
   std::map<std::string, std::string> files;
   Result<std::string> read(const std::string& path) override {
@@ -84,7 +84,7 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
   EXPECT_EQ(sim.steps, car.raspblock_program()->packets.size());
   EXPECT_EQ(sim.duration_ms, car.raspblock_program()->duration_ms);
   EXPECT_EQ(length_ms(car), car.raspblock_program()->duration_ms);
-  backend::PlotOptions options;
+  compiler::PlotOptions options;
   options.title = "car title";
   const std::string svg = plot(car, options);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);

@@ -125,7 +125,7 @@ TEST(BoardText, EveryFailureHasItsSentenceAndStatus) {
 TEST(BoardText, RefusalNamesTheBoardAndWhatItLacks) {
   std::ostringstream out, err;
   io::ManualClock clock;
-  struct NoFiles final : compiler::FileReader {
+  struct NoFiles final : seqc::FileReader {
     Result<std::string> read(const std::string&) override { return make_error("none"); }
   } files;
   Context ctx{out, err, clock, files};

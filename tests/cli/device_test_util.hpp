@@ -23,7 +23,7 @@
 namespace seqc::cli::test {
 
 // Files by path, for commands that read a choreography.
-class MemoryFiles final : public compiler::FileReader {
+class MemoryFiles final : public seqc::FileReader {
  public:
   void add(std::string path, std::string text) { files_[std::move(path)] = std::move(text); }
   Result<std::string> read(const std::string& path) override {
@@ -45,7 +45,7 @@ struct RunResult {
 // `seqc ARGS` in-process, the way main() runs it, with string streams for stdout and stderr;
 // `prepare` binds the Context to the test's emulators before the command runs.
 template <class Prepare>
-RunResult run_seqc(std::vector<std::string> args, io::Clock& clock, compiler::FileReader& files,
+RunResult run_seqc(std::vector<std::string> args, io::Clock& clock, seqc::FileReader& files,
                    Prepare prepare) {
   args.insert(args.begin(), "seqc");
   std::vector<const char*> argv;

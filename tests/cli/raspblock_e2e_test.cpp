@@ -58,7 +58,7 @@ TEST(RaspblockEndToEnd, EmulatorRecordsTheCompiledCarDance) {
   auto compiled = seqc::compiler::compile_file(
       std::string(SEQC_SOURCE_DIR) + "/examples/car-dance.yaml", files);
   ASSERT_NE(compiled.raspblock_program(), nullptr);
-  auto frames = seqc::backend::plan_stream(*compiled.raspblock_program());
+  auto frames = seqc::compiler::plan_stream(*compiled.raspblock_program());
   ASSERT_TRUE(frames.ok());
   seqc::emu::RaspblockEmulator expected;
   for (const auto& f : *frames) expected.receive(f.bytes, std::chrono::milliseconds(f.at_ms));

@@ -10,13 +10,13 @@
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/robot_section.hpp"
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 #include "runtime/io/disk.hpp"
 #include "protocol/lsc_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 using compiler::testing::compile_text;
@@ -223,8 +223,8 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
   for (const compiler::ControllerModel model :
        {compiler::ControllerModel::Rounds, compiler::ControllerModel::Truncates}) {
     SCOPED_TRACE(static_cast<int>(model));
-    compiler::SourceManager sources;
-    compiler::Diagnostics diags;
+    seqc::SourceManager sources;
+    seqc::Diagnostics diags;
     compiler::FileLoader loader(files, sources, diags);
     compiler::Reporter reporter(diags);
     const auto main = loader.load("main.yaml");
@@ -237,11 +237,11 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
     EXPECT_EQ(robot->controller, compiler::ControllerModel::StraightLine);  // the xarm's
     robot->controller = model;
     const compiler::ServoProgram p = compiler::compile_servo(*robot, file, loader, reporter);
-    ASSERT_FALSE(diags.has_errors(false)) << compiler::render_all(diags, sources);
+    ASSERT_FALSE(diags.has_errors(false)) << seqc::render_all(diags, sources);
     ASSERT_EQ(p.keyframes.size(), 1u);
     EXPECT_EQ(p.controller, model);
   }
 }
 
 }  // namespace
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -1,7 +1,7 @@
 // CompileOptions::clock_ppm: a board whose clock is e fast gets action times pre-scaled by
 // (1 + e), every boundary multiplied on the absolute timeline and rounded once, so a long song
 // neither drifts nor gains rounding error action by action; and --resync's pieces at bar lines
-// (backend::split_at_bars). Boundaries are worked out by hand.
+// (compiler::split_at_bars). Boundaries are worked out by hand.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -118,7 +118,7 @@ constexpr const char* kSixBars = seqc::testing::kSixBarsDance;
 
 TEST(Resync, EveryTwoBarsAPiece) {
   const auto out = compile_with_clock(kSixBars, 0);
-  auto pieces = backend::split_at_bars(program_of(out), 2);
+  auto pieces = compiler::split_at_bars(program_of(out), 2);
   ASSERT_TRUE(pieces) << pieces.error().message;
   // Bar lines 2 and 4 at 4000 and 8000 ms; bar 6 is the end, so three pieces of 8 actions.
   ASSERT_EQ(pieces->size(), 3u);
@@ -136,7 +136,7 @@ TEST(Resync, APreScaledPieceStartsAtItsHostTime) {
   // At +8000 ppm bar 2 falls at 4000 x 1.008 = 4032 ms of the board's clock, which the host
   // reaches at 4032 / 1.008 = 4000 ms.
   const auto out = compile_with_clock(kSixBars, 8000);
-  auto pieces = backend::split_at_bars(program_of(out), 2, 8000);
+  auto pieces = compiler::split_at_bars(program_of(out), 2, 8000);
   ASSERT_TRUE(pieces) << pieces.error().message;
   ASSERT_EQ(pieces->size(), 3u);
   EXPECT_EQ((*pieces)[1].board_start_ms, 4032u);
@@ -160,7 +160,7 @@ sequence:
         time: 3b
 )",
                                       0);
-  auto pieces = backend::split_at_bars(program_of(out), 1);
+  auto pieces = compiler::split_at_bars(program_of(out), 1);
   ASSERT_TRUE(pieces) << pieces.error().message;
   ASSERT_EQ(pieces->size(), 3u);
   EXPECT_EQ((*pieces)[0].keyframes.size(), 1u);
@@ -172,7 +172,7 @@ sequence:
 
 TEST(Resync, NeedsBarLines) {
   const auto out = compile_with_clock(kSecondMoves, 0);
-  auto pieces = backend::split_at_bars(program_of(out), 2);
+  auto pieces = compiler::split_at_bars(program_of(out), 2);
   ASSERT_FALSE(pieces);
   EXPECT_EQ(pieces.error().message,
             "--resync needs bar lines: give the file a tempo and a meter (or a music: block)");

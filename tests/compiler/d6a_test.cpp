@@ -18,8 +18,8 @@
 namespace seqc {
 namespace {
 
-using backend::D6aRow;
-using backend::D6aTable;
+using compiler::D6aRow;
+using compiler::D6aTable;
 
 // Writes rows into a new SQLite file at `path` with the statements Hiwonder's tools use, and
 // returns its bytes.
@@ -91,7 +91,7 @@ std::vector<std::pair<int, std::vector<int>>> replay(const compiler::ServoProgra
 TEST(D6a, HumanoidImportCompilesToTheRowsAndExportsTheSameTable) {
   const auto rows = humanoid_rows();
   const std::string bytes = sqlite_file(temp_path("humanoid.d6a"), 16, rows);
-  auto table = backend::read_d6a(bytes);
+  auto table = compiler::read_d6a(bytes);
   ASSERT_TRUE(table.ok()) << table.error().message;
   EXPECT_EQ(table->servo_columns, 16u);
   ASSERT_EQ(table->rows.size(), rows.size());
@@ -104,11 +104,11 @@ TEST(D6a, HumanoidImportCompilesToTheRowsAndExportsTheSameTable) {
   // One action per row, the row's time, every servo where the row puts it.
   EXPECT_EQ(replay(program, 16), rows) << *yaml;
 
-  auto exported = backend::d6a_from_program(program);
+  auto exported = compiler::d6a_from_program(program);
   ASSERT_TRUE(exported.ok()) << exported.error().message;
-  auto written = backend::write_d6a(*exported);
+  auto written = compiler::write_d6a(*exported);
   ASSERT_TRUE(written.ok());
-  auto again = backend::read_d6a(*written);
+  auto again = compiler::read_d6a(*written);
   ASSERT_TRUE(again.ok()) << again.error().message;
   EXPECT_EQ(again->servo_columns, 16u);
   ASSERT_EQ(again->rows.size(), rows.size());
@@ -126,7 +126,7 @@ TEST(D6a, SixColumnsBecomeAnXArmWithItsServoNames) {
       {600, {300, 500, 300, 650, 400, 750}},
       {300, {300, 500, 300, 650, 400, 750}},
   };
-  auto table = backend::read_d6a(sqlite_file(temp_path("arm.d6a"), 6, rows));
+  auto table = compiler::read_d6a(sqlite_file(temp_path("arm.d6a"), 6, rows));
   ASSERT_TRUE(table.ok()) << table.error().message;
   auto yaml = compiler::choreography_from_d6a(*table, {"arm", "arm.d6a", ""});
   ASSERT_TRUE(yaml.ok());
@@ -136,28 +136,28 @@ TEST(D6a, SixColumnsBecomeAnXArmWithItsServoNames) {
   EXPECT_NE(yaml->find("  - wait: 300ms"), std::string::npos) << *yaml;
   const compiler::CompileOutput out = compiler::testing::compile_text(*yaml);
   EXPECT_EQ(replay(compiler::testing::program_of(out), 6), rows);
-  auto exported = backend::d6a_from_program(compiler::testing::program_of(out));
+  auto exported = compiler::d6a_from_program(compiler::testing::program_of(out));
   ASSERT_TRUE(exported.ok());
   EXPECT_EQ(exported->servo_columns, 6u);
 }
 
 TEST(D6a, ForeignOrBrokenFilesSayWhatIsMissing) {
-  EXPECT_EQ(backend::read_d6a("robot: xarm\n").error().message,
+  EXPECT_EQ(compiler::read_d6a("robot: xarm\n").error().message,
             "not a SQLite database (a .d6a file is one; this file does not start with \"SQLite "
             "format 3\")");
-  EXPECT_EQ(backend::read_d6a(sqlite_file(temp_path("other.db"), 0, {},
+  EXPECT_EQ(compiler::read_d6a(sqlite_file(temp_path("other.db"), 0, {},
                                           "CREATE TABLE Notes(a INT); CREATE TABLE Poses(b INT);"))
                 .error()
                 .message,
             "no ActionGroup table (a .d6a file has one; this database has the tables Notes, "
             "Poses)");
-  EXPECT_EQ(backend::read_d6a(
+  EXPECT_EQ(compiler::read_d6a(
                 sqlite_file(temp_path("notime.d6a"), 0, {},
                             "CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY, Servo1 INT);"))
                 .error()
                 .message,
             "the ActionGroup table has no Time column");
-  EXPECT_EQ(backend::read_d6a(sqlite_file(temp_path("gap.d6a"), 0, {},
+  EXPECT_EQ(compiler::read_d6a(sqlite_file(temp_path("gap.d6a"), 0, {},
                                           "CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY, "
                                           "Time INT, Servo1 INT, Servo3 INT);"))
                 .error()
@@ -166,11 +166,11 @@ TEST(D6a, ForeignOrBrokenFilesSayWhatIsMissing) {
   // A truncated database: SQLite itself finds the damage.
   std::string cut = sqlite_file(temp_path("cut.d6a"), 6, {{100, {1, 2, 3, 4, 5, 6}}});
   cut.resize(cut.size() / 2);
-  EXPECT_FALSE(backend::read_d6a(cut).ok());
+  EXPECT_FALSE(compiler::read_d6a(cut).ok());
 }
 
 TEST(D6a, RowsThatCannotBeActionsAreErrorsWithTheirRow) {
-  auto table = backend::read_d6a(
+  auto table = compiler::read_d6a(
       sqlite_file(temp_path("bad.d6a"), 6,
                   {{1000, {500, 500, 500, 500, 500, 500}}, {10, {500, 500, 500, 500, 500, 500}}}));
   ASSERT_TRUE(table.ok());

@@ -313,7 +313,7 @@ sequence:
     time: 6b
 )");
   const ServoProgram& p = program_of(out);
-  const std::string svg = backend::plot_servo_program(p, {});
+  const std::string svg = compiler::plot_servo_program(p, {});
   const std::size_t from = svg.find("<g class=\"grid\">");
   ASSERT_NE(from, std::string::npos);
   const std::string grid = svg.substr(from, svg.find("</g>", from) - from);

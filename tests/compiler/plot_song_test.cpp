@@ -27,8 +27,8 @@ std::size_t count(const std::string& text, const std::string& what) {
 // 4000 / 926 = 4.3197 ms, and 1000 ms falls in column 231 (997.8-1002.2 ms), whose samples are
 // 1497.8-1502.2: the click's column. Its bar is at x = 150 + 231 + 0.5 and fills the lane
 // (peak 1): from y0 = 100 to 172.
-backend::PlotSong click_song() {
-  backend::PlotSong song;
+compiler::PlotSong click_song() {
+  compiler::PlotSong song;
   song.label = "click.wav";
   song.sample_rate = 1000;
   song.samples.assign(5000, 0.0f);
@@ -41,8 +41,8 @@ backend::PlotSong click_song() {
 }
 
 TEST(PlotSong, TheClickAndItsBeatLandOnTheSequencesTimeAxis) {
-  const backend::plot::Frame f{0, 4000};
-  const std::string lane = backend::plot::song_lane(click_song(), f, 100);
+  const compiler::plot::Frame f{0, 4000};
+  const std::string lane = compiler::plot::song_lane(click_song(), f, 100);
   EXPECT_NE(lane.find("d=\"M381.5 100V172\""), std::string::npos) << lane;
   EXPECT_EQ(count(lane, "class=\"beat\""), 1u) << lane;
   EXPECT_NE(lane.find("x1=\"381.5\" y1=\"100\" x2=\"381.5\" y2=\"118\""), std::string::npos)
@@ -51,12 +51,12 @@ TEST(PlotSong, TheClickAndItsBeatLandOnTheSequencesTimeAxis) {
 }
 
 TEST(PlotSong, HalfAPeakIsHalfTheLaneAndSilenceDrawsNothing) {
-  backend::PlotSong song = click_song();
+  compiler::PlotSong song = click_song();
   song.samples[1500] = 0.5f;  // 0.5 x 72 = 36 high, about the middle 136
-  const std::string half = backend::plot::song_lane(song, {0, 4000}, 100);
+  const std::string half = compiler::plot::song_lane(song, {0, 4000}, 100);
   EXPECT_NE(half.find("d=\"M381.5 118V154\""), std::string::npos) << half;
   song.samples[1500] = 0.0f;
-  const std::string silent = backend::plot::song_lane(song, {0, 4000}, 100);
+  const std::string silent = compiler::plot::song_lane(song, {0, 4000}, 100);
   EXPECT_EQ(silent.find("class=\"waveform\""), std::string::npos) << silent;
 }
 
@@ -65,11 +65,11 @@ TEST(PlotSong, ThePlotGrowsALaneUnderTheServosOnlyWithASong) {
       "robot: xarm\ntempo: 120\nsequence:\n  - move: {base: 600}\n"
       "    time: 4b\n");
   const ServoProgram& p = program_of(out);
-  const backend::PlotSong song = click_song();
-  backend::PlotOptions with;
+  const compiler::PlotSong song = click_song();
+  compiler::PlotOptions with;
   with.song = &song;
-  const std::string plain = backend::plot_servo_program(p, {});
-  const std::string drawn = backend::plot_servo_program(p, with);
+  const std::string plain = compiler::plot_servo_program(p, {});
+  const std::string drawn = compiler::plot_servo_program(p, with);
   EXPECT_EQ(plain.find("class=\"song\""), std::string::npos);
   ASSERT_NE(drawn.find("class=\"song\""), std::string::npos);
   // One servo lane (84 + 12) from y = 74, so the song lane's frame starts at 74 + 84 + 12 = 170.

@@ -19,7 +19,7 @@ inline std::vector<std::string> frames_of(const std::string& text) {
   const RaspblockProgram* p = out.raspblock_program();
   EXPECT_NE(p, nullptr) << diagnostics_of(out);
   if (p == nullptr) return {};
-  auto frames = backend::plan_stream(*p);
+  auto frames = compiler::plan_stream(*p);
   EXPECT_TRUE(frames.ok());
   std::vector<std::string> lines;
   for (const auto& f : *frames) lines.push_back(std::to_string(f.at_ms) + ": " + to_hex(f.bytes));

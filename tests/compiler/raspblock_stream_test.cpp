@@ -250,7 +250,7 @@ TEST(RaspblockPlot, LanesHaveValuesAndThePathHasAScale) {
       "  - drive: {y: 10}\n"
       "    time: 2s\n");
   ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
-  const std::string svg = backend::plot_car_program(*out.raspblock_program(), {});
+  const std::string svg = compiler::plot_car_program(*out.raspblock_program(), {});
   for (
       const char* label :
       {"<text x=\"144\" y=\"112\" text-anchor=\"end\" fill=\"#9ca3af\" font-size=\"9\">1500</text>",
@@ -271,12 +271,12 @@ TEST(RaspblockPlot, LanesHaveValuesAndThePathHasAScale) {
 TEST(RaspblockStream, HexListsSendTimesRightAligned) {
   auto out = compile_text("robot: raspblock\nsequence:\n  - drive: {x: -10}\n    time: 12.5s\n");
   ASSERT_NE(out.raspblock_program(), nullptr) << diagnostics_of(out);
-  auto frames = backend::plan_stream(*out.raspblock_program());
+  auto frames = compiler::plan_stream(*out.raspblock_program());
   ASSERT_TRUE(frames.ok());
-  EXPECT_EQ(backend::render_stream_hex(*frames),
+  EXPECT_EQ(compiler::render_stream_hex(*frames),
             "     0 ms  ff fe 03 08 01 00 0a 00 00 00 00 05 1b\n"
             " 12500 ms  ff fe 03 08 01 00 00 00 00 00 00 01 0d\n");
-  EXPECT_EQ(to_hex(backend::stop_frame()), kStop);
+  EXPECT_EQ(to_hex(compiler::stop_frame()), kStop);
 }
 
 }  // namespace

@@ -112,12 +112,12 @@ std::vector<std::string> expected(const std::string& tree) {
 
 // What seqc's loader does with `text`: "loads", or "rejects: <first error line>".
 std::string seqc_outcome(const std::string& text) {
-  seqc::compiler::SourceManager sources;
-  seqc::compiler::Diagnostics diags;
+  seqc::SourceManager sources;
+  seqc::Diagnostics diags;
   const auto file = sources.add("case.yaml", text);
   const auto root = seqc::compiler::load_yaml(sources, file, diags);
   if (root && !diags.has_errors()) return "loads";
-  const std::string all = seqc::compiler::render_all(diags, sources);
+  const std::string all = seqc::render_all(diags, sources);
   return "rejects: " + all.substr(0, all.find('\n'));
 }
 

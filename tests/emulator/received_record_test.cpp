@@ -33,7 +33,7 @@ TEST(ReceivedRecord, XArmMarksABusyDropAndUnframedBytes) {
                      "0.020000,unframed,aa,\n"
                      "0.030000,ok,55 55 02 07,GroupStop\n");
 
-  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult d = compiler::decode_text(csv, compiler::DecodeFormat::Auto);
   EXPECT_EQ(d.issues, (std::vector<std::string>{
                           "line 3: dropped by the emulator (busy)",
                           "line 4: not a frame: the emulator ignored these bytes",
@@ -75,8 +75,8 @@ TEST(ReceivedRecord, XArmNamesTheFaultThatDroppedEachFrame) {
   EXPECT_EQ(record_with("hangup-at=1"),
             std::string(kHeader) + "0.000000,dropped:fault-hangup,55 55 02 0f,GetBatteryVoltage\n");
 
-  const backend::DecodeResult d =
-      backend::decode_text(record_with("silent-after=1"), backend::DecodeFormat::Record);
+  const compiler::DecodeResult d =
+      compiler::decode_text(record_with("silent-after=1"), compiler::DecodeFormat::Record);
   EXPECT_EQ(d.issues, (std::vector<std::string>{"line 3: dropped by the emulator (fault-silent)"}));
 }
 
@@ -94,7 +94,7 @@ TEST(ReceivedRecord, Lsc6MarksAFrameLostWhileTheBufferWasFull) {
                      "0.000000,ok,55 55 02 08,EraseAll\n"
                      "0.001000,ok,55 55 02 07,Stop\n"
                      "0.002000,dropped:busy,55 55 02 07,Stop\n");
-  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult d = compiler::decode_text(csv, compiler::DecodeFormat::Auto);
   EXPECT_EQ(d.issues, (std::vector<std::string>{"line 4: dropped by the emulator (busy)"}));
 }
 
@@ -115,7 +115,7 @@ TEST(ReceivedRecord, DecodeStillFlagsTheOlderStatuses) {
                           "0.100000,ok,55 55 02 0f,GetBatteryVoltage\n"
                           "0.200000,busy,55 55 02 0f,GetBatteryVoltage\n"
                           "0.300000,fault,55 55 02 0f,\n";
-  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult d = compiler::decode_text(csv, compiler::DecodeFormat::Auto);
   EXPECT_EQ(d.issues, (std::vector<std::string>{"line 3: dropped by the emulator (busy)",
                                                 "line 4: dropped by the emulator (fault)"}));
 }
@@ -128,7 +128,7 @@ TEST(ReceivedRecord, TheCarRecordDecodesBack) {
   board.receive(hex("ff fe 03 08 01 00 0a 00 00 00 00 05 1b"), at_ms(20));  // X=-10
   board.receive(hex("ff fe 02 04 06 40 03 e8 37"), at_ms(60));              // pan 1600
   const std::string csv = timeline_csv(board.timeline());
-  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult d = compiler::decode_text(csv, compiler::DecodeFormat::Auto);
   EXPECT_TRUE(d.issues.empty());
   EXPECT_EQ(d.table,
             "# Raspblock emulator record: each change of the board's state\n"
@@ -152,7 +152,7 @@ TEST(ReceivedRecord, AnEditedCarRecordShowsWhereItStopsAddingUp) {
       "0.200000,servo.3,700,800\n"    // servo.3 had no value
       "0.300000,servo.1,,1700\n"      // servo.1 was 1600
       "0.4,servo.1\n";
-  const backend::DecodeResult d = backend::decode_text(csv, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult d = compiler::decode_text(csv, compiler::DecodeFormat::Auto);
   EXPECT_EQ(d.issues, (std::vector<std::string>{
                           "line 3: servo.1 was 1500, not 1400",
                           "line 4: time runs backwards (0.050000 after 0.100000)",
@@ -160,7 +160,7 @@ TEST(ReceivedRecord, AnEditedCarRecordShowsWhereItStopsAddingUp) {
                           "line 6: servo.1 was 1600, yet the record gives no previous value",
                           "line 7: not a record line (time_s,field,previous,value)",
                       }));
-  EXPECT_EQ(backend::detect_format(csv), backend::DecodeFormat::Record);
+  EXPECT_EQ(compiler::detect_format(csv), compiler::DecodeFormat::Record);
 }
 
 }  // namespace

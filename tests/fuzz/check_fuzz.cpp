@@ -13,7 +13,7 @@
 
 namespace {
 
-class MemoryFiles final : public seqc::compiler::FileReader {
+class MemoryFiles final : public seqc::FileReader {
  public:
   explicit MemoryFiles(std::string text) : text_(std::move(text)) {}
   seqc::Result<std::string> read(const std::string& path) override {
@@ -40,12 +40,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     FUZZ_CHECK(out.program.has_value() != out.diagnostics.has_errors(strict));
-    for (const seqc::compiler::Diagnostic& d : out.diagnostics.all()) {
+    for (const seqc::Diagnostic& d : out.diagnostics.all()) {
       FUZZ_CHECK(d.location.file < out.sources.file_count());
       FUZZ_CHECK(d.location.line >= 1);
       FUZZ_CHECK(!d.message.empty());
     }
-    (void)seqc::compiler::render_all(out.diagnostics, out.sources, strict);
+    (void)seqc::render_all(out.diagnostics, out.sources, strict);
   }
   return 0;
 }

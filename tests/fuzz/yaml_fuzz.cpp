@@ -13,7 +13,7 @@
 
 namespace {
 
-using seqc::compiler::Location;
+using seqc::Location;
 using seqc::compiler::YamlNode;
 
 void check_located(const Location& at, std::size_t lines) {
@@ -36,8 +36,8 @@ void check_tree(const YamlNode& node, std::size_t lines, int depth) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  seqc::compiler::SourceManager sources;
-  seqc::compiler::Diagnostics diags;
+  seqc::SourceManager sources;
+  seqc::Diagnostics diags;
   const auto file = sources.add("fuzz.yaml", text);
   const auto root = seqc::compiler::load_yaml(sources, file, diags);
   // A file of n newlines has n + 1 lines (the last may be empty).
@@ -49,6 +49,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FUZZ_CHECK(!d.message.empty());
   }
   if (root) check_tree(*root, lines, 0);
-  (void)seqc::compiler::render_all(diags, sources);
+  (void)seqc::render_all(diags, sources);
   return 0;
 }

@@ -11,7 +11,7 @@
 namespace seqc::cli {
 namespace {
 
-class NoFiles final : public compiler::FileReader {
+class NoFiles final : public seqc::FileReader {
  public:
   Result<std::string> read(const std::string& path) override {
     return make_error(path + ": not here");

@@ -16,7 +16,7 @@
 #include "compiler/program/arm_kinematics.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 using compiler::testing::compile_text;
@@ -282,4 +282,4 @@ sequence:
 }
 
 }  // namespace
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

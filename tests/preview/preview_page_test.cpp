@@ -10,7 +10,7 @@
 #include "compiler/formats/preview_html.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 using compiler::testing::compile_text;
@@ -107,4 +107,4 @@ TEST(PreviewPage, AShowNamesItsPerformers) {
 }
 
 }  // namespace
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

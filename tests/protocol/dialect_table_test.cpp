@@ -115,7 +115,7 @@ std::string decoded_title(std::string_view header, std::string_view sent) {
   std::string trace = "# seqc trace of emu:test; t in seconds, > to the device, < from it\n";
   if (!header.empty()) trace += "# dialect: " + std::string(header) + "\n";
   trace += "t=0.000000 > " + std::string(sent) + "\n";
-  const backend::DecodeResult r = backend::decode_text(trace, backend::DecodeFormat::Auto);
+  const compiler::DecodeResult r = compiler::decode_text(trace, compiler::DecodeFormat::Auto);
   return r.table.substr(0, r.table.find('\n'));
 }
 
@@ -129,22 +129,22 @@ TEST(DialectTable, ATracesHeaderPicksTheRowItsFramesAreReadIn) {
   EXPECT_EQ(decoded_title("", "55 55 02 07"), "# trace, xArm / LSC-16 / LSC-32 dialect");
 
   const std::string lsc6 = "# dialect: LSC-6\nt=0.000000 > 55 55 02 07\n";
-  EXPECT_NE(backend::decode_text(lsc6, backend::DecodeFormat::Trace).table.find("> Stop\n"),
+  EXPECT_NE(compiler::decode_text(lsc6, compiler::DecodeFormat::Trace).table.find("> Stop\n"),
             std::string::npos);
   const std::string xarm = "# dialect: xArm / LSC-16 / LSC-32\nt=0.000000 > 55 55 02 07\n";
-  EXPECT_NE(backend::decode_text(xarm, backend::DecodeFormat::Trace).table.find("> GroupStop\n"),
+  EXPECT_NE(compiler::decode_text(xarm, compiler::DecodeFormat::Trace).table.find("> GroupStop\n"),
             std::string::npos);
 }
 
 TEST(DialectTable, DecodeFromChoicesAreTheRowsBetweenAutoAndTheFileFormats) {
   const std::vector<std::string> expected{"auto", "hex", "lsc6", "raspblock", "trace", "record"};
-  EXPECT_EQ(backend::decode_format_names(), expected);
+  EXPECT_EQ(compiler::decode_format_names(), expected);
   for (const Dialect* d : all_dialects()) {
-    auto format = backend::parse_decode_format(d->decode_name);
+    auto format = compiler::parse_decode_format(d->decode_name);
     ASSERT_TRUE(format.ok()) << d->decode_name;
-    EXPECT_EQ(backend::dialect_of(*format), d);
+    EXPECT_EQ(compiler::dialect_of(*format), d);
   }
-  EXPECT_EQ(backend::parse_decode_format("xml").error().message,
+  EXPECT_EQ(compiler::parse_decode_format("xml").error().message,
             "unknown format 'xml'; expected auto, hex, lsc6, raspblock, trace or record");
 }
 

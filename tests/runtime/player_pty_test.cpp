@@ -39,7 +39,7 @@ class StopWhenAllArrived final : public emu::PtyDevice {
   std::atomic<bool>& stop_;
 };
 
-class OneFile final : public compiler::FileReader {
+class OneFile final : public seqc::FileReader {
  public:
   explicit OneFile(std::string text) : text_(std::move(text)) {}
   Result<std::string> read(const std::string&) override { return text_; }
@@ -64,7 +64,7 @@ TEST(PlayerPty, TheBoardReceivesTheCompiledStreamOnTime) {
   auto compiled = compiler::compile_file("car.yaml", file);
   ASSERT_NE(compiled.raspblock_program(), nullptr);
   const compiler::RaspblockProgram& program = *compiled.raspblock_program();
-  auto frames = backend::plan_stream(program);
+  auto frames = compiler::plan_stream(program);
   ASSERT_TRUE(frames.ok());
 
   auto server = emu::PtyServer::open(emu::PtyOptions{115200, std::nullopt});

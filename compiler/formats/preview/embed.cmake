@@ -56,7 +56,7 @@ file(WRITE ${OUT} "// Generated at build time by compiler/formats/preview/embed.
 // (preview.html, preview.css and ${script_names}). Edit those, not this.
 #include \"compiler/formats/preview_page_text.hpp\"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 constexpr char kSkeleton[] = ${skeleton_array};
@@ -69,5 +69,5 @@ std::string_view preview_skeleton() { return {kSkeleton, sizeof kSkeleton - 1}; 
 std::string_view preview_style() { return {kStyle, sizeof kStyle - 1}; }
 std::string_view preview_script() { return {kScript, sizeof kScript - 1}; }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler
 ")

@@ -2,7 +2,7 @@
 
 #include "protocol/raspblock.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 Result<std::vector<StreamFrame>> plan_stream(const compiler::RaspblockProgram& program) {
   std::vector<StreamFrame> frames;
@@ -17,4 +17,4 @@ Result<std::vector<StreamFrame>> plan_stream(const compiler::RaspblockProgram& p
 
 Bytes stop_frame() { return raspblock::encode(raspblock::Rocker{0, 0, 0}).value(); }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

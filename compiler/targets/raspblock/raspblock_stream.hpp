@@ -10,7 +10,7 @@
 #include "base/bytes.hpp"
 #include "base/result.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct StreamFrame {
   std::uint32_t at_ms = 0;  // send time from the start of the play
@@ -25,4 +25,4 @@ Result<std::vector<StreamFrame>> plan_stream(const compiler::RaspblockProgram& p
 // player sends when a play is interrupted.
 Bytes stop_frame();
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 ArmSolution solve_arm(const compiler::ArmGeometry& arm, const std::array<double, 3>& tip,
                       double pitch_degrees, bool elbow_up, double base_degrees) {
@@ -39,4 +39,4 @@ ArmSolution solve_arm(const compiler::ArmGeometry& arm, const std::array<double,
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

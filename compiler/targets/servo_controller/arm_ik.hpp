@@ -9,7 +9,7 @@
 
 #include "compiler/program/arm_geometry.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct ArmAngles {
   double base = 0, shoulder = 0, elbow = 0, wrist = 0;  // degrees
@@ -29,4 +29,4 @@ struct ArmSolution {
 ArmSolution solve_arm(const compiler::ArmGeometry& arm, const std::array<double, 3>& tip,
                       double pitch_degrees, bool elbow_up, double base_degrees);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 using compiler::ExactMs;
 
@@ -58,4 +58,4 @@ Result<std::vector<ResyncPiece>> split_at_bars(const compiler::ServoProgram& pro
   return pieces;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -13,7 +13,7 @@
 #include "compiler/timeline/exact_time.hpp"
 #include "base/result.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 struct ResyncPiece {
   compiler::ExactMs host_start;               // when the host starts it, from the dance's start
@@ -26,4 +26,4 @@ struct ResyncPiece {
 Result<std::vector<ResyncPiece>> split_at_bars(const compiler::ServoProgram& program,
                                                std::uint32_t bars, std::int32_t clock_ppm = 0);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

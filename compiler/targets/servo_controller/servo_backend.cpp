@@ -1,8 +1,8 @@
-#include "compiler/targets/servo_controller/servo_backend.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 
 #include <set>
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program) {
   std::vector<lsc::GroupAction> actions;
@@ -72,4 +72,4 @@ std::vector<TimedLsc6Move> live_lsc6_moves(const compiler::ServoProgram& program
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -17,7 +17,7 @@
 #include "protocol/planned_frame.hpp"
 #include "base/result.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 // One controller action per keyframe, in order.
 std::vector<lsc::GroupAction> to_actions(const compiler::ServoProgram& program);
@@ -57,4 +57,4 @@ std::vector<TimedLsc6Move> live_lsc6_moves(const compiler::ServoProgram& program
 // The ids of the servos the program moves, ascending.
 std::vector<std::uint8_t> used_servo_ids(const compiler::ServoProgram& program);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

@@ -175,7 +175,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
   // group cut at its capacity is an error already).
   for (const ServoTipLine& line : walk.lines) {
     if (needed > walk.capacity) break;
-    const backend::TipLineError e = backend::measure_tip_line(
+    const compiler::TipLineError e = compiler::measure_tip_line(
         line.request, line.joints, actions, 1 + static_cast<double>(clock_ppm) / 1e6);
     // Under a clock scale the line's boundaries are rounded again on the board's clock, which
     // moves the tip along the line by a fraction of a millisecond's travel: that is the scale's

@@ -26,7 +26,7 @@ namespace seqc::compiler {
 
 // A `path: line` move as the walk left it: what the tip's error is measured against.
 struct ServoTipLine {
-  backend::TipLineRequest request;
+  compiler::TipLineRequest request;
   std::array<std::size_t, 4> joints{};  // base, shoulder, elbow and wrist servos
   Location path_at;
 };

@@ -124,7 +124,7 @@ class ServoLowering final : public StepWalker {
                 std::vector<KinematicFinding>& findings);
   // A `path: line` move as tip_line() fitted it, for refit_lines().
   struct LineRecord {
-    backend::TipLineRequest request;
+    compiler::TipLineRequest request;
     std::vector<std::size_t> servos;  // the joints (base, shoulder, elbow, wrist), then others
     std::vector<std::size_t> first;   // per servo, the index of its first piece in the timeline
     std::size_t pieces = 0;           // the line's actions, one piece per servo each
@@ -134,8 +134,8 @@ class ServoLowering final : public StepWalker {
     Location step_at, path_at;
   };
   // Each servo's pieces of the line fitted as `fit`.
-  std::vector<std::vector<Segment>> line_pieces(const backend::TipLineRequest& request,
-                                                const backend::TipLineResult& fit,
+  std::vector<std::vector<Segment>> line_pieces(const compiler::TipLineRequest& request,
+                                                const compiler::TipLineResult& fit,
                                                 const LineRecord& line) const;
   // Once every track is walked: fits again each line inside which other servos' segments begin
   // or end (the fitter ends every servo's action there), with those instants as boundaries of

@@ -236,7 +236,7 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
     TimelineTipMove m{start.value(), end.value(), placed.point, placed.point, false};
     if (std::all_of(placed.joints.begin(), placed.joints.end(),
                     [&](std::size_t j) { return pos_[j].has_value(); })) {
-      m.from = backend::arm_points(*robot_.info.arm, [&](std::string_view name) {
+      m.from = compiler::arm_points(*robot_.info.arm, [&](std::string_view name) {
                  return static_cast<double>(*pos_[robot_.names.find(name)->second]);
                }).tip;
     }

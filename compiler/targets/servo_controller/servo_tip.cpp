@@ -187,7 +187,7 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
            arm.degrees_per_unit;
   };
   if (relative) {
-    const std::array<double, 3> from = backend::arm_points(arm, now_position).tip;
+    const std::array<double, 3> from = compiler::arm_points(arm, now_position).tip;
     for (std::size_t i = 0; i < 3; ++i) point[i] += from[i];
   }
   if (!pitch) pitch = angle_of(1) + angle_of(2) + angle_of(3);
@@ -199,7 +199,7 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
     return false;
   }
   const double base_now = pos_[joint_servo[0]] ? angle_of(0) : 0.0;
-  const backend::ArmSolution solution = backend::solve_arm(arm, point, *pitch, elbow_up, base_now);
+  const compiler::ArmSolution solution = compiler::solve_arm(arm, point, *pitch, elbow_up, base_now);
   if (!solution.angles) {
     if (solution.needed > solution.reach) {
       reporter_.error(

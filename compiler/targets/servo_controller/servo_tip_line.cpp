@@ -34,7 +34,7 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
                              double tolerance_units, std::vector<KinematicFinding>& findings) {
   const ArmGeometry& arm = *robot_.info.arm;
   const ArmJoint* joints[] = {&arm.base, &arm.shoulder, &arm.elbow, &arm.wrist};
-  backend::TipLineRequest request;
+  compiler::TipLineRequest request;
   request.arm = arm;
   double pitch_from = 0;
   for (std::size_t j = 0; j < 4; ++j) {
@@ -76,10 +76,10 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
     others.push_back(servo);
     request.others.push_back({seg.from, seg.to, tolerance_units, {}});
   }
-  const backend::TipLineResult fit = backend::fit_tip_line(request);
+  const compiler::TipLineResult fit = compiler::fit_tip_line(request);
 
   if (const auto& p = fit.problem) {
-    using Kind = backend::TipLineProblem::Kind;
+    using Kind = compiler::TipLineProblem::Kind;
     const Location at = step.find("path")->location;
     bool inside = true;
     const std::string along = along_line(p->fraction, inside);
@@ -168,7 +168,7 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
     pos_[servo] = static_cast<int>(pieces[j].back().to);
   }
   record.pieces = fit.actions.size();
-  for (const backend::TipLineAction& a : fit.actions) record.ends.push_back(a.end_ms);
+  for (const compiler::TipLineAction& a : fit.actions) record.ends.push_back(a.end_ms);
   record.request = std::move(request);
   lines_.push_back(std::move(record));
   count_actions(fit.actions.size(), step.location);
@@ -177,15 +177,15 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
   return true;
 }
 
-std::vector<std::vector<Segment>> ServoLowering::line_pieces(const backend::TipLineRequest& request,
-                                                             const backend::TipLineResult& fit,
+std::vector<std::vector<Segment>> ServoLowering::line_pieces(const compiler::TipLineRequest& request,
+                                                             const compiler::TipLineResult& fit,
                                                              const LineRecord& line) const {
   // Ordinary straight pieces of every servo of the move, kept as they are (keep_boundaries):
   // the fitter makes each one action, whole units at whole milliseconds, so what runs is what
   // was checked here.
   std::vector<std::vector<Segment>> out(line.servos.size());
   for (std::size_t j = 0; j < line.servos.size(); ++j) {
-    auto target = [&](const backend::TipLineAction& a) {
+    auto target = [&](const compiler::TipLineAction& a) {
       return j < 4 ? a.targets[j] : a.others[j - 4];
     };
     double prev = j < 4 ? request.from[j] : request.others[j - 4].from;
@@ -211,7 +211,7 @@ void ServoLowering::refit_lines() {
   // Latest first, so that replacing a line's pieces leaves the indices of earlier ones as they
   // were recorded.
   for (auto line = lines_.rbegin(); line != lines_.rend(); ++line) {
-    backend::TipLineRequest& r = line->request;
+    compiler::TipLineRequest& r = line->request;
     // Every other servo's segment boundaries inside the line, rounded as the fitter rounds
     // them, and kept as it keeps knots: one closer than the shortest action after the one
     // before (or after the line's start) is merged into it. One that near the line's end
@@ -255,14 +255,14 @@ void ServoLowering::refit_lines() {
     }
     if (!needed) continue;
     r.forced_ms = forced;
-    r.end_joints = backend::Joints{};
+    r.end_joints = compiler::Joints{};
     for (std::size_t j = 0; j < 4; ++j) {
       r.end_joints->at(j) = static_cast<int>(
           timeline_.segment(line->servos[j], line->first[j] + line->pieces - 1).to);
     }
     LineRecord all = *line;  // the line's own servos, then the followers
     for (const Follower& f : followers) {
-      backend::OtherServo o;
+      compiler::OtherServo o;
       o.tolerance = INFINITY;
       for (std::size_t i = f.first; i < f.first + f.count; ++i) {
         o.tolerance = std::min(o.tolerance, timeline_.segment(f.servo, i).tolerance);
@@ -275,14 +275,14 @@ void ServoLowering::refit_lines() {
       r.others.push_back(std::move(o));
       all.servos.push_back(f.servo);
     }
-    backend::TipLineResult fit = backend::fit_tip_line(r);
+    compiler::TipLineResult fit = compiler::fit_tip_line(r);
     if (fit.problem && !followers.empty()) {
       // The curves cannot share the line's actions within their tolerances: the fitter fits
       // them with actions of its own, as before, and servo_program() warns if the tip then strays.
       r.others.resize(line->servos.size() - 4);
       all.servos.resize(line->servos.size());
       followers.clear();
-      fit = backend::fit_tip_line(r);
+      fit = compiler::fit_tip_line(r);
     }
     if (fit.problem) continue;  // the pieces stay as they were; servo_program() warns
     std::vector<std::vector<Segment>> pieces = line_pieces(r, fit, all);

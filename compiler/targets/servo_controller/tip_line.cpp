@@ -7,7 +7,7 @@
 #include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/arm_ik.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 namespace {
 
 constexpr std::uint32_t kFullGridMs = 600;
@@ -385,4 +385,4 @@ TipLineError measure_tip_line(const TipLineRequest& r, const std::array<std::siz
   return out;
 }
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler

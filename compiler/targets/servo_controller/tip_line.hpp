@@ -39,7 +39,7 @@
 #include "compiler/program/controller_model.hpp"
 #include "compiler/timeline/easing.hpp"
 
-namespace seqc::backend {
+namespace seqc::compiler {
 
 using Joints = std::array<int, 4>;  // base, shoulder, elbow, wrist, device units
 using Point = std::array<double, 3>;
@@ -126,4 +126,4 @@ TipLineError measure_tip_line(const TipLineRequest& request,
                               const std::vector<compiler::FittedAction>& actions,
                               double board_per_ms = 1);
 
-}  // namespace seqc::backend
+}  // namespace seqc::compiler
