@@ -1,5 +1,6 @@
 #include "compiler/formats/pose_text.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace seqc::compiler {
@@ -117,6 +118,21 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
   std::string out;
   for (const std::string& l : lines) out += l + "\n";
   return out;
+}
+
+std::string next_pose_name(const std::string& text) {
+  const std::vector<std::string> taken = compiler::pose_names(text);
+  for (int n = 1;; ++n) {
+    const std::string name = "pose" + std::to_string(n);
+    if (std::find(taken.begin(), taken.end(), name) == taken.end()) return name;
+  }
+}
+
+bool is_pose_name(const std::string& name) {
+  if (name.empty() || (name[0] >= '0' && name[0] <= '9')) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
 }
 
 }  // namespace seqc::compiler

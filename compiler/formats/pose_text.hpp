@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "compiler/program/program.hpp"
 #include "base/result.hpp"
+#include "compiler/program/program.hpp"
 
 namespace seqc::compiler {
 
@@ -27,5 +27,12 @@ Result<std::string> add_pose(const std::string& text, const std::string& pose_li
 
 // The names of the poses in the file's top-level `poses:` block, as written.
 std::vector<std::string> pose_names(const std::string& text);
+
+// The first of pose1, pose2, ... that is not yet a pose of the file (a name to offer).
+std::string next_pose_name(const std::string& text);
+
+// Whether `name` can name a pose: letters, digits and _, not starting with a digit (the
+// language's names).
+bool is_pose_name(const std::string& name);
 
 }  // namespace seqc::compiler

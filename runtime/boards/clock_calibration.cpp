@@ -4,9 +4,10 @@
 #include <cmath>
 #include <numeric>
 
+#include "base/units.hpp"
+#include "protocol/group_download.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/boards/xarm_session.hpp"
-#include "protocol/group_download.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::boards {
@@ -101,6 +102,19 @@ ClockMeasurement measure_clock(const Board& board, const Line& line,
     m.spread_ppm = std::sqrt(sq / (n - 1));
   }
   return m;
+}
+
+Result<std::uint32_t> parse_run_length(const std::string& text) {
+  auto time = seqc::parse_time(text);
+  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
+    return make_error("--length: give ms or s, e.g. 20s");
+  }
+  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  if (ms < 1000 || ms > 600000 || ms != std::floor(ms)) {
+    return make_error("--length must be whole milliseconds from 1s to 10 minutes, got '" + text +
+                      "'");
+  }
+  return static_cast<std::uint32_t>(ms);
 }
 
 }  // namespace seqc::boards

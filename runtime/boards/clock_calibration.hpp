@@ -11,10 +11,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
-#include "runtime/boards/board.hpp"
+#include "base/result.hpp"
 #include "protocol/lsc_messages.hpp"
+#include "runtime/boards/board.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::boards {
@@ -53,5 +55,9 @@ std::vector<compiler::Keyframe> holding_keyframes(const std::vector<lsc::ServoTa
 // Requires board.time_run and board.plan. Stores the group (overwriting settings.group), then
 // times settings.runs runs.
 ClockMeasurement measure_clock(const Board& board, const Line& line, const ClockSettings& settings);
+
+// `--length`: one run's length as whole milliseconds from 1 s to 10 minutes ("20s", "1500ms");
+// an error naming --length otherwise, ready for "seqc: error: ".
+Result<std::uint32_t> parse_run_length(const std::string& text);
 
 }  // namespace seqc::boards

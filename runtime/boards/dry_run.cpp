@@ -24,4 +24,32 @@ DryRun dry_run(const Board& board, const Plan& plan, const upload::UploadOptions
   return out;
 }
 
+CompiledText compiled_text(const compiler::CompileOutput& output, std::uint8_t group, bool dry_run,
+                           Emit emit) {
+  const Board& board = board_for(output);
+  CompiledText r;
+  if (!dry_run || board.plan == nullptr) {
+    auto text = board.render(output, emit, group);
+    if (!text)
+      r.error = text.error().message;
+    else
+      r.text = std::move(text).value();
+    return r;
+  }
+  auto plan = plan_for(board, output, group);
+  if (!plan) {
+    r.error = plan.error().message;
+    return r;
+  }
+  upload::UploadOptions options;
+  options.group = group;
+  DryRun dry = boards::dry_run(board, *plan, options);
+  r.internal = !dry.result.ok();
+  if (r.internal)
+    r.error = dry.result.message;
+  else
+    r.text = std::move(dry.text);
+  return r;
+}
+
 }  // namespace seqc::boards

@@ -46,4 +46,11 @@ std::optional<FirstMoveTooFast> first_move_too_fast(const Board& board, const Li
   return std::nullopt;
 }
 
+std::optional<FirstMoveTooFast> run_too_fast(const Board& board, const Line& line,
+                                             const compiler::CompileOutput& output, bool force) {
+  const compiler::ServoProgram* program = output.servo_program();
+  if (force || program == nullptr) return std::nullopt;
+  return first_move_too_fast(board, line, *program);
+}
+
 }  // namespace seqc::boards

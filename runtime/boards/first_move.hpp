@@ -32,4 +32,9 @@ struct FirstMoveTooFast {
 std::optional<FirstMoveTooFast> first_move_too_fast(const Board& board, const Line& line,
                                                     const compiler::ServoProgram& program);
 
+// As first_move_too_fast for the program `output` is, unless `force` (--force): nullopt then,
+// and for an output that is not a servo program.
+std::optional<FirstMoveTooFast> run_too_fast(const Board& board, const Line& line,
+                                             const compiler::CompileOutput& output, bool force);
+
 }  // namespace seqc::boards

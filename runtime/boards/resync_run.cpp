@@ -1,9 +1,16 @@
 #include "runtime/boards/resync_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 namespace seqc::boards {
+
+io::Duration ResyncRun::latest_start() const {
+  io::Duration latest{0};
+  for (const io::Duration& l : play.lateness) latest = std::max(latest, l);
+  return latest;
+}
 
 std::vector<player::ScheduledFrame> resync_starts(const Board& board,
                                                   const std::vector<compiler::ResyncPiece>& pieces,

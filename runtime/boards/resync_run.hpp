@@ -25,6 +25,8 @@ struct ResyncRun {
   std::vector<player::ScheduledFrame> starts;  // what was (or would have been) sent, and when
   player::PlayReport play;                     // set when every piece was stored
   bool run_refused = false;  // options.may_run said no after storing: nothing was started
+  // How late the latest start was written (0 before any start).
+  io::Duration latest_start() const;
 };
 
 // The starts of `pieces` (groups first_group, first_group + 1, ...) as a schedule.

@@ -6,8 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "compiler/frontend/profiles.hpp"
 #include "base/units.hpp"
+#include "compiler/frontend/profiles.hpp"
 
 namespace seqc::boards {
 namespace {
@@ -91,6 +91,16 @@ Result<std::vector<std::uint8_t>> parse_servo_list(
     }
     ids.push_back(*id);
   }
+  return ids;
+}
+
+Result<std::vector<std::uint8_t>> servos_to_read(const std::vector<std::string>& texts,
+                                                 const std::optional<compiler::RobotInfo>& robot) {
+  if (!texts.empty()) return parse_servo_list(texts, robot);
+  if (!robot)
+    return make_error("name the servos to read, or give --robot to read all of a profile's");
+  std::vector<std::uint8_t> ids;
+  for (const auto& s : robot->servos) ids.push_back(s.id);
   return ids;
 }
 
@@ -191,6 +201,13 @@ Result<std::uint8_t> parse_group(std::string_view text) {
                       " (255 means every group on the wire; say `all` where a command allows it)");
   }
   return static_cast<std::uint8_t>(*number);
+}
+
+Result<GroupTarget> parse_group_target(std::string_view text) {
+  if (text == "all") return GroupTarget{lsc::kAllGroups, true};
+  auto g = parse_group(text);
+  if (!g) return g.error();
+  return GroupTarget{*g, false};
 }
 
 Result<std::int16_t> parse_offset(std::string_view text) {

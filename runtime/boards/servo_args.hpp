@@ -15,14 +15,14 @@
 #include <string_view>
 #include <vector>
 
+#include "base/result.hpp"
 #include "compiler/compile.hpp"
 #include "protocol/lsc_messages.hpp"
-#include "base/result.hpp"
 
 namespace seqc::boards {
 
-// The servos a `--robot PROFILE` names (xarm, bus, lsc-16, lsc-32, lsc-6, learm); nullopt for "" (no profile:
-// servos are plain ids 0..255 and positions plain 0..65535 values).
+// The servos a `--robot PROFILE` names (xarm, bus, lsc-16, lsc-32, lsc-6, learm); nullopt for ""
+// (no profile: servos are plain ids 0..255 and positions plain 0..65535 values).
 Result<std::optional<compiler::RobotInfo>> robot_for_profile(const std::string& profile);
 
 // A whole number in decimal; the error names `field`.
@@ -36,6 +36,11 @@ Result<std::uint8_t> parse_servo(std::string_view text,
 // Several servos (at least one, none twice, at most 255 so the count fits its byte).
 Result<std::vector<std::uint8_t>> parse_servo_list(const std::vector<std::string>& texts,
                                                    const std::optional<compiler::RobotInfo>& robot);
+
+// The servos to read: those named (as parse_servo_list), or when none is named every servo of
+// `robot`; an error without either.
+Result<std::vector<std::uint8_t>> servos_to_read(const std::vector<std::string>& texts,
+                                                 const std::optional<compiler::RobotInfo>& robot);
 
 // The servos a command names (as parse_servo_list), with the --robot profile that names them.
 struct ServoSelection {
@@ -81,6 +86,14 @@ Result<std::uint16_t> parse_milliseconds(std::string_view text, const char* fiel
 // A group number for GroupRun/Erase/Speed: 0..254. 255 is the wire's "every group", which
 // is asked for with the word `all` where a command allows it, never with a number.
 Result<std::uint8_t> parse_group(std::string_view text);
+
+// A GROUP argument where every group may be meant: a number as parse_group, or the word `all`
+// (the wire's 255, lsc::kAllGroups).
+struct GroupTarget {
+  std::uint8_t group = 0;
+  bool all = false;
+};
+Result<GroupTarget> parse_group_target(std::string_view text);
 
 // A servo offset for ServoOffsetAdjust: -128..127. The request carries a short, but
 // ServoOffsetRead reports a signed byte, so only that range can be set and read back; larger

@@ -98,4 +98,35 @@ BusServoWrite write_bus_servo_info(XarmSession& session, const BusServoChanges& 
   return out;
 }
 
+Result<BusServoChanges> checked_changes(const BusServoFields& o) {
+  BusServoChanges c;
+  auto u16 = [](const std::optional<long long>& v, const char* field,
+                std::optional<std::uint16_t>& out) -> Status {
+    if (!v) return Ok{};
+    auto r = lsc::checked_u16(*v, field);
+    if (!r) return r.error();
+    out = *r;
+    return Ok{};
+  };
+  if (o.servo) {
+    auto r = lsc::checked_u8(*o.servo, "--servo");
+    if (!r) return r.error();
+    c.servo = *r;
+  }
+  for (auto s : {u16(o.position_min, "--position-min", c.position_min),
+                 u16(o.position_max, "--position-max", c.position_max),
+                 u16(o.millivolts_min, "--millivolts-min", c.millivolts_min),
+                 u16(o.millivolts_max, "--millivolts-max", c.millivolts_max),
+                 u16(o.temp_max, "--temp-max", c.temp_max)}) {
+    if (!s) return s.error();
+  }
+  if (o.led) c.led_status = *o.led == "on" ? 0 : 1;
+  if (o.led_warning) {
+    auto w = parse_led_warnings(*o.led_warning);
+    if (!w) return make_error("--led-warning: " + w.error().message);
+    c.led_warning = *w;
+  }
+  return c;
+}
+
 }  // namespace seqc::boards

@@ -13,10 +13,10 @@
 #include <string_view>
 #include <vector>
 
-#include "compiler/compile.hpp"
-#include "runtime/boards/xarm_session.hpp"
-#include "protocol/lsc_messages.hpp"
 #include "base/result.hpp"
+#include "compiler/compile.hpp"
+#include "protocol/lsc_messages.hpp"
+#include "runtime/boards/xarm_session.hpp"
 
 namespace seqc::boards {
 
@@ -47,6 +47,18 @@ struct BusServoChanges {
   // The write these changes make to a servo whose id and limits are `id` and `current`.
   lsc::BusServoInfoWrite applied_to(std::uint8_t id, lsc::BusServoLimits current) const;
 };
+
+// The fields of a BusServoInfoWrite as the user gives them (`seqc bus-info write --servo ...`):
+// whole numbers not yet checked, the LED "on" or "off", the warnings as parse_led_warnings reads
+// them; unset fields are not given.
+struct BusServoFields {
+  std::optional<long long> servo, position_min, position_max, millivolts_min, millivolts_max,
+      temp_max;
+  std::optional<std::string> led, led_warning;
+};
+// The changes the fields make, each checked against its wire width; the error names the first
+// field out of range as its option (--position-min), ready for "seqc: error: ".
+Result<BusServoChanges> checked_changes(const BusServoFields& fields);
 
 // Limits no servo can hold: a lowest value above the highest.
 enum class LimitConflict { None, Position, Voltage };

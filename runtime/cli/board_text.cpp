@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "compiler/frontend/profiles.hpp"
 #include "base/units.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -103,6 +103,12 @@ BoardError outcome_text(const boards::Outcome& o, const std::string& port, io::D
                                          : "interrupted while waiting for " + called + "'s reply"};
   }
   return {ExitCode::Internal, "internal: no failure to report"};
+}
+
+ExitCode say_port_failure(Context& ctx, const boards::BoardLink& link, const std::string& subject) {
+  const BoardError e = port_failure(link.failure, link.request, subject);
+  ctx.err << "seqc: error: " << e.message << "\n";
+  return e.code;
 }
 
 ExitCode refuse_command(Context& ctx, const boards::Board& board, const std::string& command) {

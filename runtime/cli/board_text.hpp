@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/board_link.hpp"
 #include "runtime/boards/first_move.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/cli/context.hpp"
@@ -29,6 +30,10 @@ struct BoardError {
 // sentence that says which board it is for; "" when the command has no file.
 BoardError port_failure(const boards::PortFailure& failure, const boards::PortRequest& request,
                         const std::string& subject);
+
+// Says port_failure's sentence for `link`'s port, which did not open, after "seqc: error: " on
+// ctx.err; returns its exit status.
+ExitCode say_port_failure(Context& ctx, const boards::BoardLink& link, const std::string& subject);
 
 // Why an exchange on `port` (the transport's description) failed. `called` is how the sentence
 // names the far end ("the controller", "the board"); `timeout` is the per-reply wait it quotes.

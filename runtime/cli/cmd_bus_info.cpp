@@ -61,47 +61,8 @@ ExitCode read_info(Context& ctx, const DeviceOptions& device) {
 struct WriteOptions {
   DeviceOptions device;
   bool one_servo = false;
-  std::optional<long long> servo;
-  std::optional<long long> position_min;
-  std::optional<long long> position_max;
-  std::optional<long long> millivolts_min;
-  std::optional<long long> millivolts_max;
-  std::optional<long long> temp_max;
-  std::optional<std::string> led;
-  std::optional<std::string> led_warning;
+  boards::BusServoFields fields;
 };
-
-// The fields the user gave, checked against their wire widths.
-Result<boards::BusServoChanges> check_changes(const WriteOptions& o) {
-  boards::BusServoChanges c;
-  auto u16 = [](const std::optional<long long>& v, const char* field,
-                std::optional<std::uint16_t>& out) -> Status {
-    if (!v) return Ok{};
-    auto r = lsc::checked_u16(*v, field);
-    if (!r) return r.error();
-    out = *r;
-    return Ok{};
-  };
-  if (o.servo) {
-    auto r = lsc::checked_u8(*o.servo, "--servo");
-    if (!r) return r.error();
-    c.servo = *r;
-  }
-  for (auto s : {u16(o.position_min, "--position-min", c.position_min),
-                 u16(o.position_max, "--position-max", c.position_max),
-                 u16(o.millivolts_min, "--millivolts-min", c.millivolts_min),
-                 u16(o.millivolts_max, "--millivolts-max", c.millivolts_max),
-                 u16(o.temp_max, "--temp-max", c.temp_max)}) {
-    if (!s) return s.error();
-  }
-  if (o.led) c.led_status = *o.led == "on" ? 0 : 1;
-  if (o.led_warning) {
-    auto w = boards::parse_led_warnings(*o.led_warning);
-    if (!w) return make_error("--led-warning: " + w.error().message);
-    c.led_warning = *w;
-  }
-  return c;
-}
 
 // "position-min 600 is above position-max 400".
 std::string conflict_text(const lsc::BusServoLimits& l) {
@@ -121,7 +82,7 @@ ExitCode write_info(Context& ctx, const WriteOptions& o) {
                                    "but the one to configure, then add ") +
                            kConfirmFlag);
   }
-  auto changes = check_changes(o);
+  auto changes = boards::checked_changes(o.fields);
   if (!changes) return usage_error(ctx, changes.error().message);
   if (changes->complete()) {
     const lsc::BusServoLimits whole = changes->applied_to(0, {}).limits;
@@ -166,15 +127,15 @@ void add_bus_info_command(CLI::App& app, Context& ctx, Outcome& result) {
       "--i-have-one-servo-attached. Fields not given keep the attached servo's values");
   write_cmd->add_flag(kConfirmFlag, w->one_servo,
                       "Confirm that exactly one servo is connected to the bus");
-  write_cmd->add_option("--servo", w->servo, "Servo id field (0-255)");
-  write_cmd->add_option("--position-min", w->position_min, "Lowest position (0-65535)");
-  write_cmd->add_option("--position-max", w->position_max, "Highest position (0-65535)");
-  write_cmd->add_option("--millivolts-min", w->millivolts_min, "Lowest supply voltage, mV");
-  write_cmd->add_option("--millivolts-max", w->millivolts_max, "Highest supply voltage, mV");
-  write_cmd->add_option("--temp-max", w->temp_max, "Highest temperature, degrees C");
-  write_cmd->add_option("--led", w->led, "Status LED: on or off")
+  write_cmd->add_option("--servo", w->fields.servo, "Servo id field (0-255)");
+  write_cmd->add_option("--position-min", w->fields.position_min, "Lowest position (0-65535)");
+  write_cmd->add_option("--position-max", w->fields.position_max, "Highest position (0-65535)");
+  write_cmd->add_option("--millivolts-min", w->fields.millivolts_min, "Lowest supply voltage, mV");
+  write_cmd->add_option("--millivolts-max", w->fields.millivolts_max, "Highest supply voltage, mV");
+  write_cmd->add_option("--temp-max", w->fields.temp_max, "Highest temperature, degrees C");
+  write_cmd->add_option("--led", w->fields.led, "Status LED: on or off")
       ->check(CLI::IsMember({"on", "off"}));
-  write_cmd->add_option("--led-warning", w->led_warning,
+  write_cmd->add_option("--led-warning", w->fields.led_warning,
                         "Faults the LED flashes for: overheat,overvoltage,overposition "
                         "(any) or none");
   add_device_options(*write_cmd, w->device);

@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
-#include "base/units.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/clock_calibration.hpp"
 #include "runtime/cli/board_text.hpp"
@@ -44,21 +43,8 @@ std::string grouped(long long n) {
 // "+7,985", "-10,000", "0".
 std::string signed_ppm(long long ppm) { return (ppm > 0 ? "+" : "") + grouped(ppm); }
 
-Result<std::uint32_t> parse_length(const std::string& text) {
-  auto time = seqc::parse_time(text);
-  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
-    return make_error("--length: give ms or s, e.g. 20s");
-  }
-  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
-  if (ms < 1000 || ms > 600000 || ms != std::floor(ms)) {
-    return make_error("--length must be whole milliseconds from 1s to 10 minutes, got '" + text +
-                      "'");
-  }
-  return static_cast<std::uint32_t>(ms);
-}
-
 ExitCode run_clock(Context& ctx, const ClockArgs& a) {
-  auto length = parse_length(a.length);
+  auto length = boards::parse_run_length(a.length);
   if (!length) return usage_error(ctx, length.error().message);
   const boards::Board& board = boards::board_for_command(a.device.profile(), a.device.port);
   if (board.time_run == nullptr || board.plan == nullptr) {

@@ -21,30 +21,6 @@ boards::Emit emit_of(const std::string& name) {
   return boards::Emit::Hex;
 }
 
-// The text to write; on failure the message for "seqc: error: " and, in `code`, its status.
-Result<std::string> compiled_text(const compiler::CompileOutput& output, const std::string& file,
-                                  std::uint8_t group, bool dry_run, const std::string& emit,
-                                  ExitCode& code) {
-  const boards::Board& board = boards::board_for(output);
-  code = ExitCode::InvalidInput;
-  if (!dry_run || board.plan == nullptr) {
-    // A board without storage has nothing to upload: --dry-run lists its program as --emit does.
-    auto text = board.render(output, emit_of(emit), group);
-    if (!text) return make_error(file + ": " + text.error().message);
-    return text;
-  }
-  auto plan = boards::plan_for(board, output, group);
-  if (!plan) return make_error(file + ": " + plan.error().message);
-  upload::UploadOptions options;
-  options.group = group;
-  boards::DryRun dry = boards::dry_run(board, *plan, options);
-  if (!dry.result.ok()) {
-    code = ExitCode::Internal;
-    return make_error("internal: " + dry.result.message);
-  }
-  return std::move(dry.text);
-}
-
 }  // namespace
 
 void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
@@ -85,19 +61,23 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, ppm);
     result.code = c.code;
     if (!c.output.program) return;
-    ExitCode failed = ExitCode::Ok;
-    auto text = compiled_text(c.output, opts->file, static_cast<std::uint8_t>(opts->group),
-                              opts->dry_run, opts->emit, failed);
-    if (!text) {
-      ctx.err << "seqc: error: " << text.error().message << "\n";
-      result.code = failed;
+    boards::CompiledText text = boards::compiled_text(
+        c.output, static_cast<std::uint8_t>(opts->group), opts->dry_run, emit_of(opts->emit));
+    if (text.internal) {
+      ctx.err << "seqc: error: internal: " << text.error << "\n";
+      result.code = ExitCode::Internal;
+      return;
+    }
+    if (!text.error.empty()) {
+      ctx.err << "seqc: error: " << opts->file << ": " << text.error << "\n";
+      result.code = ExitCode::InvalidInput;
       return;
     }
     if (opts->output.empty() || opts->output == "-") {
-      ctx.out << *text;
+      ctx.out << text.text;
       return;
     }
-    if (auto written = io::write_file_atomically(opts->output, *text); !written) {
+    if (auto written = io::write_file_atomically(opts->output, text.text); !written) {
       ctx.err << "seqc: error: " << written.error().message << "\n";
       result.code = ExitCode::FileError;
     }

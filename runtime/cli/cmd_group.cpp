@@ -18,20 +18,9 @@
 namespace seqc::cli {
 namespace {
 
-// GROUP arguments: a number 0..254, or the word `all` (the wire's 255) where allowed.
-constexpr const char* kAllWord = "all";
-
-struct GroupTarget {
-  std::uint8_t group = 0;
-  bool all = false;
-  std::string text() const { return all ? "every group" : "group " + std::to_string(group); }
-};
-
-Result<GroupTarget> parse_group_target(const std::string& text) {
-  if (text == kAllWord) return GroupTarget{lsc::kAllGroups, true};
-  auto g = boards::parse_group(text);
-  if (!g) return g.error();
-  return GroupTarget{*g, false};
+// "every group", "group 3".
+std::string target_text(const boards::GroupTarget& t) {
+  return t.all ? "every group" : "group " + std::to_string(t.group);
 }
 
 struct RunOptions {
@@ -114,8 +103,8 @@ struct EraseOptions {
 ExitCode erase_group(Context& ctx, const EraseOptions& o) {
   if (o.all && !o.group.empty()) return usage_error(ctx, "give GROUP or --all, not both");
   if (!o.all && o.group.empty()) return usage_error(ctx, "give a GROUP to erase, or --all");
-  auto target =
-      o.all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true}) : parse_group_target(o.group);
+  auto target = o.all ? Result<boards::GroupTarget>(boards::GroupTarget{lsc::kAllGroups, true})
+                      : boards::parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
   const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.erase == nullptr) return refuse_command(ctx, board, o.device.command);
@@ -129,7 +118,7 @@ ExitCode erase_group(Context& ctx, const EraseOptions& o) {
         target->all ? std::nullopt : std::optional<std::uint8_t>(target->group);
     const boards::Outcome r = board.erase(line, which);
     if (!r.ok()) return report_outcome(ctx, r, line, port, board);
-    summarize(ctx, target->all ? "every group erased" : target->text() + " erased");
+    summarize(ctx, target->all ? "every group erased" : target_text(*target) + " erased");
     return ExitCode::Ok;
   });
 }
@@ -141,13 +130,13 @@ struct SpeedOptions {
 };
 
 ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
-  auto target = parse_group_target(o.group);
+  auto target = boards::parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
   auto percent = lsc::checked_u16(o.percent, "percent");
   if (!percent) return usage_error(ctx, percent.error().message);
   if (*percent == 0) return usage_error(ctx, "percent must be 1..65535 (100 = as stored), got 0");
   return tell_on_controller(ctx, o.device, lsc::GroupSpeed{target->group, *percent},
-                            target->text() + " speed " + std::to_string(*percent) +
+                            target_text(*target) + " speed " + std::to_string(*percent) +
                                 "% (volatile: back to 100% at power-off)\n");
 }
 

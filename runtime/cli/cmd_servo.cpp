@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/units.hpp"
+#include "compiler/formats/pose_text.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/servo_args.hpp"
 #include "runtime/boards/xarm_queries.hpp"
@@ -17,7 +18,6 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "compiler/formats/pose_text.hpp"
 #include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
@@ -36,14 +36,7 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
   const bool named = o.robot.empty() && o.format == "yaml";
   auto robot = boards::robot_for_profile(named ? std::string(board.pose_profile) : o.robot);
   if (!robot) return usage_error(ctx, robot.error().message);
-  std::vector<std::string> names = o.servos;
-  if (names.empty()) {
-    if (!*robot)
-      return usage_error(ctx,
-                         "name the servos to read, or give --robot to read all of a profile's");
-    for (const auto& s : (*robot)->servos) names.push_back(std::to_string(s.id));
-  }
-  auto ids = boards::parse_servo_list(names, *robot);
+  auto ids = boards::servos_to_read(o.servos, *robot);
   if (!ids) return usage_error(ctx, ids.error().message);
   return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
     auto answered = boards::read_positions(s, *ids);

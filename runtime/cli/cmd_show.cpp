@@ -41,59 +41,42 @@ namespace {
 // How long a stored performer's board is given to confirm its start.
 constexpr io::Duration kReplyTimeout = std::chrono::seconds(1);
 
-struct Stage {  // one performer, opened
-  const compiler::Performer* performer = nullptr;
-  const boards::Board* board = nullptr;
-  // --trace: PREFIX-NAME.trace, and the port's own transport while port->transport is the
-  // tracing one in front of it. Declared before the port, so it outlives it.
-  Trace trace;
-  std::optional<boards::OpenedPort> port;
-};
+using Stage = boards::ShowStage;
 
 ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
                     const std::string& trace_prefix) {
-  stage.performer = &p;
-  if (p.port.empty()) {
-    ctx.err << "seqc: error: performer '" << p.name << "' has no port in the show file\n";
-    return ExitCode::Usage;
+  const boards::StageOpen o = boards::open_stage(p, trace_prefix, ctx.clock, ctx.hooks, stage);
+  switch (o.problem) {
+    case boards::StageProblem::None:
+      return ExitCode::Ok;
+    case boards::StageProblem::NoPort:
+      ctx.err << "seqc: error: performer '" << p.name << "' has no port in the show file\n";
+      return ExitCode::Usage;
+    case boards::StageProblem::TraceUnwritable:
+      return trace_unwritable(ctx, o.trace_path);
+    case boards::StageProblem::PortFailed:
+      break;
   }
-  if (!trace_prefix.empty()) {
-    const std::string path = trace_prefix + "-" + p.name + ".trace";
-    if (const ExitCode e = stage.trace.open(ctx, path); e != ExitCode::Ok) return e;
-  }
-  stage.board = &boards::board_for(p.output);
-  const boards::PortRequest request{p.port, stage.board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
-  if (!opened.port) {
-    const BoardError e = port_failure(opened.failure, request, p.file);
-    ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";
-    return e.code;
-  }
-  stage.port = std::move(opened.port);
-  stage.trace.wrap_in_place(stage.port->transport, *stage.port->clock, *stage.board);
-  return ExitCode::Ok;
+  const BoardError e = port_failure(o.failure, o.request, p.file);
+  ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";
+  return e.code;
 }
 
 // Stores a performer's group; false (with the reason said) if it did not complete.
 bool upload_stage(Context& ctx, Stage& stage) {
   const compiler::Performer& p = *stage.performer;
-  const auto group = static_cast<std::uint8_t>(p.group);
-  auto planned = boards::plan_for(*stage.board, p.output, group);
+  auto planned = boards::stage_plan(stage);
   if (!planned) {
     ctx.err << "seqc: error: " << p.name << ": " << planned.error().message << "\n";
     return false;
   }
-  io::Transport& transport = *stage.port->transport;
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: " << p.name << ": uploading " << plural(planned->actions, "action")
-            << " into group " << p.group << " on " << transport.describe() << "\n";
+            << " into group " << p.group << " on " << stage.port->transport->describe() << "\n";
   }
-  upload::UploadOptions options;
-  options.group = group;
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
-  const boards::Line line{transport, *stage.port->clock, ctx.interrupted};
-  const upload::UploadResult r = boards::upload(*stage.board, line, *planned, options, &progress);
+  const upload::UploadResult r = boards::upload_stage(stage, *planned, ctx.interrupted, &progress);
   progress.finish();
   if (r.status == upload::UploadStatus::OtherDialect) {
     const compiler::ServoProgram* program = p.output.servo_program();
@@ -150,12 +133,8 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       return ExitCode::DeviceFailure;
   }
   ExitCode code = ExitCode::Ok;
-  io::Duration earliest = io::Duration::max(), latest = io::Duration::min();
   for (std::size_t i = 0; i < stages.size(); ++i) {
     const boards::PerformerReport& p = r.performers[i];
-    const io::Duration first = p.started().value_or(io::Duration{0});
-    earliest = std::min(earliest, first);
-    latest = std::max(latest, first);
     if (p.run && !p.run->ok()) {
       const Stage& s = stages[i];
       const BoardError e =
@@ -168,53 +147,23 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       ctx.err << "seqc: " << stages[i].performer->name << ": " << start_text(stages[i], p) << "\n";
     }
   }
-  summarize(ctx, "start skew between performers: " + io::ms_text(latest - earliest, 2));
+  summarize(ctx, "start skew between performers: " + io::ms_text(r.start_skew(), 2));
   return code;
 }
 
-// The robot may be anywhere: each performer whose board reports its servos is read before the
-// common start, and nothing starts if one performer's first move from there is too fast.
-bool first_moves_safe(Context& ctx, std::vector<Stage>& stages) {
-  for (Stage& s : stages) {
-    const compiler::ServoProgram* program = s.performer->output.servo_program();
-    if (program == nullptr) continue;
-    const boards::Line line{*s.port->transport, *s.port->clock, ctx.interrupted};
-    if (const auto fast = boards::first_move_too_fast(*s.board, line, *program)) {
-      ctx.err << "seqc: error: " << s.performer->name << ": " << first_move_text(*fast) << "\n";
-      return false;
-    }
-  }
-  return true;
-}
-
-// The performers' one song; nullptr (said) when they name different ones or none.
+// The performers' one song (boards::show_song); nullptr (said) when they name different ones
+// or none.
 const compiler::Song* show_song(Context& ctx, const compiler::ShowOutput& show) {
-  const compiler::Song* song = nullptr;
-  const compiler::Performer* owner = nullptr;
-  for (const compiler::Performer& p : show.performers) {
-    const compiler::Song* mine = nullptr;
-    if (const compiler::ServoProgram* s = p.output.servo_program(); s && s->timeline.song) {
-      mine = &*s->timeline.song;
-    } else if (const compiler::RaspblockProgram* r = p.output.raspblock_program();
-               r && r->timeline.song) {
-      mine = &*r->timeline.song;
-    }
-    if (mine == nullptr) continue;
-    if (song == nullptr) {
-      song = mine;
-      owner = &p;
-    } else if (mine->file != song->file || !(mine->downbeat == song->downbeat)) {
-      ctx.err << "seqc: error: --music: performers '" << owner->name << "' and '" << p.name
-              << "' dance to different songs or downbeats (" << song->file << ", " << mine->file
-              << "); a show plays one song\n";
-      return nullptr;
-    }
-  }
-  if (song == nullptr) {
+  const boards::ShowSong found = boards::show_song(show);
+  if (found.other != nullptr) {
+    ctx.err << "seqc: error: --music: performers '" << found.first->name << "' and '"
+            << found.other->name << "' dance to different songs or downbeats (" << found.song->file
+            << ", " << found.other_song->file << "); a show plays one song\n";
+  } else if (found.song == nullptr) {
     ctx.err << "seqc: error: --music: no performer of show " << show.name
             << " has a `music:` block, so there is no song to play (docs/music.md)\n";
   }
-  return song;
+  return found.other != nullptr ? nullptr : found.song;
 }
 
 struct ShowArgs {
@@ -252,7 +201,11 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
       return ExitCode::DeviceFailure;
     }
   }
-  if (!args.force && !first_moves_safe(ctx, stages)) {
+  // The robot may be anywhere: nothing starts if one performer's first move is too fast.
+  if (const auto unsafe =
+          args.force ? std::nullopt : boards::first_unsafe_stage(stages, ctx.interrupted)) {
+    ctx.err << "seqc: error: " << stages[unsafe->stage].performer->name << ": "
+            << first_move_text(unsafe->too_fast) << "\n";
     ctx.err << "seqc: nothing was started\n";
     return ExitCode::InvalidInput;
   }
@@ -260,12 +213,7 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
     ctx.err << "seqc: show " << show.name << ": starting " << plural(stages.size(), "performer")
             << " at one instant\n";
   }
-  std::vector<boards::Performer> performers;
-  for (Stage& s : stages) {
-    const compiler::Performer& p = *s.performer;
-    performers.push_back(
-        {p.name, s.board, &*s.port, &p.output, static_cast<std::uint8_t>(p.group)});
-  }
+  std::vector<boards::Performer> performers = boards::performers_of(stages);
   std::optional<io::TimePoint> start_at;
   std::optional<audio::StartPlan> plan;
   // From the song's start, whose playback clock dates the downbeat, to the performance's end.
@@ -276,9 +224,7 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
       return ExitCode::PortUnavailable;
     }
     // The performers' wire times are the show's; the song's instant is the common start.
-    plan = audio::plan_start(
-        music.started->clock,
-        boards::start_timing(*stages[0].board, *music.started, music.audio_offset, 0, 0));
+    plan = boards::live_song_start(*stages[0].board, music, 0, 0).plan;
     start_at = plan->downbeat_heard;
   }
   const boards::ShowReport report =
@@ -292,10 +238,8 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
   const ExitCode code = report_show(ctx, stages, report);
   if (!music_args.music) return code;
   if (code != ExitCode::Ok) return code;  // the song stops with `music`
-  if (!play_song_out(ctx, music, ctx.clock)) {
-    for (Stage& s : stages) {
-      if (s.board->stop_frame != nullptr) (void)s.port->transport->write(s.board->stop_frame());
-    }
+  if (!boards::play_song_out(music, ctx.clock, ctx.interrupted)) {
+    boards::stop_stages(stages);
     ctx.err << "seqc: interrupted: stopped the song and every performer\n";
     return ExitCode::Interrupted;
   }

@@ -3,17 +3,16 @@
 // the file's `poses:` as a named pose, editing the text (pose_text.hpp) so the file's comments
 // and layout stay as they were; `q` (or end of input) finishes. Prompts and reports go to
 // stderr; the file is rewritten atomically after each pose, so nothing taught is lost.
-#include <algorithm>
 #include <istream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "compiler/formats/pose_text.hpp"
 #include "compiler/frontend/robot_section.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "compiler/formats/pose_text.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
@@ -23,22 +22,6 @@ struct TeachOptions {
   std::string file;
   DeviceOptions device;
 };
-
-std::string next_default_name(const std::string& text) {
-  const std::vector<std::string> taken = compiler::pose_names(text);
-  for (int n = 1;; ++n) {
-    const std::string name = "pose" + std::to_string(n);
-    if (std::find(taken.begin(), taken.end(), name) == taken.end()) return name;
-  }
-}
-
-// Letters, digits and _, not starting with a digit (the language's names).
-bool is_pose_name(const std::string& name) {
-  if (name.empty() || (name[0] >= '0' && name[0] <= '9')) return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  });
-}
 
 bool read_line(Context& ctx, std::string& line) {
   return ctx.in != nullptr && static_cast<bool>(std::getline(*ctx.in, line));
@@ -84,11 +67,11 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
                 << " servo(s) did not answer; recording the others\n";
       }
       std::string name;
-      const std::string fallback = next_default_name(text);
+      const std::string fallback = compiler::next_pose_name(text);
       for (;;) {
         ctx.err << "seqc: name [" << fallback << "]: " << std::flush;
         if (!read_line(ctx, name) || name.empty()) name = fallback;
-        if (is_pose_name(name)) break;
+        if (compiler::is_pose_name(name)) break;
         ctx.err << "seqc: a pose name is letters, digits and _, not starting with a digit\n";
       }
       const std::string pose = compiler::pose_line(name, positions, *robot);

@@ -19,10 +19,10 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/board_link.hpp"
 #include "runtime/boards/dry_run.hpp"
-#include "runtime/boards/first_move.hpp"
-#include "runtime/boards/ports.hpp"
 #include "runtime/boards/resync_run.hpp"
+#include "runtime/boards/upload_run.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
@@ -55,6 +55,11 @@ struct UploadArgs {
   MusicArgs music;
 };
 
+// --times, or 0 for --forever.
+std::uint16_t times_of(const UploadArgs& a) {
+  return static_cast<std::uint16_t>(a.forever ? 0 : a.times);
+}
+
 // Why the upload failed, and what was done to leave the group in a known state.
 void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r,
                     const boards::Board& board, const compiler::CompileOutput& output) {
@@ -84,19 +89,17 @@ void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResul
 // --resync's pieces, or why the file cannot be cut (said on ctx.err): before any port opens.
 std::optional<std::vector<compiler::ResyncPiece>> resync_pieces(
     Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output, std::int32_t ppm) {
-  auto pieces = compiler::split_at_bars(*output.servo_program(), a.resync, ppm);
-  if (!pieces) {
-    ctx.err << "seqc: error: " << a.file << ": " << pieces.error().message << "\n";
-    return std::nullopt;
-  }
-  const std::size_t last = static_cast<std::size_t>(a.group) + pieces->size() - 1;
-  if (last > 254) {
-    ctx.err << "seqc: error: " << a.file << ": " << plural(pieces->size(), "piece") << " of "
+  boards::ResyncCut cut = boards::cut_for_resync(*output.servo_program(), a.resync, ppm,
+                                                 static_cast<std::uint8_t>(a.group));
+  if (!cut.error.empty()) {
+    ctx.err << "seqc: error: " << a.file << ": " << cut.error << "\n";
+  } else if (!cut.fits()) {
+    ctx.err << "seqc: error: " << a.file << ": " << plural(cut.pieces.size(), "piece") << " of "
             << a.resync << (a.resync == 1 ? " bar" : " bars") << " need groups " << a.group << "-"
-            << last << "; groups go up to 254 (give a lower --group or more bars)\n";
-    return std::nullopt;
+            << cut.last_group << "; groups go up to 254 (give a lower --group or more bars)\n";
   }
-  return std::move(pieces).value();
+  if (!cut.fits()) return std::nullopt;
+  return std::move(cut.pieces);
 }
 
 // --resync: the pieces stored one group each, then started by the computer at their bar lines.
@@ -135,11 +138,9 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
     return ExitCode::DeviceFailure;
   }
   if (ctx.verbosity < 0) return ExitCode::Ok;
-  io::Duration latest{0};
-  for (const io::Duration& l : r.play.lateness) latest = std::max(latest, l);
   ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
           << (a.resync == 1 ? " bar" : " bars") << " in groups " << a.group << "-" << last
-          << " and started each at its bar line (the latest " << io::ms_text(latest, 1)
+          << " and started each at its bar line (the latest " << io::ms_text(r.latest_start(), 1)
           << " late)\n";
   if (ctx.verbosity > 0) {
     for (std::size_t k = 0; k < pieces.size(); ++k) {
@@ -160,9 +161,9 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
     ctx.err << "seqc: group " << a.group << " is stored but was not started\n";
     return ExitCode::PortUnavailable;
   }
-  const auto times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
-  const boards::MusicRunReport r = boards::run_on_downbeat(
-      board, line, static_cast<std::uint8_t>(a.group), times, *music.started, music.audio_offset);
+  const boards::MusicRunReport r =
+      boards::run_on_downbeat(board, line, static_cast<std::uint8_t>(a.group), times_of(a),
+                              *music.started, music.audio_offset);
   realtime.reset();
   switch (r.play.end) {
     case player::PlayEnd::Completed:
@@ -196,7 +197,7 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
                                              : " started on the downbeat; ")
             << said << "; playing the song to its end (Ctrl-C stops both)\n";
   }
-  if (!play_song_out(ctx, music, ctx.clock)) {
+  if (!boards::play_song_out(music, ctx.clock, ctx.interrupted)) {
     // The same stop the player sends after an early end.
     if (board.stop_frame != nullptr) (void)line.transport.write(board.stop_frame());
     ctx.err << "seqc: interrupted: stopped the song and group " << a.group << "\n";
@@ -229,23 +230,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     pieces = resync_pieces(ctx, a, c.output, ppm);
     if (!pieces) return ExitCode::InvalidInput;
   }
-  upload::UploadOptions options;
-  options.group = group;
-  options.retries = a.retries;
-  // With --music the run is sent on the downbeat, after the upload (a dry run still shows it).
-  options.run = a.run && (!a.music.music || a.dry_run);
-  options.run_times = static_cast<std::uint16_t>(a.forever ? 0 : a.times);
-  // The robot may be anywhere: before the run, read the servos where the board can and keep
-  // the group stored but not started if a first move from there is too fast.
-  std::optional<boards::FirstMoveTooFast> too_fast;
-  if (const compiler::ServoProgram* program = c.output.servo_program();
-      a.run && !a.force && program != nullptr) {
-    options.may_run = [&board, &ctx, &too_fast, program](io::Transport& t, io::Clock& clock) {
-      too_fast =
-          boards::first_move_too_fast(board, boards::Line{t, clock, ctx.interrupted}, *program);
-      return !too_fast;
-    };
-  }
+  std::optional<boards::FirstMoveTooFast> too_fast;  // why may_run refused the run
+  const upload::UploadOptions options = boards::upload_options(
+      {group, a.retries, a.run, times_of(a), a.force, a.music.music, a.dry_run}, board, c.output,
+      ctx.interrupted, too_fast);
 
   if (a.dry_run) {
     const boards::DryRun dry = boards::dry_run(board, plan, options);
@@ -267,19 +255,14 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     }
   }
 
-  Trace trace;
-  if (const ExitCode e = trace.open(ctx, a.trace); e != ExitCode::Ok) return e;
+  boards::TraceFile trace;
+  if (const ExitCode e = open_trace(ctx, trace, a.trace); e != ExitCode::Ok) return e;
 
-  const boards::PortRequest request{a.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
-  if (!opened.port) {
-    const BoardError e = port_failure(opened.failure, request, a.file);
-    ctx.err << "seqc: error: " << e.message << "\n";
-    return e.code;
-  }
-  boards::OpenedPort& port = *opened.port;
-  io::Clock& clock = *port.clock;
-  io::Transport* transport = &trace.wrap(*port.transport, clock, board);
+  const boards::BoardLink link =
+      boards::open_link({a.port, &board}, trace, ctx.clock, ctx.hooks, ctx.interrupted);
+  if (!link.port) return say_port_failure(ctx, link, a.file);
+  const boards::OpenedPort& port = *link.port;
+  io::Transport* transport = link.transport;
 
   if (const auto i = boards::first_too_big(plan, *transport)) {
     ctx.err << "seqc: error: " << a.file << ": " << plan.frames[*i].short_what << " is a "
@@ -295,7 +278,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
             << (pieces ? " and on, " + plural(pieces->size(), "piece") : std::string()) << " on "
             << transport->describe() << " (" << board.dialect->name << " dialect)\n";
   }
-  const boards::Line line{*transport, clock, ctx.interrupted};
+  const boards::Line& line = *link.line;
   if (pieces)
     return run_resync(ctx, a, c.output, board, *pieces, line, &progress, progress, options,
                       too_fast);
@@ -325,13 +308,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   }
   if (a.run && a.music.music) {
     // On the downbeat the run is the computer's to send: the first-move read comes first.
-    const compiler::ServoProgram* program = c.output.servo_program();
-    if (!a.force && program != nullptr) {
-      if (const auto fast = boards::first_move_too_fast(board, line, *program)) {
-        ctx.err << "seqc: error: " << first_move_text(*fast) << "; group " << a.group
-                << " is stored but was not started\n";
-        return ExitCode::InvalidInput;
-      }
+    if (const auto fast = boards::run_too_fast(board, line, c.output, a.force)) {
+      ctx.err << "seqc: error: " << first_move_text(*fast) << "; group " << a.group
+              << " is stored but was not started\n";
+      return ExitCode::InvalidInput;
     }
     music.robot_in_emulated_time = port.own_clock();
     return run_to_music(ctx, a, board, line, music);

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "runtime/boards/board.hpp"
-#include "runtime/boards/ports.hpp"
+#include "runtime/boards/board_link.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
@@ -70,19 +70,12 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
                       const LineBody& body) {
   auto timeout = parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
-  Trace trace;
-  if (const ExitCode c = trace.open(ctx, options.trace); c != ExitCode::Ok) return c;
-  const boards::PortRequest request{options.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
-  if (!opened.port) {
-    const BoardError e = port_failure(opened.failure, request, "");
-    ctx.err << "seqc: error: " << e.message << "\n";
-    return e.code;
-  }
-  boards::OpenedPort& port = *opened.port;
-  io::Transport& transport = trace.wrap(*port.transport, *port.clock, board);
-  const boards::Line line{transport, *port.clock, ctx.interrupted, *timeout};
-  return body(line, transport.describe());
+  boards::TraceFile trace;
+  if (const ExitCode c = open_trace(ctx, trace, options.trace); c != ExitCode::Ok) return c;
+  const boards::BoardLink link = boards::open_link({options.port, &board}, trace, ctx.clock,
+                                                   ctx.hooks, ctx.interrupted, *timeout);
+  if (!link.port) return say_port_failure(ctx, link, "");
+  return body(*link.line, link.transport->describe());
 }
 
 ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,

@@ -8,8 +8,8 @@
 
 #include "runtime/audio/pulse_output.hpp"
 #include "runtime/audio/sndfile_audio.hpp"
+#include "runtime/boards/song_reader.hpp"
 #include "runtime/cli/app.hpp"
-#include "runtime/cli/song_audio.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/disk.hpp"
 
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   seqc::cli::Context ctx{std::cout,      std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
                          &g_interrupted, &std::cin};
   seqc::audio::SndfileAudioReader audio;
-  seqc::cli::AudioSongReader songs(audio);
+  seqc::boards::AudioSongReader songs(audio);
   ctx.songs = &songs;
   ctx.audio_files = &audio;
   seqc::audio::PulseAudioOutputFactory speakers(clock, "seqc");

@@ -5,21 +5,10 @@
 
 #include <fmt/format.h>
 
-#include "runtime/audio/sndfile_audio.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
 namespace {
-
-const compiler::Song* song_of(const compiler::CompileOutput& compiled) {
-  if (const compiler::ServoProgram* p = compiled.servo_program(); p && p->timeline.song) {
-    return &*p->timeline.song;
-  }
-  if (const compiler::RaspblockProgram* p = compiled.raspblock_program(); p && p->timeline.song) {
-    return &*p->timeline.song;
-  }
-  return nullptr;
-}
 
 // "1.50 ms after it", "2.00 ms before it", "on it" (to the hundredth of a millisecond).
 std::string relative_text(io::Duration skew) {
@@ -45,35 +34,30 @@ void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs) {
 
 ExitCode open_music(Context& ctx, const compiler::Song& song, const MusicArgs& args,
                     MusicSession& out) {
-  out.file = song.file;
-  out.downbeat = io::Duration{std::llround(song.downbeat.value() * 1e6)};
-  out.audio_offset = io::Duration{std::llround(args.audio_offset_ms * 1e6)};
-  if (ctx.audio_output == nullptr) {
-    ctx.err << "seqc: error: --music: no audio output was given to seqc\n";
-    return ExitCode::Internal;
+  const io::Duration offset{std::llround(args.audio_offset_ms * 1e6)};
+  const boards::MusicOpen opened =
+      boards::open_music(song, offset, ctx.audio_files, ctx.audio_output, out);
+  switch (opened.status) {
+    case boards::MusicOpenStatus::Ok:
+      return ExitCode::Ok;
+    case boards::MusicOpenStatus::NoOutput:
+      ctx.err << "seqc: error: --music: no audio output was given to seqc\n";
+      return ExitCode::Internal;
+    case boards::MusicOpenStatus::Unreadable:
+      ctx.err << "seqc: error: " << opened.message << "\n";
+      return ExitCode::FileError;
+    case boards::MusicOpenStatus::OutputRefused:
+      break;
   }
-  audio::SndfileAudioReader disk;
-  audio::AudioReader& reader = ctx.audio_files != nullptr ? *ctx.audio_files : disk;
-  Result<audio::MonoAudio> decoded = reader.read(song.file);
-  if (!decoded) {
-    ctx.err << "seqc: error: " << decoded.error().message << "\n";
-    return ExitCode::FileError;
-  }
-  out.song = std::move(decoded).value();
-  Result<std::unique_ptr<audio::AudioOutput>> output = ctx.audio_output->open();
-  if (!output) {
-    ctx.err << "seqc: error: --music: " << output.error().message
-            << "; nothing was sent\n  hint: start PulseAudio (or PipeWire's pulse server), or set "
-               "PULSE_SERVER\n";
-    return ExitCode::PortUnavailable;
-  }
-  out.output = std::move(output).value();
-  return ExitCode::Ok;
+  ctx.err << "seqc: error: --music: " << opened.message
+          << "; nothing was sent\n  hint: start PulseAudio (or PipeWire's pulse server), or set "
+             "PULSE_SERVER\n";
+  return ExitCode::PortUnavailable;
 }
 
 ExitCode open_music(Context& ctx, const compiler::CompileOutput& compiled, const std::string& path,
                     const MusicArgs& args, MusicSession& out) {
-  const compiler::Song* song = song_of(compiled);
+  const compiler::Song* song = boards::song_of(compiled);
   if (song == nullptr) {
     ctx.err << "seqc: error: --music: " << path
             << " has no `music:` block, so there is no song to play (docs/music.md)\n";
@@ -83,12 +67,10 @@ ExitCode open_music(Context& ctx, const compiler::CompileOutput& compiled, const
 }
 
 bool start_music(Context& ctx, MusicSession& music) {
-  Result<boards::SongStart> started = boards::start_song(*music.output, music.song, music.downbeat);
-  if (!started) {
+  if (Status started = boards::start_music(music); !started) {
     ctx.err << "seqc: error: --music: " << started.error().message << "\n";
     return false;
   }
-  music.started = *started;
   return true;
 }
 
@@ -118,12 +100,6 @@ std::string sync_text(const MusicSession& music, const boards::SyncedStart& star
     text += ", board start delay " + io::ms_text(start.board_delay, 1);
   }
   return text + ")";
-}
-
-bool play_song_out(Context& ctx, MusicSession& music, io::Clock& clock) {
-  const bool whole = boards::wait_for_song(*music.output, clock, ctx.interrupted);
-  music.output->stop();
-  return whole;
 }
 
 }  // namespace seqc::cli

@@ -1,21 +1,19 @@
-// The song beside the robot: `--music` and `--audio-offset MS` on `seqc play` and `seqc upload
-// --run`, and a show whose performer has `music:`. The song of the file's `music:` block is
-// decoded (runtime/audio), the sound server reached before anything is sent to a board, and the
-// song started just before the robot, whose start boards::music_start times to the downbeat as
-// heard. The report is one line on stderr: when the downbeat is heard, from the audio's start,
-// and how far from it the robot started as seqc measured it; an in-process emulator (emu:xarm,
-// emu:lsc6) keeps no real time, so for one the line says that no skew is measured.
+// The song beside the robot, in words: `--music` and `--audio-offset MS` on `seqc play` and
+// `seqc upload --run`, and a show whose performer has `music:`. The session itself (the song
+// decoded, the sound server reached before anything is sent to a board, the song started just
+// before the robot) is boards::MusicSession (runtime/boards/music_session.hpp); this file words
+// its failures and its report. The report is one line on stderr: when the downbeat is heard,
+// from the audio's start, and how far from it the robot started as seqc measured it; an
+// in-process emulator (emu:xarm, emu:lsc6) keeps no real time, so for one the line says that no
+// skew is measured.
 #pragma once
 
-#include <memory>
-#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "compiler/compile.hpp"
-#include "runtime/audio/audio_output.hpp"
-#include "runtime/boards/music_start.hpp"
+#include "runtime/boards/music_session.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 
@@ -29,25 +27,7 @@ struct MusicArgs {
 // --music and --audio-offset; `needs`: an option --music needs (upload's --run), or null.
 void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs = nullptr);
 
-// A song decoded and its output open, not yet playing; the output is stopped when this goes.
-class MusicSession {
- public:
-  MusicSession() = default;
-  MusicSession(MusicSession&&) = default;
-  MusicSession& operator=(MusicSession&&) = default;
-  ~MusicSession() {
-    if (output) output->stop();
-  }
-  std::string file;
-  audio::MonoAudio song;
-  io::Duration downbeat{0};
-  io::Duration audio_offset{0};
-  std::unique_ptr<audio::AudioOutput> output;
-  std::optional<boards::SongStart> started;
-  // The robot is an in-process emulator on its own clock (boards::OpenedPort::own_clock): the
-  // song is dated on the host's clock and the start on the emulator's, so no skew is said.
-  bool robot_in_emulated_time = false;
-};
+using boards::MusicSession;  // runtime/boards/music_session.hpp
 
 // The song of `song` (a file's or a show's `music:`): decoded, and the sound server reached.
 // An error is said on ctx.err and its exit status returned.
@@ -66,9 +46,5 @@ bool start_music(Context& ctx, MusicSession& music);
 // measured.
 std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
                       const std::string& command);
-
-// Waits on `clock` (the robot's line's) for the song to end; on Ctrl-C stops it and returns
-// false.
-bool play_song_out(Context& ctx, MusicSession& music, io::Clock& clock);
 
 }  // namespace seqc::cli

@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "base/units.hpp"
+#include "runtime/boards/board_link.hpp"
 #include "runtime/boards/first_move.hpp"
 #include "runtime/boards/live.hpp"
-#include "runtime/boards/ports.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/device_command.hpp"
 #include "runtime/cli/play_progress.hpp"
@@ -174,30 +174,22 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
                      std::chrono::milliseconds(r.length_ms), r.frames.size());
   };
   hooks.sent = [&](std::size_t i, io::Duration at) { progress->on_sent(i, at); };
-  std::optional<audio::StartPlan> plan;
-  io::Duration wire{0};
+  std::optional<boards::LiveSongStart> planned;
   if (music != nullptr) {
     hooks.start = [&](const boards::LiveReport& r) -> std::optional<boards::LiveStart> {
       if (!start_music(ctx, *music)) return std::nullopt;
       const std::size_t bytes = r.frames.empty() ? 0 : r.frames[0].bytes.size();
-      const audio::StartTiming timing = boards::start_timing(
-          board, *music->started, music->audio_offset, bytes, line.transport.seconds_per_byte());
-      plan = audio::plan_start(music->started->clock, timing);
-      wire = timing.wire;
-      return boards::LiveStart{plan->downbeat_heard, timing.wire + timing.board_delay};
+      planned = boards::live_song_start(board, *music, bytes, line.transport.seconds_per_byte());
+      return planned->start;
     };
   }
   const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);
   if (progress) progress->finish();
   if (r.status == boards::LiveStatus::NotStarted) return ExitCode::PortUnavailable;
-  if (music != nullptr && plan && ctx.verbosity >= 0) {
-    std::optional<io::TimePoint> written;
-    if (!r.play.tracks.empty() && r.play.tracks[0].first) {
-      written = r.play.started + *r.play.tracks[0].first;
-    }
-    ctx.err << "seqc: "
-            << sync_text(*music, boards::synced_start(*plan, wire, board.start_delay, written),
-                         moves ? "the first move" : "the first frame")
+  if (music != nullptr && planned && ctx.verbosity >= 0) {
+    const boards::SyncedStart start = boards::synced_start(
+        planned->plan, planned->wire, board.start_delay, boards::first_written(r.play));
+    ctx.err << "seqc: " << sync_text(*music, start, moves ? "the first move" : "the first frame")
             << "\n";
   }
   const ExitCode code =
@@ -208,7 +200,7 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
     return code;
   }
   if (ctx.verbosity >= 0) ctx.err << "seqc: playing the song to its end (Ctrl-C stops it)\n";
-  if (!play_song_out(ctx, *music, ctx.clock)) {
+  if (!boards::play_song_out(*music, ctx.clock, ctx.interrupted)) {
     ctx.err << "seqc: interrupted: stopped the song\n";
     return ExitCode::Interrupted;
   }
@@ -220,8 +212,8 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
                        const PlayArgs& args) {
   const boards::Board& board = boards::board_for(compiled);
-  Trace trace;
-  if (const ExitCode c = trace.open(ctx, args.trace); c != ExitCode::Ok) return c;
+  boards::TraceFile trace;
+  if (const ExitCode c = open_trace(ctx, trace, args.trace); c != ExitCode::Ok) return c;
   MusicSession music;
   if (args.music.music) {
     if (const ExitCode e = open_music(ctx, compiled, args.file, args.music, music);
@@ -229,21 +221,14 @@ ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
       return e;
     }
   }
-  const boards::PortRequest request{args.port, &board};
-  boards::OpenResult opened = boards::open_port(request, ctx.clock, ctx.hooks);
-  if (!opened.port) {
-    const BoardError e = port_failure(opened.failure, request, args.file);
-    ctx.err << "seqc: error: " << e.message << "\n";
-    return e.code;
-  }
-  boards::OpenedPort& port = *opened.port;
-  const boards::Line line{trace.wrap(*port.transport, *port.clock, board), *port.clock,
-                          ctx.interrupted};
-  if (const compiler::ServoProgram* program = compiled.servo_program(); program && !args.force) {
-    if (const auto fast = boards::first_move_too_fast(board, line, *program)) {
-      ctx.err << "seqc: error: " << first_move_text(*fast) << "\n";
-      return ExitCode::InvalidInput;
-    }
+  const boards::BoardLink link =
+      boards::open_link({args.port, &board}, trace, ctx.clock, ctx.hooks, ctx.interrupted);
+  if (!link.port) return say_port_failure(ctx, link, args.file);
+  const boards::OpenedPort& port = *link.port;
+  const boards::Line& line = *link.line;
+  if (const auto fast = boards::run_too_fast(board, line, compiled, args.force)) {
+    ctx.err << "seqc: error: " << first_move_text(*fast) << "\n";
+    return ExitCode::InvalidInput;
   }
   music.robot_in_emulated_time = port.own_clock();
   const ExitCode code =

@@ -1,7 +1,6 @@
 #include "runtime/cli/trace_option.hpp"
 
 #include <ostream>
-#include <utility>
 
 namespace seqc::cli {
 
@@ -9,27 +8,13 @@ void add_trace_option(CLI::App& cmd, std::string& path, const std::string& help)
   cmd.add_option("--trace", path, help);
 }
 
-ExitCode Trace::open(Context& ctx, const std::string& path) {
-  if (path.empty()) return ExitCode::Ok;
-  file_.open(path, std::ios::out | std::ios::trunc);
-  if (!file_) {
-    ctx.err << "seqc: error: --trace " << path << ": cannot write the file\n";
-    return ExitCode::FileError;
-  }
-  return ExitCode::Ok;
+ExitCode open_trace(Context& ctx, boards::TraceFile& trace, const std::string& path) {
+  return trace.open(path) ? ExitCode::Ok : trace_unwritable(ctx, path);
 }
 
-io::Transport& Trace::wrap(io::Transport& inner, io::Clock& clock, const boards::Board& board) {
-  if (!file_.is_open()) return inner;
-  transport_ = std::make_unique<upload::TraceTransport>(inner, clock, file_, board.dialect);
-  return *transport_;
-}
-
-void Trace::wrap_in_place(std::unique_ptr<io::Transport>& slot, io::Clock& clock,
-                          const boards::Board& board) {
-  if (!file_.is_open()) return;
-  untraced_ = std::move(slot);
-  slot = std::make_unique<upload::TraceTransport>(*untraced_, clock, file_, board.dialect);
+ExitCode trace_unwritable(Context& ctx, const std::string& path) {
+  ctx.err << "seqc: error: --trace " << path << ": cannot write the file\n";
+  return ExitCode::FileError;
 }
 
 }  // namespace seqc::cli

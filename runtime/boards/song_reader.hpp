@@ -1,4 +1,5 @@
-// The compiler's SongReader on the audio boundary (runtime/audio): how `seqc check`, `compile`,
+// The compiler's SongReader on the audio boundary (runtime/audio), for the song of a `music:`
+// block: how `seqc check`, `compile`,
 // `simulate` and `plot` decode a choreography's `music:` song for the audio check.
 #pragma once
 
@@ -8,7 +9,7 @@
 #include "base/source.hpp"
 #include "runtime/audio/audio_files.hpp"
 
-namespace seqc::cli {
+namespace seqc::boards {
 
 class AudioSongReader final : public seqc::SongReader {
  public:
@@ -23,4 +24,4 @@ class AudioSongReader final : public seqc::SongReader {
   audio::AudioReader& audio_;
 };
 
-}  // namespace seqc::cli
+}  // namespace seqc::boards
