@@ -25,7 +25,8 @@ class AudioReader {
 class AudioWriter {
  public:
   virtual ~AudioWriter() = default;
-  // A 16-bit PCM WAV file; nothing is left at `path` when writing fails.
+  // A 16-bit PCM WAV file, written as io::write_file_safely writes: a file is replaced whole
+  // (nothing is left at `path` when writing fails), a device or FIFO is written directly.
   virtual Status write_wav(const std::string& path, const MonoAudio& audio) = 0;
 };
 

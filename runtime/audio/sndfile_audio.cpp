@@ -5,9 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <system_error>
+
+#include "runtime/io/disk.hpp"
 
 namespace seqc::audio {
 namespace {
@@ -16,6 +20,49 @@ struct CloseSndfile {
   void operator()(SNDFILE* f) const { sf_close(f); }
 };
 using SndfilePtr = std::unique_ptr<SNDFILE, CloseSndfile>;
+
+// A growable file in memory for sf_open_virtual: libsndfile seeks back to patch the header.
+struct MemoryFile {
+  std::string bytes;
+  std::size_t at = 0;
+};
+
+sf_count_t memory_length(void* user) {
+  return static_cast<sf_count_t>(static_cast<MemoryFile*>(user)->bytes.size());
+}
+
+sf_count_t memory_seek(sf_count_t offset, int whence, void* user) {
+  auto* m = static_cast<MemoryFile*>(user);
+  sf_count_t base = 0;
+  if (whence == SEEK_CUR) base = static_cast<sf_count_t>(m->at);
+  if (whence == SEEK_END) base = static_cast<sf_count_t>(m->bytes.size());
+  if (base + offset < 0) return -1;
+  m->at = static_cast<std::size_t>(base + offset);
+  return static_cast<sf_count_t>(m->at);
+}
+
+sf_count_t memory_read(void* ptr, sf_count_t count, void* user) {
+  auto* m = static_cast<MemoryFile*>(user);
+  if (m->at >= m->bytes.size() || count <= 0) return 0;
+  const std::size_t n = std::min(static_cast<std::size_t>(count), m->bytes.size() - m->at);
+  std::memcpy(ptr, m->bytes.data() + m->at, n);
+  m->at += n;
+  return static_cast<sf_count_t>(n);
+}
+
+sf_count_t memory_write(const void* ptr, sf_count_t count, void* user) {
+  auto* m = static_cast<MemoryFile*>(user);
+  if (count <= 0) return 0;
+  const auto n = static_cast<std::size_t>(count);
+  if (m->bytes.size() < m->at + n) m->bytes.resize(m->at + n);
+  std::memcpy(m->bytes.data() + m->at, ptr, n);
+  m->at += n;
+  return count;
+}
+
+sf_count_t memory_tell(void* user) {
+  return static_cast<sf_count_t>(static_cast<MemoryFile*>(user)->at);
+}
 
 }  // namespace
 
@@ -58,14 +105,16 @@ Result<MonoAudio> SndfileAudioReader::read(const std::string& path) {
 }
 
 Status SndfileAudioWriter::write_wav(const std::string& path, const MonoAudio& audio) {
-  // Written beside the target and renamed over it, so a failed write leaves nothing half done.
-  const std::string temp = path + ".part";
+  // Encoded in memory, then written by the one safe writer (io::write_file_safely): nothing is
+  // opened at a guessable name, a device stays a device, and a failed run leaves nothing behind.
+  MemoryFile memory;
+  SF_VIRTUAL_IO io{memory_length, memory_seek, memory_read, memory_write, memory_tell};
   SF_INFO info{};
   info.samplerate = static_cast<int>(std::lround(audio.sample_rate));
   info.channels = 1;
   info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
   {
-    SndfilePtr file(sf_open(temp.c_str(), SFM_WRITE, &info));
+    SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
     if (!file) return make_error(path + ": cannot write: " + sf_strerror(nullptr));
     // Floats beyond [-1, 1] are clipped, not wrapped, when converted to 16 bits.
     sf_command(file.get(), SFC_SET_CLIPPING, nullptr, SF_TRUE);
@@ -75,20 +124,11 @@ Status SndfileAudioWriter::write_wav(const std::string& path, const MonoAudio& a
     for (std::size_t at = 0; at < audio.samples.size(); at += kBlock) {
       const auto frames = static_cast<sf_count_t>(std::min(kBlock, audio.samples.size() - at));
       if (sf_writef_float(file.get(), audio.samples.data() + at, frames) != frames) {
-        const std::string why = sf_strerror(file.get());
-        file.reset();
-        std::remove(temp.c_str());
-        return make_error(path + ": cannot write: " + why);
+        return make_error(path + ": cannot write: " + sf_strerror(file.get()));
       }
     }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::remove(temp.c_str());
-    return make_error(path + ": cannot write: " + ec.message());
-  }
-  return Ok{};
+  }  // sf_close writes the final header sizes
+  return io::write_file_safely(path, memory.bytes);
 }
 
 }  // namespace seqc::audio

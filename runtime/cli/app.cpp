@@ -1,5 +1,7 @@
 #include "runtime/cli/app.hpp"
 
+#include <cerrno>
+#include <new>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -7,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/usage_hints.hpp"
 #include "runtime/cli/version.hpp"
 
@@ -94,7 +97,9 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_help_command(app, ctx, outcome);
 }
 
-int run(int argc, const char* const* argv, Context& ctx) {
+namespace {
+
+int run_command_line(int argc, const char* const* argv, Context& ctx) {
   CLI::App app{kAppDescription, "seqc"};
   Outcome outcome;
   build_app(app, ctx, outcome);
@@ -129,6 +134,29 @@ int run(int argc, const char* const* argv, Context& ctx) {
     return to_int(ExitCode::Usage);
   }
   return to_int(outcome.code);
+}
+
+// Data written to stdout is only known written once flushed: a full disk or a closed pipe
+// shows here. A command that failed already keeps its status (and its own message).
+int finish_stdout(Context& ctx, int code) {
+  errno = 0;
+  if (ctx.out.flush()) return code;
+  if (code != to_int(ExitCode::FileError)) say_stdout_failed(ctx, errno);
+  return code == to_int(ExitCode::Ok) ? to_int(ExitCode::FileError) : code;
+}
+
+}  // namespace
+
+int run(int argc, const char* const* argv, Context& ctx) {
+  int code = to_int(ExitCode::Internal);
+  try {
+    code = run_command_line(argc, argv, ctx);
+  } catch (const std::bad_alloc&) {
+    // A file or a song too large for this machine: said plainly, not an abort and a core.
+    ctx.err << "seqc: error: out of memory\n";
+    return to_int(ExitCode::Internal);
+  }
+  return finish_stdout(ctx, code);
 }
 
 }  // namespace seqc::cli

@@ -20,7 +20,8 @@ struct BeatsRequest {
 };
 
 // The block on ctx.out, the confidence on ctx.err; FileError when the song cannot be read or the
-// click track written, InvalidInput when the song has no steady beat.
+// click track written, InvalidInput when the song has no steady beat, Usage (before anything is
+// read or written) when --click names the song itself.
 ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
                    audio::AudioWriter& writer);
 

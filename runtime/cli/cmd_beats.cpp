@@ -10,6 +10,7 @@
 #include "runtime/audio/sndfile_audio.hpp"
 #include "runtime/cli/beats_command.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/compile_report.hpp"
 
 namespace seqc::cli {
 
@@ -24,6 +25,9 @@ std::optional<music::Meter> parse_meter(const std::string& text) {
 
 ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
                    audio::AudioWriter& writer) {
+  if (request.click && refuse_input_as_output(ctx, "--click", *request.click, {request.song})) {
+    return ExitCode::Usage;
+  }
   auto song = reader.read(request.song);
   if (!song) {
     ctx.err << "seqc: error: " << song.error().message << "\n";

@@ -10,7 +10,6 @@
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -73,13 +72,9 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    if (opts->output.empty() || opts->output == "-") {
-      ctx.out << text.text;
-      return;
-    }
-    if (auto written = io::write_file_atomically(opts->output, text.text); !written) {
-      ctx.err << "seqc: error: " << written.error().message << "\n";
-      result.code = ExitCode::FileError;
+    if (const ExitCode w = write_output(ctx, opts->output, text.text, inputs_of(c.output));
+        w != ExitCode::Ok) {
+      result.code = w;
     }
   });
 }

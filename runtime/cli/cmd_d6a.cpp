@@ -12,6 +12,7 @@
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
 
@@ -32,7 +33,13 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string bytes;
     if (o->file == "-") {
       if (ctx.in != nullptr) {
-        bytes.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
+        auto read = io::read_stream(*ctx.in, kStdinName);
+        if (!read) {
+          ctx.err << "seqc: error: " << read.error().message << "\n";
+          result.code = ExitCode::FileError;
+          return;
+        }
+        bytes = std::move(*read);
       }
     } else {
       auto read = ctx.files.read(o->file);
@@ -60,7 +67,7 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    result.code = write_output(ctx, o->output, *yaml);
+    result.code = write_output(ctx, o->output, *yaml, {o->file});
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx,
                 o->output + ": " + std::to_string(table->rows.size()) + " steps from " + o->file);
@@ -116,7 +123,7 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
       out = o->file == "-" ? "group" + std::to_string(o->group) + ".d6a"
                            : std::filesystem::path(o->file).stem().string() + ".d6a";
     }
-    result.code = write_output(ctx, out, *bytes);
+    result.code = write_output(ctx, out, *bytes, inputs_of(c.output));
     if (result.code == ExitCode::Ok && out != "-") {
       summarize(ctx, out + ": " + std::to_string(table->rows.size()) + " actions, Servo1..Servo" +
                          std::to_string(table->servo_columns));

@@ -10,6 +10,7 @@
 
 #include "compiler/formats/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/io/disk.hpp"
 #include "base/bytes.hpp"
 
 namespace seqc::cli {
@@ -32,7 +33,13 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
         result.code = ExitCode::FileError;
         return;
       }
-      text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
+      auto read = io::read_stream(*ctx.in, "<stdin>");
+      if (!read) {
+        ctx.err << "seqc: error: " << read.error().message << "\n";
+        result.code = ExitCode::FileError;
+        return;
+      }
+      text = std::move(*read);
     } else {
       auto read = ctx.files.read(*file);
       if (!read) {

@@ -87,8 +87,8 @@ std::string refused_option(const EmulateOptions& o, const boards::Board& board) 
 
 ExitCode write_output(Context& ctx, const char* option, const std::string& path,
                       const std::string& text) {
-  if (auto ok = io::write_file_atomically(path, text); !ok) {
-    ctx.err << "seqc: error: " << option << " " << path << ": " << ok.error().message << "\n";
+  if (auto ok = io::write_file_safely(path, text); !ok) {
+    ctx.err << "seqc: error: " << option << " " << ok.error().message << "\n";
     return ExitCode::FileError;
   }
   return ExitCode::Ok;

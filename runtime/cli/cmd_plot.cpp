@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -124,7 +125,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
       options.song = song ? &*song : nullptr;
       svg = titled_plot(output, name, o->group, options);
     }
-    result.code = write_output(ctx, o->output, svg);
+    result.code = write_output(ctx, o->output, svg, inputs_of(loaded.file));
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(svg.size()) + " bytes");
     }

@@ -85,7 +85,7 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
         html = compiler::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
       }
     }
-    result.code = write_output(ctx, o->output, html);
+    result.code = write_output(ctx, o->output, html, inputs_of(loaded.file));
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(html.size()) + " bytes");
     }

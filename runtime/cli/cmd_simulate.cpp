@@ -4,6 +4,7 @@
 // performer (their columns and sampling differ: a car's state is not a servo's position): with
 // -o OUT.csv each goes to OUT-NAME.csv, on stdout each follows a "# performer NAME (FILE)" line.
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -11,7 +12,6 @@
 #include "compiler/formats/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
-#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -54,16 +54,17 @@ std::string performer_path(const std::string& output, const std::string& name) {
   return output.substr(0, dot) + "-" + name + output.substr(dot);
 }
 
-ExitCode write_csv(Context& ctx, const std::string& path, const std::string& csv) {
-  if (auto written = io::write_file_atomically(path, csv); !written) {
-    ctx.err << "seqc: error: " << written.error().message << "\n";
-    return ExitCode::FileError;
-  }
-  return ExitCode::Ok;
-}
-
 ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const SimulateOptions& o) {
   const bool to_stdout = o.output.empty() || o.output == "-";
+  const std::vector<std::string> inputs = inputs_of(show);
+  if (!to_stdout) {
+    // Every output is checked before the first is written, so a refusal writes nothing.
+    for (const compiler::Performer& p : show.performers) {
+      if (refuse_input_as_output(ctx, "-o", performer_path(o.output, p.name), inputs)) {
+        return ExitCode::Usage;
+      }
+    }
+  }
   for (const compiler::Performer& p : show.performers) {
     std::string csv;
     if (!simulate_one(ctx, p.output, p.file + " (" + p.name + ")", o, csv)) {
@@ -71,7 +72,7 @@ ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const Sim
     }
     if (to_stdout) {
       ctx.out << "# performer " << p.name << " (" << p.file << ")\n" << csv;
-    } else if (const ExitCode c = write_csv(ctx, performer_path(o.output, p.name), csv);
+    } else if (const ExitCode c = write_output(ctx, performer_path(o.output, p.name), csv, inputs);
                c != ExitCode::Ok) {
       return c;
     }
@@ -109,11 +110,7 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    if (opts->output.empty() || opts->output == "-") {
-      ctx.out << csv;
-    } else {
-      result.code = write_csv(ctx, opts->output, csv);
-    }
+    result.code = write_output(ctx, opts->output, csv, inputs_of(loaded.file));
   });
 }
 

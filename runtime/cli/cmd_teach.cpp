@@ -80,8 +80,8 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
         ctx.err << "seqc: error: " << o.file << ": " << edited.error().message << "\n";
         continue;
       }
-      if (auto ok = io::write_file_atomically(o.file, *edited); !ok) {
-        ctx.err << "seqc: error: cannot write '" << o.file << "': " << ok.error().message << "\n";
+      if (auto ok = io::write_file_safely(o.file, *edited); !ok) {
+        ctx.err << "seqc: error: " << ok.error().message << "\n";
         return ExitCode::FileError;
       }
       text = std::move(*edited);

@@ -1,6 +1,7 @@
 #include "runtime/cli/compile_report.hpp"
 
-#include <iterator>
+#include <cerrno>
+#include <cstring>
 #include <ostream>
 
 #include "runtime/io/disk.hpp"
@@ -63,7 +64,14 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
   if (path == "-") {
     std::string text;
     if (ctx.in != nullptr) {
-      text.assign(std::istreambuf_iterator<char>(*ctx.in), std::istreambuf_iterator<char>());
+      auto read = io::read_stream(*ctx.in, kStdinName);
+      if (!read) {
+        Compiled failed;
+        failed.output.read_error = read.error().message;
+        failed.code = ExitCode::FileError;
+        return failed;
+      }
+      text = std::move(*read);
     }
     StdinFirstReader reader(std::move(text), ctx.files);
     c.output = compiler::compile_file(kStdinName, reader, options);
@@ -106,13 +114,68 @@ Loaded load_and_report(Context& ctx, const std::string& path, bool strict, SongC
   return l;
 }
 
-ExitCode write_output(Context& ctx, const std::string& path, const std::string& data) {
-  if (path == "-") {
-    ctx.out << data;
-    return ExitCode::Ok;
+std::vector<std::string> inputs_of(const compiler::CompileOutput& output) {
+  std::vector<std::string> inputs;
+  for (std::uint32_t f = 0; f < output.sources.file_count(); ++f) {
+    inputs.push_back(output.sources.path(f));
   }
-  if (auto written = io::write_file_atomically(path, data); !written) {
-    ctx.err << "seqc: error: cannot write '" << path << "': " << written.error().message << "\n";
+  const compiler::Song* song = nullptr;
+  if (const compiler::ServoProgram* p = output.servo_program(); p && p->timeline.song) {
+    song = &*p->timeline.song;
+  } else if (const compiler::RaspblockProgram* r = output.raspblock_program();
+             r && r->timeline.song) {
+    song = &*r->timeline.song;
+  }
+  if (song != nullptr) inputs.push_back(song->file);
+  return inputs;
+}
+
+std::vector<std::string> inputs_of(const compiler::ShowOutput& show) {
+  std::vector<std::string> inputs;
+  for (std::uint32_t f = 0; f < show.sources.file_count(); ++f) {
+    inputs.push_back(show.sources.path(f));
+  }
+  for (const compiler::Performer& p : show.performers) {
+    const std::vector<std::string> more = inputs_of(p.output);
+    inputs.insert(inputs.end(), more.begin(), more.end());
+  }
+  return inputs;
+}
+
+std::vector<std::string> inputs_of(const compiler::Loaded& file) {
+  return file.is_show() ? inputs_of(file.show()) : inputs_of(file.program());
+}
+
+void say_stdout_failed(Context& ctx, int error) {
+  ctx.err << "seqc: error: " << kStdoutName << ": cannot write"
+          << (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+}
+
+bool refuse_input_as_output(Context& ctx, const std::string& option, const std::string& path,
+                            const std::vector<std::string>& inputs) {
+  const std::string input = io::same_file_among(path, inputs);
+  if (input.empty()) return false;
+  ctx.err << "seqc: error: " << option << " " << path << " is the same file as the input " << input
+          << "; nothing was written\n";
+  return true;
+}
+
+ExitCode write_stdout(Context& ctx, std::string_view data) {
+  errno = 0;
+  ctx.out.write(data.data(), static_cast<std::streamsize>(data.size()));
+  if (!ctx.out.flush()) {
+    say_stdout_failed(ctx, errno);
+    return ExitCode::FileError;
+  }
+  return ExitCode::Ok;
+}
+
+ExitCode write_output(Context& ctx, const std::string& path, const std::string& data,
+                      const std::vector<std::string>& inputs, const std::string& option) {
+  if (path.empty() || path == "-") return write_stdout(ctx, data);
+  if (refuse_input_as_output(ctx, option, path, inputs)) return ExitCode::Usage;
+  if (auto written = io::write_file_safely(path, data); !written) {
+    ctx.err << "seqc: error: " << written.error().message << "\n";
     return ExitCode::FileError;
   }
   return ExitCode::Ok;

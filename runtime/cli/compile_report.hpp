@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "base/diagnostics.hpp"
 #include "compiler/compile.hpp"
@@ -23,10 +25,32 @@ struct Compiled {
 };
 
 inline constexpr const char* kStdinName = "<stdin>";
+inline constexpr const char* kStdoutName = "<stdout>";
 
-// Writes what an offline subcommand made to `path` ("-" = stdout; a file atomically), or says
-// on stderr why it could not (FileError).
-ExitCode write_output(Context& ctx, const std::string& path, const std::string& data);
+// Every file a compile read: the choreography, each file it includes, its song; and a show's
+// file with every performer's. An output must be none of them.
+std::vector<std::string> inputs_of(const compiler::CompileOutput& output);
+std::vector<std::string> inputs_of(const compiler::ShowOutput& show);
+std::vector<std::string> inputs_of(const compiler::Loaded& file);
+
+// True, and said on stderr ("OPTION PATH is the same file as the input INPUT; nothing was
+// written"), when `path` is the same file as one of `inputs` (io::same_file, links followed):
+// the command must then write nothing and end with ExitCode::Usage.
+bool refuse_input_as_output(Context& ctx, const std::string& option, const std::string& path,
+                            const std::vector<std::string>& inputs);
+
+// Writes `data` on ctx.out and flushes it; a failed stream (stdout closed or its disk full) is
+// said as "<stdout>: cannot write" and is FileError.
+ExitCode write_stdout(Context& ctx, std::string_view data);
+// "seqc: error: <stdout>: cannot write[: strerror(error)]" (error 0: no reason known).
+void say_stdout_failed(Context& ctx, int error);
+
+// Writes what an offline subcommand made to `path` ("-" or "" = stdout, else through
+// io::write_file_safely). An output that is one of `inputs` is refused before anything is
+// written (Usage); a write that fails is FileError; either is said on stderr.
+ExitCode write_output(Context& ctx, const std::string& path, const std::string& data,
+                      const std::vector<std::string>& inputs = {},
+                      const std::string& option = "-o");
 
 // Loads a show file and prints its diagnostics and every performer's (for `seqc show`).
 // code: Ok, FileError (the show file cannot be read) or InvalidInput.

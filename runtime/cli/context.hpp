@@ -21,7 +21,7 @@ struct Context {
   io::Clock& clock;
   seqc::FileReader& files;
   bool err_is_terminal = false;  // progress bar vs plain lines
-  // Set by the SIGINT handler; long-running commands poll it and stop cleanly.
+  // Set on SIGINT, SIGTERM or SIGHUP; long-running commands poll it and stop cleanly.
   const std::atomic<bool>* interrupted = nullptr;
   // Standard input, for commands that accept "-" as a file name (e.g. `seqc decode -`).
   std::istream* in = nullptr;

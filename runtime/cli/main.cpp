@@ -5,28 +5,28 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <new>
 
 #include "runtime/audio/pulse_output.hpp"
 #include "runtime/audio/sndfile_audio.hpp"
 #include "runtime/boards/song_reader.hpp"
 #include "runtime/cli/app.hpp"
+#include "runtime/cli/exit_codes.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace {
-// The one piece of process-wide state: a signal handler can only reach a static.
+// The only process-wide state, as a signal handler can only reach a static: the flag commands
+// poll, and the first stop signal that arrived, which picks the exit status.
 std::atomic<bool> g_interrupted{false};
-void on_sigint(int) { g_interrupted.store(true); }
-}  // namespace
+std::atomic<int> g_signal{0};
+void on_stop_signal(int signal) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, signal);
+  g_interrupted.store(true);
+}
 
-int main(int argc, char** argv) {
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
-
+int run_seqc(int argc, char** argv) {
   seqc::io::SteadyClock clock;
   seqc::io::DiskFileReader files;
   seqc::cli::Context ctx{std::cout,      std::cerr, clock, files, ::isatty(STDERR_FILENO) == 1,
@@ -44,4 +44,30 @@ int main(int argc, char** argv) {
     ctx.terminal_columns = ws.ws_col;
   }
   return seqc::cli::run(argc, argv, ctx);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed terminal (SIGHUP) or a service manager (SIGTERM) stops seqc as Ctrl-C does: the
+  // robot is stopped, the song ends and the port is restored before it exits.
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  // Under nohup, SIGHUP arrives ignored and stays so: the run outlives its terminal as asked.
+  struct sigaction hup {};
+  if (sigaction(SIGHUP, nullptr, &hup) == 0 && hup.sa_handler != SIG_IGN) {
+    sigaction(SIGHUP, &sa, nullptr);
+  }
+  std::signal(SIGPIPE, SIG_IGN);
+  int code = seqc::cli::to_int(seqc::cli::ExitCode::Internal);
+  try {
+    code = run_seqc(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "seqc: error: out of memory\n";
+    return seqc::cli::to_int(seqc::cli::ExitCode::Internal);
+  }
+  return seqc::cli::exit_status(code, g_signal.load());
 }

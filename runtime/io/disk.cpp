@@ -1,29 +1,162 @@
 #include "runtime/io/disk.hpp"
 
+#include <fcntl.h>
+#include <linux/magic.h>
 #include <sys/stat.h>
+#include <sys/vfs.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
+#include <istream>
+#include <random>
 
 namespace seqc::io {
+namespace {
+
+constexpr std::size_t kChunk = 64 * 1024;
+
+std::string too_large(const std::string& name, std::size_t max_bytes) {
+  return name + ": file is too large (more than " + std::to_string(max_bytes) + " bytes)";
+}
+
+// Closes a descriptor on every path out of a function.
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  // Closes now, for the error close() may report (a delayed write failing on NFS, a full disk).
+  int close() {
+    const int r = ::close(fd_);
+    fd_ = -1;
+    return r;
+  }
+
+ private:
+  int fd_;
+};
+
+Error cannot_write(const std::string& path, const std::string& why) {
+  return make_error(path + ": cannot write: " + why);
+}
+
+Status write_all(int fd, std::string_view data, const std::string& path) {
+  std::size_t at = 0;
+  while (at < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + at, data.size() - at);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return cannot_write(path, std::strerror(errno));
+    }
+    at += static_cast<std::size_t>(n);
+  }
+  return Ok{};
+}
+
+// A device, a FIFO or a file reached through a link that names no path (/proc/self/fd/1): it
+// is opened as it is and written; nothing is created and nothing renamed.
+Status write_in_place(const std::string& path, std::string_view data) {
+  Fd fd(::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOCTTY | O_CLOEXEC));
+  if (fd.get() < 0) return cannot_write(path, std::strerror(errno));
+  if (Status s = write_all(fd.get(), data, path); !s) return s;
+  if (fd.close() != 0) return cannot_write(path, std::strerror(errno));
+  return Ok{};
+}
+
+// The path a chain of symlinks ends at, as open() would follow it; the end may not exist. ""
+// when the chain goes through a link in /proc (/dev/stdout, /dev/fd/N): those name a file some
+// process holds open, which is written where it is, not replaced.
+Result<std::string> resolve_links(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::string at = path;
+  for (int hops = 0;; ++hops) {
+    struct stat st {};
+    if (::lstat(at.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return at;
+    const std::string folder = fs::path(at).parent_path().string();
+    struct statfs fsys {};
+    if (::statfs(folder.empty() ? "." : folder.c_str(), &fsys) == 0 &&
+        fsys.f_type == PROC_SUPER_MAGIC) {
+      return std::string();
+    }
+    if (hops == 40) return cannot_write(path, std::strerror(ELOOP));
+    std::error_code ec;
+    const fs::path link = fs::read_symlink(at, ec);
+    if (ec) return cannot_write(path, ec.message());
+    at = link.is_absolute() ? link.string() : (fs::path(at).parent_path() / link).string();
+  }
+}
+
+std::string random_suffix() {
+  static constexpr char kLetters[] =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  std::random_device random;
+  std::string s;
+  for (int i = 0; i < 10; ++i) s += kLetters[random() % (sizeof kLetters - 1)];
+  return s;
+}
+
+// `target` is absent or a regular file: a fresh temporary beside it, renamed over it.
+Status replace_file(const std::string& path, const std::string& target, std::string_view data) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(target).parent_path();
+  const std::string stem = "." + fs::path(target).filename().string() + ".seqc-";
+  std::string temp;
+  int raw = -1;
+  for (int attempt = 0; attempt < 100 && raw < 0; ++attempt) {
+    // O_EXCL: the name is created here or not at all, so nothing planted at it (a link, a file
+    // of someone else's) is opened; the mode is an ordinary new file's, 0666 less the umask.
+    temp = (folder / (stem + random_suffix())).string();
+    raw = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (raw < 0 && errno != EEXIST) return cannot_write(path, std::strerror(errno));
+  }
+  if (raw < 0) return cannot_write(path, "no unused temporary name beside it");
+  Fd fd(raw);
+  Status written = write_all(fd.get(), data, path);
+  if (written && fd.close() != 0) written = cannot_write(path, std::strerror(errno));
+  if (written && ::rename(temp.c_str(), target.c_str()) != 0) {
+    written = cannot_write(path, std::strerror(errno));
+  }
+  if (!written) ::unlink(temp.c_str());
+  return written;
+}
+
+}  // namespace
 
 Result<std::string> DiskFileReader::read(const std::string& path) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_NOCTTY | O_CLOEXEC));
+  if (fd.get() < 0) return make_error(path + ": " + std::strerror(errno));
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    return make_error(path + ": " + std::strerror(errno));
-  }
+  if (::fstat(fd.get(), &st) != 0) return make_error(path + ": " + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) return make_error(path + ": is a directory");
-  if (static_cast<std::size_t>(st.st_size) > max_bytes_) {
-    return make_error(path + ": file is too large (" + std::to_string(st.st_size) +
-                      " bytes; the limit is " + std::to_string(max_bytes_) + ")");
+  const bool regular = S_ISREG(st.st_mode);
+  if (regular && static_cast<std::uintmax_t>(st.st_size) > max_bytes_) {
+    return make_error(too_large(path, max_bytes_));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(path + ": " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  // Whatever the size said (a device's is 0, a file may grow), at most max_bytes + 1 are read.
+  std::string text;
+  if (regular) text.reserve(static_cast<std::size_t>(st.st_size));
+  std::size_t have = 0;
+  for (;;) {
+    const std::size_t want = std::min(kChunk, max_bytes_ + 1 - have);
+    text.resize(have + want);
+    const ssize_t n = ::read(fd.get(), text.data() + have, want);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return make_error(path + ": " + std::strerror(errno));
+    }
+    if (n == 0) break;
+    have += static_cast<std::size_t>(n);
+    if (have > max_bytes_) return make_error(too_large(path, max_bytes_));
+  }
+  text.resize(have);
+  return text;
 }
 
 std::optional<std::uint64_t> DiskFileReader::size(const std::string& path) {
@@ -32,23 +165,52 @@ std::optional<std::uint64_t> DiskFileReader::size(const std::string& path) {
   return static_cast<std::uint64_t>(st.st_size);
 }
 
-Status write_file_atomically(const std::string& path, std::string_view data) {
-  const std::string tmp = path + ".seqc-tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return make_error(path + ": " + std::strerror(errno));
-    out.write(data.data(), static_cast<std::streamsize>(data.size()));
-    if (!out.flush()) {
-      std::remove(tmp.c_str());
-      return make_error(path + ": write failed");
+Result<std::string> read_stream(std::istream& in, const std::string& name, std::size_t max_bytes) {
+  std::string text;
+  std::size_t have = 0;
+  while (in) {
+    const std::size_t want = std::min(kChunk, max_bytes + 1 - have);
+    text.resize(have + want);
+    in.read(text.data() + have, static_cast<std::streamsize>(want));
+    have += static_cast<std::size_t>(in.gcount());
+    if (have > max_bytes) return make_error(too_large(name, max_bytes));
+  }
+  if (in.bad()) return make_error(name + ": read error");
+  text.resize(have);
+  return text;
+}
+
+Status write_file_safely(const std::string& path, std::string_view data) {
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  if (!exists && errno != ENOENT) return cannot_write(path, std::strerror(errno));
+  if (exists && S_ISDIR(st.st_mode)) return cannot_write(path, "is a directory");
+  if (exists && !S_ISREG(st.st_mode)) return write_in_place(path, data);
+  auto target = resolve_links(path);
+  if (!target) return target.error();
+  if (target->empty()) return write_in_place(path, data);
+  if (exists) {
+    // A chain that does not end at the file open() reaches (a folder renamed meanwhile).
+    struct stat end {};
+    if (::lstat(target->c_str(), &end) != 0 || end.st_dev != st.st_dev || end.st_ino != st.st_ino) {
+      return write_in_place(path, data);
     }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    return make_error(path + ": " + why);
+  return replace_file(path, *target, data);
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat sa {};
+  struct stat sb {};
+  if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+  return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+std::string same_file_among(const std::string& output, const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
+    if (same_file(output, input)) return input;
   }
-  return Ok{};
+  return "";
 }
 
 }  // namespace seqc::io

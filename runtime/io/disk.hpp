@@ -1,14 +1,28 @@
-// The real file system behind seqc::FileReader.
+// The real file system behind seqc::FileReader, and the one way seqc writes a file it was
+// asked to write. seqc runs in hooks and CI on files other people prepared, so neither a read
+// nor a write trusts what a path names: a read stops at a byte limit whatever the file is
+// (a regular file, /dev/zero, a FIFO, a terminal), and a write never follows a link it did not
+// ask for, never leaves a partial file behind and never turns a device into a regular file.
 #pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "base/source.hpp"
 
 namespace seqc::io {
 
+// The most seqc reads from one input file or from standard input.
+inline constexpr std::size_t kMaxInputBytes = 16u << 20;
+
 class DiskFileReader final : public seqc::FileReader {
  public:
-  // Files larger than max_bytes are refused unread, so a huge file cannot exhaust memory.
-  explicit DiskFileReader(std::size_t max_bytes = 16u << 20) : max_bytes_(max_bytes) {}
+  // Files larger than max_bytes are refused: a regular file by its size, unread; anything else
+  // (a device, a FIFO) after max_bytes + 1 bytes, so no file can exhaust memory or never end.
+  explicit DiskFileReader(std::size_t max_bytes = kMaxInputBytes) : max_bytes_(max_bytes) {}
   Result<std::string> read(const std::string& path) override;
   std::optional<std::uint64_t> size(const std::string& path) override;
 
@@ -16,8 +30,30 @@ class DiskFileReader final : public seqc::FileReader {
   std::size_t max_bytes_;
 };
 
-// Writes `data` to `path` via a temporary file and rename, so a failed run never leaves a
-// partial output behind.
-Status write_file_atomically(const std::string& path, std::string_view data);
+// Reads `in` to its end, or refuses once it has given more than max_bytes ("NAME: file is too
+// large (more than N bytes)"); a stream error is an error too. name: what messages call it.
+Result<std::string> read_stream(std::istream& in, const std::string& name,
+                                std::size_t max_bytes = kMaxInputBytes);
+
+// Writes `data` to `path`. A symlink is followed (to its end, as open() would) and the rules
+// below apply to the file it names, which is the file replaced; the link itself stays.
+//  - Absent or a regular file: the data goes to a temporary created exclusively (a random name,
+//    O_CREAT|O_EXCL|O_NOFOLLOW, mode 0666 & ~umask) in the same folder, which is then renamed
+//    over the file, so a failed run leaves the old file as it was and no temporary behind, and
+//    nothing planted at a guessable name is ever opened.
+//  - A character or block device, a FIFO or a socket (/dev/null, /dev/stdout, a named pipe):
+//    opened and written directly, as cp and cc do; it stays what it is. So is a file reached
+//    through /proc (/dev/stdout, /dev/fd/N when they name a file): it is some process's open
+//    file, written where it is.
+//  - Anything else (a directory): refused.
+// Errors read "PATH: cannot write: WHY".
+Status write_file_safely(const std::string& path, std::string_view data);
+
+// Whether a and b are the same file: the same st_dev and st_ino, symlinks followed. False when
+// either does not exist.
+bool same_file(const std::string& a, const std::string& b);
+
+// The first of `inputs` that `output` is the same file as, or "" when none is.
+std::string same_file_among(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace seqc::io

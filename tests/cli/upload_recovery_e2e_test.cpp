@@ -2,8 +2,8 @@
 //   - the emulated controller hangs up mid-download and comes back (on a new terminal, which
 //     `--link` follows, as a USB adapter re-enumerates): the upload reopens the port, says it
 //     restarts, finishes, and the stored group equals `seqc compile --emit json`'s keyframes;
-//   - SIGTERM mid-download: exit 130, the message says the group is empty, and the emulator
-//     indeed holds no group.
+//   - SIGTERM (or SIGHUP) mid-download: exit 143 (129), the message says the group is empty,
+//     and the emulator indeed holds no group.
 // Both wait for events (a link appearing, a progress line), never for a fixed time.
 #include <gtest/gtest.h>
 
@@ -46,6 +46,7 @@ class UploadRecoveryE2E : public ::testing::Test {
     ASSERT_TRUE(wait_for_path(link_, 500)) << slurp(dir_ + "/emu.err");
   }
   int stop_emulator() { return stop_with_sigint(emulator_); }
+  void stop_mid_download(int signal, int status);
 
   std::string dir_, link_, groups_;
   pid_t emulator_ = -1;
@@ -74,7 +75,9 @@ TEST_F(UploadRecoveryE2E, PortThatHangsUpAndComesBackIsReopenedAndTheUploadFinis
   EXPECT_EQ(stored_actions(slurp(groups_)), compiled_actions(slurp(json), 2));
 }
 
-TEST_F(UploadRecoveryE2E, SigtermMidDownloadExits130AndLeavesTheGroupEmpty) {
+// A stop signal mid-download: the upload ends as Ctrl-C ends it (the group erased), and the exit
+// status is the shell's for a death by that signal, 128 + its number.
+void UploadRecoveryE2E::stop_mid_download(int signal, int status) {
   start_emulator({});  // 9600 baud: a long upload takes seconds
   const std::string file = dir_ + "/long.yaml";
   {
@@ -93,13 +96,21 @@ TEST_F(UploadRecoveryE2E, SigtermMidDownloadExits130AndLeavesTheGroupEmpty) {
     if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_TRUE(started) << slurp(err);
-  kill(up, SIGTERM);
-  EXPECT_EQ(wait_exit(up), 130);
+  kill(up, signal);
+  EXPECT_EQ(wait_exit(up), status);
   const std::string text = slurp(err);
   EXPECT_NE(text.find("seqc: error: interrupted"), std::string::npos) << text;
   EXPECT_NE(text.find("seqc: group 0 is now empty"), std::string::npos) << text;
   EXPECT_EQ(stop_emulator(), 0);
   EXPECT_TRUE(stored_actions(slurp(groups_)).empty());  // no valid group stored
+}
+
+TEST_F(UploadRecoveryE2E, SigtermMidDownloadExits143AndLeavesTheGroupEmpty) {
+  stop_mid_download(SIGTERM, 128 + 15);
+}
+
+TEST_F(UploadRecoveryE2E, SighupMidDownloadExits129AndLeavesTheGroupEmpty) {
+  stop_mid_download(SIGHUP, 128 + 1);
 }
 
 }  // namespace

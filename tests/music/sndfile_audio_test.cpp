@@ -1,12 +1,13 @@
 // The libsndfile reader and writer on files in a temporary folder: what is written reads back
 // to 16-bit precision, several channels become their mean, and every failure is an Error that
-// names the file.
+// names the file; a WAV is written as every output is (runtime/io/disk.hpp).
 #include <gtest/gtest.h>
 #include <sndfile.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,23 @@ TEST_F(SndfileAudio, FailuresNameTheFile) {
   ASSERT_FALSE(unwritable.ok());
   EXPECT_EQ(unwritable.error().message.rfind(path("no/such/dir/x.wav") + ": cannot write: ", 0), 0u)
       << unwritable.error().message;
+}
+
+TEST_F(SndfileAudio, WritesAsTheSafeWriterDoes) {
+  // A link planted at the name a former version wrote through is neither followed nor removed.
+  std::ofstream(path("precious")) << "keep me\n";
+  fs::create_symlink(path("precious"), path("click.wav.part"));
+  MonoAudio audio{std::vector<float>(800, 0.25f), 8000};
+  ASSERT_TRUE(SndfileAudioWriter().write_wav(path("click.wav"), audio).ok());
+  std::ifstream kept(path("precious"));
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "keep me\n");
+  EXPECT_TRUE(fs::is_symlink(path("click.wav.part")));
+  auto back = SndfileAudioReader().read(path("click.wav"));
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->samples.size(), 800u);
+  // A device is written where it is and stays a device.
+  ASSERT_TRUE(SndfileAudioWriter().write_wav("/dev/null", audio).ok());
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
 TEST_F(SndfileAudio, LongSongsAreRefusedUnread) {
