@@ -2,11 +2,11 @@
 
 #include <utility>
 
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
-#include "protocol/lsc_stream.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc {
 namespace {

@@ -1,11 +1,11 @@
 // Every reading of the document's GroupDownload (CMD 5) table is here, each marked
 // "reading:" with what a capture from real hardware would settle. The byte-exact tests in
 // tests/protocol/group_download_test.cpp pin each one.
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 #include <string>
 
-#include "protocol/lsc_fields.hpp"
+#include "protocol/lsc/lsc_fields.hpp"
 
 namespace seqc::lsc {
 

@@ -16,8 +16,8 @@
 #include <span>
 #include <vector>
 
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "base/result.hpp"
 
 namespace seqc::lsc {

@@ -1,8 +1,8 @@
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 
 #include <string>
 
-#include "protocol/lsc_fields.hpp"
+#include "protocol/lsc/lsc_fields.hpp"
 
 namespace seqc::lsc6 {
 namespace {

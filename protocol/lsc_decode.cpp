@@ -2,9 +2,9 @@
 // every size and field checked (lsc_messages.hpp). Encoding lives in lsc_messages.cpp.
 #include <string>
 
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_fields.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_fields.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::lsc {
 namespace {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::lsc {
 namespace {

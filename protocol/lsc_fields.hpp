@@ -7,8 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "base/result.hpp"
 
 namespace seqc::lsc::detail {

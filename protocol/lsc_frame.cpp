@@ -1,4 +1,4 @@
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 #include <algorithm>
 #include <string>

@@ -1,12 +1,12 @@
 // encode() of every servo-controller message and the range-checked narrowing helpers
 // (lsc_messages.hpp); decoding lives in lsc_decode.cpp.
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 #include <limits>
 #include <string>
 
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_fields.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_fields.hpp"
 
 namespace seqc::lsc {
 

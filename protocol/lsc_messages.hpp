@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "base/result.hpp"
 #include "protocol/servo_target.hpp"
 

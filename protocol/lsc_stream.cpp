@@ -1,4 +1,4 @@
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 
 #include <algorithm>
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "base/bytes.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 namespace seqc::lsc {
 

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc {
 namespace {

@@ -16,8 +16,8 @@
 #include "base/bytes.hpp"
 #include "base/result.hpp"
 #include "protocol/dialects.hpp"
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc {
 

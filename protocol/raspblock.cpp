@@ -1,4 +1,4 @@
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 #include <cstdlib>
 #include <string>

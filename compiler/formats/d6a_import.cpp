@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "compiler/frontend/profiles.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 

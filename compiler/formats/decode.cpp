@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "base/units.hpp"
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_messages.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "base/bytes.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 namespace seqc::compiler {
 

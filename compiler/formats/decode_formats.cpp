@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "protocol/dialects.hpp"
-#include "protocol/lsc_stream.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "compiler/formats/decode_formats.hpp"
 #include "base/units.hpp"
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "compiler/formats/listing.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -1,6 +1,6 @@
 #include "compiler/frontend/profiles.hpp"
 
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -15,7 +15,7 @@
 
 #include "compiler/program/controller_model.hpp"
 #include "compiler/program/program.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 

@@ -20,7 +20,7 @@
 #include "compiler/program/controller_model.hpp"
 #include "compiler/program/raspblock_program.hpp"
 #include "compiler/timeline/timeline.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::compiler {
 

@@ -12,7 +12,7 @@
 
 #include "base/source.hpp"
 #include "compiler/timeline/timeline.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 

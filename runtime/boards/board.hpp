@@ -18,7 +18,7 @@
 
 #include "compiler/compile.hpp"
 #include "protocol/dialects.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "protocol/planned_frame.hpp"
 #include "runtime/emulator/emulator_serve.hpp"
 #include "runtime/io/clock.hpp"

@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "base/units.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/boards/xarm_session.hpp"
 #include "runtime/upload/controller_link.hpp"

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "base/result.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/upload/uploader.hpp"
 

@@ -14,8 +14,8 @@
 #include "runtime/boards/ports.hpp"
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/lsc6_uploader.hpp"
 

@@ -10,7 +10,7 @@
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/emulator/raspblock_transport.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::boards {
 namespace {

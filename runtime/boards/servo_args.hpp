@@ -17,7 +17,7 @@
 
 #include "base/result.hpp"
 #include "compiler/compile.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::boards {
 

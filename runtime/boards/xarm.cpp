@@ -19,8 +19,8 @@
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/hid_face.hpp"
 #include "runtime/emulator/xarm_config.hpp"
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/transport/open_port.hpp"
 #include "runtime/upload/controller_link.hpp"
 

@@ -15,7 +15,7 @@
 
 #include "base/result.hpp"
 #include "compiler/compile.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/boards/xarm_session.hpp"
 
 namespace seqc::boards {

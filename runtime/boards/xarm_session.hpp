@@ -19,7 +19,7 @@
 
 #include "runtime/boards/board.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::boards {

@@ -21,7 +21,7 @@
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::cli {

@@ -15,7 +15,7 @@
 #include "runtime/emulator/received_record.hpp"
 #include "runtime/emulator/xarm_config.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::emu {
 namespace {

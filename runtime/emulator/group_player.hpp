@@ -13,8 +13,8 @@
 
 #include "runtime/emulator/servo_model.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::emu {
 

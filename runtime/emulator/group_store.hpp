@@ -21,8 +21,8 @@
 #include <optional>
 #include <vector>
 
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 namespace seqc::emu {
 

@@ -19,7 +19,7 @@
 
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 #include "runtime/transport/hid_backend.hpp"
 
 namespace seqc::emu {

@@ -19,7 +19,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "base/bytes.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::emu {
 

@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include "runtime/io/time_text.hpp"
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::emu {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 namespace seqc::emu {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::emu {
 

@@ -65,9 +65,9 @@
 #include "runtime/emulator/xarm_config.hpp"
 #include "runtime/io/clock.hpp"
 #include "base/bytes.hpp"
-#include "protocol/group_download.hpp"
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::emu {
 

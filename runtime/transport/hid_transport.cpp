@@ -5,7 +5,7 @@
 #include <climits>
 #include <cstring>
 
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 namespace seqc::transport {
 namespace {

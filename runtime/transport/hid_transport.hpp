@@ -16,7 +16,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/transport/hid_backend.hpp"
 
 namespace seqc::transport {

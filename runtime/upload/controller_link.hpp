@@ -12,7 +12,7 @@
 #include <string>
 
 #include "base/result.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/upload/frame_link.hpp"
 
 namespace seqc::upload {

@@ -20,8 +20,8 @@
 #include <string>
 
 #include "base/result.hpp"
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
 

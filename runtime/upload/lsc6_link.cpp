@@ -3,7 +3,7 @@
 #include <utility>
 #include <variant>
 
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::upload {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "base/result.hpp"
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "runtime/upload/frame_link.hpp"
 
 namespace seqc::upload {

@@ -9,7 +9,7 @@
 #include <variant>
 
 #include "protocol/dialects.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::upload {

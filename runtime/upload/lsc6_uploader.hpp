@@ -36,7 +36,7 @@
 
 #include <vector>
 
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "protocol/planned_frame.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/uploader.hpp"

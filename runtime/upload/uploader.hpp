@@ -109,7 +109,7 @@
 #include <vector>
 
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "protocol/planned_frame.hpp"
 #include "runtime/upload/controller_link.hpp"
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "runtime/io/time_text.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "protocol/planned_frame.hpp"
 #include "runtime/upload/uploader.hpp"
 

@@ -35,7 +35,7 @@
 #include "runtime/emulator/pty_server.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/transport/serial_transport.hpp"
 #include "runtime/upload/uploader.hpp"
 

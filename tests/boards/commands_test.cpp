@@ -11,7 +11,7 @@
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "tests/boards/board_test_util.hpp"
 
 namespace seqc::boards {

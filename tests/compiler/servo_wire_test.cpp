@@ -13,7 +13,7 @@
 #include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 #include "runtime/io/disk.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {

@@ -3,7 +3,7 @@
 // BusServoInfoWrite with only an id, and the bus broadcast id 254. Bytes written by hand.
 #include <gtest/gtest.h>
 
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "tests/emulator/emu_test_util.hpp"
 
 namespace seqc::emu::test {

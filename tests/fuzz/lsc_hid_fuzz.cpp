@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 using namespace seqc;

@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "protocol/lsc_messages.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 namespace {

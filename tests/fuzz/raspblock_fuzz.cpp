@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 using namespace seqc;

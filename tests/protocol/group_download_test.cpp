@@ -1,7 +1,7 @@
 // Pins every reading of the GroupDownload table (group_download.cpp) to exact bytes, written
 // by hand. Plans use group 1 and action i = 1000 ms, servo 1 at position 1000 + i, so every
 // action frame is 55 55 0C 05 04 01 <block> <index> 0B E8 03 01 <posLo> <posHi>.
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/lsc6_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "tests/protocol/wire_test_util.hpp"
 
 namespace seqc::lsc6 {

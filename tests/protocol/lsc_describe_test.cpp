@@ -1,7 +1,7 @@
 // describe(): the one-line text people read in listings and traces, pinned exactly.
 #include <gtest/gtest.h>
 
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::lsc {
 namespace {

@@ -1,5 +1,5 @@
 // Serial and HID framing of the servo controller (docs/protocol/servo-controller.md, "Framing").
-#include "protocol/lsc_frame.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "protocol/lsc_frame.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "tests/protocol/wire_test_util.hpp"
 
 namespace seqc::lsc {

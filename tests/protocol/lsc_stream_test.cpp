@@ -1,5 +1,5 @@
 // FrameDecoder: chunking, garbage, resynchronisation and impossible LEN values.
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Raspblock packets: golden vectors written by hand from docs/protocol/raspblock.md
 // (big-endian, CHK = (FUNC + LEN + sum(DATA)) & 0xFF), round
 // trips, range checks and the stream decoder.
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 #include <gtest/gtest.h>
 

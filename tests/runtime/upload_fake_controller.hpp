@@ -24,8 +24,8 @@
 #include "runtime/emulator/group_store.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "protocol/lsc_messages.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 
 namespace seqc::upload::testing {
 

@@ -19,7 +19,7 @@
 
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "protocol/lsc_stream.hpp"
+#include "protocol/lsc/lsc_stream.hpp"
 
 namespace seqc::upload::testing {
 

@@ -11,7 +11,7 @@
 
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::upload {

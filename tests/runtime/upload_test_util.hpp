@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/upload/uploader.hpp"
 #include "tests/runtime/upload_fake_controller.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "compiler/program/raspblock_program.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 

@@ -14,7 +14,7 @@ struct Axis {
   int limit;
 };
 // The rocker's ranges: X and Y -25..25 (document); Z -200..200 (docs/protocol/raspblock.md reading,
-// kept in protocol/raspblock.cpp).
+// kept in protocol/raspblock/raspblock.cpp).
 constexpr std::array<Axis, 3> kAxes = {{{"x", 25}, {"y", 25}, {"z", 200}}};
 
 constexpr std::array<std::string_view, 8> kGainNames = {"speed_kp",    "speed_ki",    "position_kp",

@@ -7,7 +7,7 @@
 
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 

@@ -1,6 +1,6 @@
 #include "compiler/targets/raspblock/raspblock_stream.hpp"
 
-#include "protocol/raspblock.hpp"
+#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::compiler {
 

@@ -17,7 +17,7 @@
 #include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -10,7 +10,7 @@
 #include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/timeline/easing.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 

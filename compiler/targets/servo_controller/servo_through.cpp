@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 

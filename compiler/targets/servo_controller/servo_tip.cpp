@@ -12,7 +12,7 @@
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/targets/servo_controller/tip_line.hpp"
 #include "compiler/targets/servo_controller/tip_text.hpp"
-#include "protocol/group_download.hpp"
+#include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
 namespace {

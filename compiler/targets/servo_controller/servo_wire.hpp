@@ -11,9 +11,9 @@
 
 #include "compiler/program/program.hpp"
 #include "base/bytes.hpp"
-#include "protocol/group_download.hpp"
-#include "protocol/lsc6_messages.hpp"
-#include "protocol/lsc_messages.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "protocol/planned_frame.hpp"
 #include "base/result.hpp"
 
