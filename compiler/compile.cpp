@@ -24,6 +24,19 @@ void check_music(const Timeline& timeline, const CompileOptions& options, Report
 
 }  // namespace
 
+std::vector<std::string> CompileOutput::inputs() const {
+  std::vector<std::string> files;
+  for (std::uint32_t f = 0; f < sources.file_count(); ++f) files.push_back(sources.path(f));
+  const Song* song = nullptr;
+  if (const ServoProgram* p = servo_program(); p && p->timeline.song) {
+    song = &*p->timeline.song;
+  } else if (const RaspblockProgram* r = raspblock_program(); r && r->timeline.song) {
+    song = &*r->timeline.song;
+  }
+  if (song != nullptr) files.push_back(song->file);
+  return files;
+}
+
 ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoader& loader,
                            Reporter& reporter, const CompileOptions& options) {
   ServoWalk walk = walk_servo_file(robot, file, loader, reporter);

@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "base/diagnostics.hpp"
 #include "base/source.hpp"
@@ -50,6 +51,9 @@ struct CompileOutput {
   const RaspblockProgram* raspblock_program() const {
     return program ? std::get_if<RaspblockProgram>(&*program) : nullptr;
   }
+  // Every file the compile read, in the order it read them: the file given, each file it
+  // includes, and its program's song when it has one (an output must be none of them).
+  std::vector<std::string> inputs() const;
 };
 
 class FileLoader;

@@ -5,28 +5,16 @@
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 
 namespace seqc::compiler {
-namespace {
 
-// Serves the main file from the text load() read, every other path from the reader underneath.
-class ReadOnceReader final : public FileReader {
- public:
-  ReadOnceReader(std::string path, std::string text, FileReader& rest)
-      : path_(std::move(path)), text_(std::move(text)), rest_(rest) {}
-  Result<std::string> read(const std::string& path) override {
-    if (path == path_) return text_;
-    return rest_.read(path);
-  }
-  // As the reader underneath says, for the main file too: where it cannot tell, the loader
-  // checks the text's size after reading it, as it would have without this reader.
-  std::optional<std::uint64_t> size(const std::string& path) override { return rest_.size(path); }
+Result<std::string> ReadOnceReader::read(const std::string& path) {
+  if (path == path_) return text_;
+  return rest_.read(path);
+}
 
- private:
-  std::string path_;
-  std::string text_;
-  FileReader& rest_;
-};
-
-}  // namespace
+std::optional<std::uint64_t> ReadOnceReader::size(const std::string& path) {
+  if (path == path_) return std::nullopt;
+  return rest_.size(path);
+}
 
 const SourceManager& Loaded::sources() const {
   return is_show() ? show().sources : program().sources;
@@ -38,6 +26,10 @@ const Diagnostics& Loaded::diagnostics() const {
 
 const std::optional<std::string>& Loaded::read_error() const {
   return is_show() ? show().read_error : program().read_error;
+}
+
+std::vector<std::string> Loaded::inputs() const {
+  return is_show() ? show().inputs() : program().inputs();
 }
 
 Loaded load(const std::string& path, FileReader& files, const LoadOptions& options) {

@@ -10,9 +10,12 @@
 // read_error says why (so a loaded show's own read_error is never set).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "base/diagnostics.hpp"
 #include "base/source.hpp"
@@ -20,6 +23,23 @@
 #include "compiler/show.hpp"
 
 namespace seqc::compiler {
+
+// Serves the file at `path` from `text`, already read (by load(), or from standard input), and
+// every other path (its includes, a show's performers) from the reader underneath. size() is the
+// reader underneath's for every other path; for `path`, whose text is in hand, it is nullopt, so
+// the loader checks the size of the text it is given.
+class ReadOnceReader final : public FileReader {
+ public:
+  ReadOnceReader(std::string path, std::string text, FileReader& rest)
+      : path_(std::move(path)), text_(std::move(text)), rest_(rest) {}
+  Result<std::string> read(const std::string& path) override;
+  std::optional<std::uint64_t> size(const std::string& path) override;
+
+ private:
+  std::string path_;
+  std::string text_;
+  FileReader& rest_;
+};
 
 struct LoadOptions {
   CompileOptions program;     // for a choreography file
@@ -46,6 +66,8 @@ class Loaded {
   const Diagnostics& diagnostics() const;
   // Set when the file given could not be read.
   const std::optional<std::string>& read_error() const;
+  // Every file it read: CompileOutput::inputs() or ShowOutput::inputs().
+  std::vector<std::string> inputs() const;
 
  private:
   std::variant<CompileOutput, ShowOutput> value_;

@@ -8,6 +8,16 @@
 
 namespace seqc::compiler {
 
+std::vector<std::string> ShowOutput::inputs() const {
+  std::vector<std::string> files;
+  for (std::uint32_t f = 0; f < sources.file_count(); ++f) files.push_back(sources.path(f));
+  for (const Performer& p : performers) {
+    const std::vector<std::string> more = p.output.inputs();
+    files.insert(files.end(), more.begin(), more.end());
+  }
+  return files;
+}
+
 bool ShowOutput::ok(bool strict) const {
   if (read_error || diagnostics.has_errors(strict)) return false;
   for (const Performer& p : performers) {

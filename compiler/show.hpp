@@ -35,6 +35,8 @@ struct ShowOutput {
   std::vector<Performer> performers;
 
   bool ok(bool strict = false) const;  // the show file and every performer compiled
+  // Every file the show read: the show file, then each performer's CompileOutput::inputs().
+  std::vector<std::string> inputs() const;
 };
 
 // Whether `text` is a show file (a top-level `show:` key), cheaply, before parsing it

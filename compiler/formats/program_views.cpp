@@ -1,8 +1,11 @@
 #include "compiler/formats/program_views.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 
 #include "compiler/formats/raspblock_simulate.hpp"
+#include "compiler/formats/svg_text.hpp"
 #include "compiler/music/beat_analysis.hpp"
 
 namespace seqc::compiler {
@@ -43,6 +46,36 @@ std::string plot_program(const compiler::Program& program, const PlotOptions& op
   return "";
 }
 
+std::string plot_show(const std::vector<ShowPart>& parts, const std::string& title,
+                      const std::string& show, PlotOptions options) {
+  double end = 0;
+  for (const ShowPart& part : parts) end = std::max(end, double(length_ms(*part.program)));
+  if (!options.from_ms) options.from_ms = 0;
+  if (!options.to_ms) options.to_ms = end;
+  std::string body;
+  double y = 36;
+  for (const ShowPart& p : parts) {
+    options.title = p.title;
+    std::string part = plot_program(*p.program, options);
+    const auto h = part.find("height=\"");
+    const double height = std::atof(part.c_str() + h + 8);
+    part.insert(part.find("<svg") + 4, " y=\"" + std::to_string(static_cast<int>(y)) + "\"");
+    body += part;
+    y += height + 10;
+  }
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
+         std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
+         std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
+         svg::escape(title) +
+         "</title>\n<rect width=\"1100\" "
+         "height=\"" +
+         std::to_string(static_cast<int>(y)) +
+         "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
+         "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
+         svg::escape(show) + " (" + std::to_string(parts.size()) +
+         " performers, one clock)</text>\n" + body + "</svg>\n";
+}
+
 std::optional<PreviewPart> preview_part(const compiler::Program& program, const std::string& title,
                                         double end_ms, const PlotSong* song) {
   if (const auto* p = std::get_if<compiler::ServoProgram>(&program)) {
@@ -52,6 +85,23 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
     return preview_car_part(*p, title, end_ms);
   }
   return std::nullopt;
+}
+
+std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
+                         const std::string& show) {
+  double end = 0;
+  for (const ShowPart& p : parts) end = std::max(end, static_cast<double>(length_ms(*p.program)));
+  std::vector<std::string> names;
+  std::vector<PreviewPart> drawn;
+  for (const ShowPart& p : parts) {
+    auto part = preview_part(*p.program, p.title, end);
+    if (!part) continue;
+    names.push_back(p.name);
+    drawn.push_back(std::move(*part));
+  }
+  return preview_page(
+      "show " + show + " (" + std::to_string(drawn.size()) + " performers, one clock), " + title,
+      names, drawn, end);
 }
 
 std::optional<PreviewSong> preview_song(const compiler::Program& program,

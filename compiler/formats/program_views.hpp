@@ -32,6 +32,20 @@ std::uint64_t length_ms(const compiler::Program& program);
 // The program as a picture (plot_svg); "" for a kind it cannot draw.
 std::string plot_program(const compiler::Program& program, const PlotOptions& options);
 
+// One performer of a show's picture or page: its program, the title its part is drawn under and
+// (for the page's `seqc-state`) its name.
+struct ShowPart {
+  const compiler::Program* program = nullptr;
+  std::string title;
+  std::string name;
+};
+
+// A show's picture: every part's plot_program() on one time axis (options.from_ms and to_ms,
+// by default 0 and the longest part's end), stacked as nested <svg> elements in one document
+// whose <title> is `title` and whose heading names the show `show` and counts its parts.
+std::string plot_show(const std::vector<ShowPart>& parts, const std::string& title,
+                      const std::string& show, PlotOptions options);
+
 // The song of a file with `music:` as the plot draws it under the lanes: decoded through
 // `songs`, with the beats found in it (the file's tempo as the hint between half and double
 // readings, its meter given). nullopt without a song or when it cannot be decoded (the check
@@ -43,6 +57,11 @@ std::optional<PlotSong> plot_song(const compiler::Program& program, seqc::SongRe
 // show.
 std::optional<PreviewPart> preview_part(const compiler::Program& program, const std::string& title,
                                         double end_ms, const PlotSong* song = nullptr);
+
+// A show's page (preview_page): every part it can draw (preview_part) on one time axis, the
+// longest part's, titled "show SHOW (N performers, one clock), TITLE" where N counts those parts.
+std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
+                         const std::string& show);
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; nullopt without a song, when it cannot be read or is of another type.

@@ -167,4 +167,10 @@ std::string first_move_text(const boards::FirstMoveTooFast& fast) {
       fast.max_speed);
 }
 
+std::string part_title(const compiler::CompileOutput& output, const std::string& name, int group) {
+  const boards::Board& board = boards::board_for(output);
+  return board.plan != nullptr ? name + ", group " + std::to_string(group)
+                               : name + " (" + std::string(board.name) + ")";
+}
+
 }  // namespace seqc::cli

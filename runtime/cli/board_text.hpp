@@ -2,7 +2,7 @@
 // failed, an upload's status, each turned into the sentence after "seqc: error: " and the exit
 // status docs/cli.md gives it. The boards library returns status values and facts about a board
 // (its name, what it lacks); the sentences are composed here from those facts, so no command
-// branches on which board it has.
+// branches on which board it has. The title plot and preview give a program is one of them.
 #pragma once
 
 #include <cstdint>
@@ -60,5 +60,9 @@ ExitCode exit_code_for(upload::UploadStatus status);
 // the port the xArm / LSC-16 / LSC-32 is on". The board that answered is the other storing
 // board of `board`'s family.
 std::string other_dialect_text(const boards::Board& board, const std::string& profile);
+
+// How `seqc plot` and `seqc preview` title a program's picture: the group a stored program is
+// for ("walk.yaml, group 2"), else the board that plays it ("car.yaml (Raspblock)").
+std::string part_title(const compiler::CompileOutput& output, const std::string& name, int group);
 
 }  // namespace seqc::cli

@@ -72,7 +72,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    if (const ExitCode w = write_output(ctx, opts->output, text.text, inputs_of(c.output));
+    if (const ExitCode w = write_output(ctx, opts->output, text.text, c.output.inputs());
         w != ExitCode::Ok) {
       result.code = w;
     }

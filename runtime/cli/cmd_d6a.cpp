@@ -30,27 +30,13 @@ void add_import_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("--robot", o->robot,
                   "Profile to write (default: xarm for 6 servo columns, else bus)");
   cmd->callback([&ctx, &result, o] {
-    std::string bytes;
-    if (o->file == "-") {
-      if (ctx.in != nullptr) {
-        auto read = io::read_stream(*ctx.in, kStdinName);
-        if (!read) {
-          ctx.err << "seqc: error: " << read.error().message << "\n";
-          result.code = ExitCode::FileError;
-          return;
-        }
-        bytes = std::move(*read);
-      }
-    } else {
-      auto read = ctx.files.read(o->file);
-      if (!read) {
-        ctx.err << "seqc: error: " << read.error().message << "\n";
-        result.code = ExitCode::FileError;
-        return;
-      }
-      bytes = std::move(*read);
+    auto bytes = io::read_input(o->file, ctx.files, ctx.in, kStdinName);
+    if (!bytes) {
+      ctx.err << "seqc: error: " << bytes.error().message << "\n";
+      result.code = ExitCode::FileError;
+      return;
     }
-    auto table = compiler::read_d6a(bytes);
+    auto table = compiler::read_d6a(*bytes);
     if (!table) {
       ctx.err << "seqc: error: " << o->file << ": " << table.error().message << "\n";
       result.code = ExitCode::InvalidInput;
@@ -123,7 +109,7 @@ void add_export_command(CLI::App& app, Context& ctx, Outcome& result) {
       out = o->file == "-" ? "group" + std::to_string(o->group) + ".d6a"
                            : std::filesystem::path(o->file).stem().string() + ".d6a";
     }
-    result.code = write_output(ctx, out, *bytes, inputs_of(c.output));
+    result.code = write_output(ctx, out, *bytes, c.output.inputs());
     if (result.code == ExitCode::Ok && out != "-") {
       summarize(ctx, out + ": " + std::to_string(table->rows.size()) + " actions, Servo1..Servo" +
                          std::to_string(table->servo_columns));

@@ -26,31 +26,19 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "frames), lsc6, raspblock, trace or record")
       ->check(CLI::IsMember(compiler::decode_format_names()));
   cmd->callback([&ctx, &result, file, from] {
-    std::string text;
-    if (*file == "-") {
-      if (ctx.in == nullptr) {
-        ctx.err << "seqc: error: no standard input\n";
-        result.code = ExitCode::FileError;
-        return;
-      }
-      auto read = io::read_stream(*ctx.in, "<stdin>");
-      if (!read) {
-        ctx.err << "seqc: error: " << read.error().message << "\n";
-        result.code = ExitCode::FileError;
-        return;
-      }
-      text = std::move(*read);
-    } else {
-      auto read = ctx.files.read(*file);
-      if (!read) {
-        ctx.err << "seqc: error: " << read.error().message << "\n";
-        result.code = ExitCode::FileError;
-        return;
-      }
-      text = std::move(*read);
+    if (*file == "-" && ctx.in == nullptr) {
+      ctx.err << "seqc: error: no standard input\n";
+      result.code = ExitCode::FileError;
+      return;
+    }
+    auto text = io::read_input(*file, ctx.files, ctx.in, "<stdin>");
+    if (!text) {
+      ctx.err << "seqc: error: " << text.error().message << "\n";
+      result.code = ExitCode::FileError;
+      return;
     }
     compiler::DecodeResult decoded =
-        compiler::decode_text(text, compiler::parse_decode_format(*from).value());
+        compiler::decode_text(*text, compiler::parse_decode_format(*from).value());
     ctx.out << decoded.table;
     if (!decoded.issues.empty()) {
       ctx.err << "seqc: warning: " << *file << ": " << decoded.issues.size() << " inconsistenc"

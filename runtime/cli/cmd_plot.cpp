@@ -1,8 +1,5 @@
 // seqc plot FILE [-o out.svg] [--group N] [--from T] [--to T]: the program as an SVG picture
 // (compiler/formats/plot_svg.hpp). Without -o the SVG goes to stdout.
-#include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,10 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "base/units.hpp"
-#include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/program_views.hpp"
-#include "compiler/formats/svg_text.hpp"
-#include "runtime/boards/board.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
@@ -31,46 +26,15 @@ std::optional<double> window_ms(Context& ctx, const std::string& option, const s
   return t->unit == seqc::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
 }
 
-// The title names the group a stored program is for, else the board that plays it.
-std::string titled_plot(const compiler::CompileOutput& output, const std::string& name, int group,
-                        compiler::PlotOptions options) {
-  const boards::Board& board = boards::board_for(output);
-  options.title = board.plan != nullptr ? name + ", group " + std::to_string(group)
-                                        : name + " (" + std::string(board.name) + ")";
-  return compiler::plot_program(*output.program, options);
-}
-
-// A show: every performer's picture on one time axis (the longest performer's), stacked as
-// nested <svg> elements in one document.
-std::string plot_show(const compiler::ShowOutput& show, const std::string& name,
-                      compiler::PlotOptions options) {
-  double end = 0;
+// A show: every performer's picture, titled with its name and file, on one time axis.
+std::string plot_performers(const compiler::ShowOutput& show, const std::string& name,
+                            const compiler::PlotOptions& options) {
+  std::vector<compiler::ShowPart> parts;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, double(compiler::length_ms(*p.output.program)));
+    parts.push_back(
+        {&*p.output.program, part_title(p.output, p.name + ": " + p.file, p.group), p.name});
   }
-  if (!options.from_ms) options.from_ms = 0;
-  if (!options.to_ms) options.to_ms = end;
-  std::string body;
-  double y = 36;
-  for (const compiler::Performer& p : show.performers) {
-    std::string part = titled_plot(p.output, p.name + ": " + p.file, p.group, options);
-    const auto h = part.find("height=\"");
-    const double height = std::atof(part.c_str() + h + 8);
-    part.insert(part.find("<svg") + 4, " y=\"" + std::to_string(static_cast<int>(y)) + "\"");
-    body += part;
-    y += height + 10;
-  }
-  return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" +
-         std::to_string(static_cast<int>(y)) + "\" viewBox=\"0 0 1100 " +
-         std::to_string(static_cast<int>(y)) + "\" font-family=\"sans-serif\">\n<title>" +
-         compiler::svg::escape(name) +
-         "</title>\n<rect width=\"1100\" "
-         "height=\"" +
-         std::to_string(static_cast<int>(y)) +
-         "\" fill=\"#ffffff\"/>\n<text x=\"12\" "
-         "y=\"24\" font-size=\"17\" font-weight=\"bold\">show " +
-         compiler::svg::escape(show.name) + " (" + std::to_string(show.performers.size()) +
-         " performers, one clock)</text>\n" + body + "</svg>\n";
+  return compiler::plot_show(parts, name, show.name, options);
 }
 
 }  // namespace
@@ -116,16 +80,17 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (result.code != ExitCode::Ok) return;
     std::string svg;
     if (loaded.file.is_show()) {
-      svg = plot_show(loaded.file.show(), name, options);
+      svg = plot_performers(loaded.file.show(), name, options);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` gets its song drawn under the lanes.
       std::optional<compiler::PlotSong> song;
       if (ctx.songs != nullptr) song = compiler::plot_song(*output.program, *ctx.songs);
       options.song = song ? &*song : nullptr;
-      svg = titled_plot(output, name, o->group, options);
+      options.title = part_title(output, name, o->group);
+      svg = compiler::plot_program(*output.program, options);
     }
-    result.code = write_output(ctx, o->output, svg, inputs_of(loaded.file));
+    result.code = write_output(ctx, o->output, svg, loaded.file.inputs());
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(svg.size()) + " bytes");
     }

@@ -1,7 +1,6 @@
 // seqc preview FILE [-o dance.html] [--group N] [--strict]: the choreography (or a show's
 // performers, on one clock) as one self-contained, animated HTML page
 // (compiler/formats/preview_html.hpp). Without -o the page goes to stdout.
-#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -11,38 +10,21 @@
 
 #include "compiler/formats/preview_html.hpp"
 #include "compiler/formats/program_views.hpp"
-#include "runtime/boards/board.hpp"
+#include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 
 namespace seqc::cli {
 namespace {
 
-// As `seqc plot` titles a picture: the group a stored program is for, else the board.
-std::string part_title(const compiler::CompileOutput& output, const std::string& name, int group) {
-  const boards::Board& board = boards::board_for(output);
-  return board.plan != nullptr ? name + ", group " + std::to_string(group)
-                               : name + " (" + std::string(board.name) + ")";
-}
-
-std::string preview_show(const compiler::ShowOutput& show, const std::string& name) {
-  double end = 0;
+// Every performer on one time axis, titled with its file's name.
+std::string preview_performers(const compiler::ShowOutput& show, const std::string& name) {
+  std::vector<compiler::ShowPart> parts;
   for (const compiler::Performer& p : show.performers) {
-    end = std::max(end, static_cast<double>(compiler::length_ms(*p.output.program)));
+    const std::string file = std::filesystem::path(p.file).filename().string();
+    parts.push_back({&*p.output.program, part_title(p.output, file, p.group), p.name});
   }
-  std::vector<std::string> names;
-  std::vector<compiler::PreviewPart> parts;
-  for (const compiler::Performer& p : show.performers) {
-    auto part = compiler::preview_part(
-        *p.output.program,
-        part_title(p.output, std::filesystem::path(p.file).filename().string(), p.group), end);
-    if (!part) continue;
-    names.push_back(p.name);
-    parts.push_back(std::move(*part));
-  }
-  return compiler::preview_page("show " + show.name + " (" + std::to_string(parts.size()) +
-                                   " performers, one clock), " + name,
-                               names, parts, end);
+  return compiler::preview_show(parts, name, show.name);
 }
 
 }  // namespace
@@ -70,7 +52,7 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (result.code != ExitCode::Ok) return;
     std::string html;
     if (loaded.file.is_show()) {
-      html = preview_show(loaded.file.show(), name);
+      html = preview_performers(loaded.file.show(), name);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       const double end = static_cast<double>(compiler::length_ms(*output.program));
@@ -85,7 +67,7 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
         html = compiler::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
       }
     }
-    result.code = write_output(ctx, o->output, html, inputs_of(loaded.file));
+    result.code = write_output(ctx, o->output, html, loaded.file.inputs());
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(html.size()) + " bytes");
     }

@@ -56,7 +56,7 @@ std::string performer_path(const std::string& output, const std::string& name) {
 
 ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const SimulateOptions& o) {
   const bool to_stdout = o.output.empty() || o.output == "-";
-  const std::vector<std::string> inputs = inputs_of(show);
+  const std::vector<std::string> inputs = show.inputs();
   if (!to_stdout) {
     // Every output is checked before the first is written, so a refusal writes nothing.
     for (const compiler::Performer& p : show.performers) {
@@ -110,7 +110,7 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = ExitCode::InvalidInput;
       return;
     }
-    result.code = write_output(ctx, opts->output, csv, inputs_of(loaded.file));
+    result.code = write_output(ctx, opts->output, csv, loaded.file.inputs());
   });
 }
 

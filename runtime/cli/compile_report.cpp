@@ -9,21 +9,6 @@
 namespace seqc::cli {
 namespace {
 
-// Serves <stdin> from the text read once; every other path (includes) from the disk.
-class StdinFirstReader final : public seqc::FileReader {
- public:
-  StdinFirstReader(std::string text, seqc::FileReader& rest)
-      : text_(std::move(text)), rest_(rest) {}
-  seqc::Result<std::string> read(const std::string& path) override {
-    if (path == kStdinName) return text_;
-    return rest_.read(path);
-  }
-
- private:
-  std::string text_;
-  seqc::FileReader& rest_;
-};
-
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
                                          std::int32_t clock_ppm) {
   compiler::CompileOptions options{strict};
@@ -62,18 +47,13 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
   const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm);
   Compiled c;
   if (path == "-") {
-    std::string text;
-    if (ctx.in != nullptr) {
-      auto read = io::read_stream(*ctx.in, kStdinName);
-      if (!read) {
-        Compiled failed;
-        failed.output.read_error = read.error().message;
-        failed.code = ExitCode::FileError;
-        return failed;
-      }
-      text = std::move(*read);
+    auto text = io::read_input(path, ctx.files, ctx.in, kStdinName);
+    if (!text) {
+      c.output.read_error = text.error().message;
+      c.code = ExitCode::FileError;
+      return c;
     }
-    StdinFirstReader reader(std::move(text), ctx.files);
+    compiler::ReadOnceReader reader(kStdinName, std::move(*text), ctx.files);
     c.output = compiler::compile_file(kStdinName, reader, options);
   } else {
     c.output = compiler::compile_file(path, ctx.files, options);
@@ -112,38 +92,6 @@ Loaded load_and_report(Context& ctx, const std::string& path, bool strict, SongC
   Loaded l = load_quietly(ctx, path, strict, song, clock_ppm);
   report(ctx, l.file, strict);
   return l;
-}
-
-std::vector<std::string> inputs_of(const compiler::CompileOutput& output) {
-  std::vector<std::string> inputs;
-  for (std::uint32_t f = 0; f < output.sources.file_count(); ++f) {
-    inputs.push_back(output.sources.path(f));
-  }
-  const compiler::Song* song = nullptr;
-  if (const compiler::ServoProgram* p = output.servo_program(); p && p->timeline.song) {
-    song = &*p->timeline.song;
-  } else if (const compiler::RaspblockProgram* r = output.raspblock_program();
-             r && r->timeline.song) {
-    song = &*r->timeline.song;
-  }
-  if (song != nullptr) inputs.push_back(song->file);
-  return inputs;
-}
-
-std::vector<std::string> inputs_of(const compiler::ShowOutput& show) {
-  std::vector<std::string> inputs;
-  for (std::uint32_t f = 0; f < show.sources.file_count(); ++f) {
-    inputs.push_back(show.sources.path(f));
-  }
-  for (const compiler::Performer& p : show.performers) {
-    const std::vector<std::string> more = inputs_of(p.output);
-    inputs.insert(inputs.end(), more.begin(), more.end());
-  }
-  return inputs;
-}
-
-std::vector<std::string> inputs_of(const compiler::Loaded& file) {
-  return file.is_show() ? inputs_of(file.show()) : inputs_of(file.program());
 }
 
 void say_stdout_failed(Context& ctx, int error) {

@@ -27,12 +27,6 @@ struct Compiled {
 inline constexpr const char* kStdinName = "<stdin>";
 inline constexpr const char* kStdoutName = "<stdout>";
 
-// Every file a compile read: the choreography, each file it includes, its song; and a show's
-// file with every performer's. An output must be none of them.
-std::vector<std::string> inputs_of(const compiler::CompileOutput& output);
-std::vector<std::string> inputs_of(const compiler::ShowOutput& show);
-std::vector<std::string> inputs_of(const compiler::Loaded& file);
-
 // True, and said on stderr ("OPTION PATH is the same file as the input INPUT; nothing was
 // written"), when `path` is the same file as one of `inputs` (io::same_file, links followed):
 // the command must then write nothing and end with ExitCode::Usage.

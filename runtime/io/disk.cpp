@@ -180,6 +180,13 @@ Result<std::string> read_stream(std::istream& in, const std::string& name, std::
   return text;
 }
 
+Result<std::string> read_input(const std::string& path, seqc::FileReader& files, std::istream* in,
+                               const std::string& stdin_name) {
+  if (path != "-") return files.read(path);
+  if (in == nullptr) return std::string();
+  return read_stream(*in, stdin_name);
+}
+
 Status write_file_safely(const std::string& path, std::string_view data) {
   struct stat st {};
   const bool exists = ::stat(path.c_str(), &st) == 0;

@@ -35,6 +35,12 @@ class DiskFileReader final : public seqc::FileReader {
 Result<std::string> read_stream(std::istream& in, const std::string& name,
                                 std::size_t max_bytes = kMaxInputBytes);
 
+// The text of the input a command was given: standard input `in` when `path` is "-" (read by
+// read_stream(), which calls it `stdin_name`; "" when there is no stream), else the file at
+// `path` through `files`. The error is the stream's or the reader's.
+Result<std::string> read_input(const std::string& path, seqc::FileReader& files, std::istream* in,
+                               const std::string& stdin_name);
+
 // Writes `data` to `path`. A symlink is followed (to its end, as open() would) and the rules
 // below apply to the file it names, which is the file replaced; the link itself stays.
 //  - Absent or a regular file: the data goes to a temporary created exclusively (a random name,

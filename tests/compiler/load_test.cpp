@@ -1,10 +1,11 @@
 // Loading a file of either kind (compiler/load.hpp): the file given is read once whichever it
 // turns out to be, one over the loader's size limit is refused unread, and a stored group
-// carries the capacity its lowering kept it within.
+// carries the capacity its lowering kept it within; a compile names every file it read.
 #include <gtest/gtest.h>
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/load.hpp"
@@ -115,6 +116,38 @@ TEST(Load, AnUnreadableFileSaysWhy) {
   ASSERT_TRUE(loaded.read_error());
   EXPECT_EQ(*loaded.read_error(), "missing.yaml: No such file or directory");
   EXPECT_EQ(files.reads["missing.yaml"], 1);
+}
+
+TEST(Load, InputsAreEveryFileReadInOrder) {
+  CountingFiles files;
+  files.files["dances/duet.yaml"] =
+      "show: duet\nperformers:\n  arm: {file: arm.yaml}\n  other: {file: two.yaml}\n";
+  files.files["dances/arm.yaml"] = kArm;
+  files.files["dances/two.yaml"] =
+      "robot:\n  profile: xarm\nsequence:\n  - include: parts/bit.yaml\n";
+  files.files["dances/parts/bit.yaml"] = "sequence:\n  - move: {claw: 300}\n    time: 1s\n";
+  const Loaded show = load("dances/duet.yaml", files);
+  ASSERT_TRUE(show.is_show());
+  EXPECT_EQ(show.inputs(), (std::vector<std::string>{"dances/duet.yaml", "dances/arm.yaml",
+                                                     "dances/two.yaml", "dances/parts/bit.yaml"}));
+  const Loaded two = load("dances/two.yaml", files);
+  ASSERT_FALSE(two.is_show());
+  EXPECT_EQ(two.inputs(), (std::vector<std::string>{"dances/two.yaml", "dances/parts/bit.yaml"}));
+  EXPECT_EQ(load("missing.yaml", files).inputs(), std::vector<std::string>{});
+}
+
+TEST(Load, AReadOnceReaderServesItsTextAndPassesTheRestOn) {
+  CountingFiles files;
+  files.files["<stdin>"] = "never read";
+  files.files["parts/bit.yaml"] = "sequence: []\n";
+  files.sizes["<stdin>"] = 30u << 20;
+  files.sizes["parts/bit.yaml"] = 14;
+  ReadOnceReader once("<stdin>", "given text", files);
+  EXPECT_EQ(*once.read("<stdin>"), "given text");
+  EXPECT_EQ(*once.read("parts/bit.yaml"), "sequence: []\n");
+  EXPECT_EQ(files.reads["<stdin>"], 0);
+  EXPECT_EQ(once.size("<stdin>"), std::nullopt);  // its text is in hand: the loader checks it
+  EXPECT_EQ(once.size("parts/bit.yaml"), 14u);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // `seqc plot` and `seqc simulate` for each kind of program (compiler/formats/program_views.hpp):
 // a servo program's positions over time worked out by hand, and the car's stream counted in
-// packets.
+// packets; a show's parts stacked on one time axis.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "compiler/compile.hpp"
 #include "compiler/formats/program_views.hpp"
@@ -89,6 +91,61 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
   const std::string svg = plot_program(*car.program, options);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("car title"), std::string::npos);
+}
+
+TEST(ProgramViews, AShowStacksItsPartsOnTheLongestPartsTimeAxis) {
+  const compiler::CompileOutput long_one = compile_try();  // 1750 ms
+  ViewFiles files;
+  files.files["short.yaml"] =
+      "robot:\n  profile: xarm\nsequence:\n  - move: {claw: 300}\n"
+      "    time: 500ms\n";
+  const compiler::CompileOutput short_one = compiler::compile_file("short.yaml", files);
+  ASSERT_TRUE(long_one.program && short_one.program);
+  const std::string svg = plot_show({{&*long_one.program, "arm: try.yaml", "arm"},
+                                     {&*short_one.program, "other: short.yaml", "other"}},
+                                    "duet & co.yaml", "duet", {});
+  // Each part is its own picture over 0-1750 ms, moved down under the one before it.
+  PlotOptions window;
+  window.from_ms = 0;
+  window.to_ms = 1750;
+  window.title = "arm: try.yaml";
+  std::string first = plot_program(*long_one.program, window);
+  window.title = "other: short.yaml";
+  std::string second = plot_program(*short_one.program, window);
+  const auto height = [](const std::string& part) {
+    return std::atoi(part.c_str() + part.find("height=\"") + 8);
+  };
+  const int second_y = 36 + height(first) + 10;
+  const int total = second_y + height(second) + 10;
+  first.insert(4, " y=\"36\"");
+  second.insert(4, " y=\"" + std::to_string(second_y) + "\"");
+  const std::string size = std::to_string(total);
+  EXPECT_EQ(svg, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1100\" height=\"" + size +
+                     "\" viewBox=\"0 0 1100 " + size +
+                     "\" font-family=\"sans-serif\">\n<title>duet &amp; co.yaml</title>\n"
+                     "<rect width=\"1100\" height=\"" +
+                     size +
+                     "\" fill=\"#ffffff\"/>\n<text x=\"12\" y=\"24\" font-size=\"17\" "
+                     "font-weight=\"bold\">show duet (2 performers, one clock)</text>\n" +
+                     first + second + "</svg>\n");
+}
+
+TEST(ProgramViews, AShowsPageDrawsEveryPartOnTheLongestPartsTimeAxis) {
+  const compiler::CompileOutput long_one = compile_try();  // 1750 ms
+  ViewFiles files;
+  files.files["short.yaml"] =
+      "robot:\n  profile: xarm\nsequence:\n  - move: {claw: 300}\n"
+      "    time: 500ms\n";
+  const compiler::CompileOutput short_one = compiler::compile_file("short.yaml", files);
+  ASSERT_TRUE(long_one.program && short_one.program);
+  const std::string page = preview_show({{&*long_one.program, "try.yaml, group 0", "arm"},
+                                         {&*short_one.program, "short.yaml, group 1", "hand"}},
+                                        "duet.yaml", "duet");
+  std::vector<PreviewPart> parts;
+  parts.push_back(*preview_part(*long_one.program, "try.yaml, group 0", 1750));
+  parts.push_back(*preview_part(*short_one.program, "short.yaml, group 1", 1750));
+  EXPECT_EQ(page, preview_page("show duet (2 performers, one clock), duet.yaml", {"arm", "hand"},
+                               parts, 1750));
 }
 
 }  // namespace

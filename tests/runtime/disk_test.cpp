@@ -25,6 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using seqc::io::DiskFileReader;
+using seqc::io::read_input;
 using seqc::io::read_stream;
 using seqc::io::same_file;
 using seqc::io::same_file_among;
@@ -223,6 +224,22 @@ TEST(ReadStream, StopsAtTheLimitOnAStreamWithoutEnd) {
   const auto refused = read_stream(big, "<stdin>", 10);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().message, "<stdin>: file is too large (more than 10 bytes)");
+}
+
+TEST(ReadInput, DashIsStandardInputAndAnythingElseAFile) {
+  class OneFile final : public seqc::FileReader {
+   public:
+    seqc::Result<std::string> read(const std::string& path) override {
+      if (path == "a.yaml") return std::string("from the file");
+      return seqc::make_error(path + ": No such file or directory");
+    }
+  } files;
+  std::istringstream in("from stdin");
+  EXPECT_EQ(read_input("-", files, &in, "<stdin>").value(), "from stdin");
+  EXPECT_EQ(read_input("-", files, nullptr, "<stdin>").value(), "");  // no stream: empty
+  EXPECT_EQ(read_input("a.yaml", files, &in, "<stdin>").value(), "from the file");
+  EXPECT_EQ(read_input("b.yaml", files, &in, "<stdin>").error().message,
+            "b.yaml: No such file or directory");
 }
 
 }  // namespace
