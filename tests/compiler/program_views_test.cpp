@@ -10,20 +10,13 @@
 
 #include "compiler/compile.hpp"
 #include "compiler/formats/program_views.hpp"
+#include "tests/compiler/lang_test_util.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::compiler {
 namespace {
 
-class ViewFiles final : public seqc::FileReader {
- public:
-  std::map<std::string, std::string> files;
-  Result<std::string> read(const std::string& path) override {
-    auto it = files.find(path);
-    if (it == files.end()) return make_error("no such file");
-    return it->second;
-  }
-};
+using testing::MemoryFiles;
 
 // Keyframes: 0-500 ms claw to 200 and base to 700, 500-1500 ms elbow to 300, 1500-1750 ms claw
 // to 400; every xarm servo starts at its home, 500.
@@ -40,7 +33,7 @@ sequence:
 )";
 
 compiler::CompileOutput compile_try() {
-  ViewFiles files;
+  MemoryFiles files;
   files.files["try.yaml"] = kProgram;
   return compiler::compile_file("try.yaml", files);
 }
@@ -95,7 +88,7 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
 
 TEST(ProgramViews, AShowStacksItsPartsOnTheLongestPartsTimeAxis) {
   const compiler::CompileOutput long_one = compile_try();  // 1750 ms
-  ViewFiles files;
+  MemoryFiles files;
   files.files["short.yaml"] =
       "robot:\n  profile: xarm\nsequence:\n  - move: {claw: 300}\n"
       "    time: 500ms\n";
@@ -132,7 +125,7 @@ TEST(ProgramViews, AShowStacksItsPartsOnTheLongestPartsTimeAxis) {
 
 TEST(ProgramViews, AShowsPageDrawsEveryPartOnTheLongestPartsTimeAxis) {
   const compiler::CompileOutput long_one = compile_try();  // 1750 ms
-  ViewFiles files;
+  MemoryFiles files;
   files.files["short.yaml"] =
       "robot:\n  profile: xarm\nsequence:\n  - move: {claw: 300}\n"
       "    time: 500ms\n";
