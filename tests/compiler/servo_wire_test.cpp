@@ -243,5 +243,48 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
   }
 }
 
+// The group's capacity is checked on the fitted actions too: a walk whose lower bound fits can
+// still fit to more actions than a group holds (a curve needs more than its step's one). Three
+// straight moves fit to three actions; with a capacity of 3 the program keeps them all, with 2
+// it is an error naming 3/2 and keeps the first two.
+TEST(Backend, TheFittedActionsAreCheckedAgainstTheGroupsCapacity) {
+  compiler::testing::MemoryFiles files;
+  files.files["main.yaml"] =
+      "robot: xarm\nsequence:\n  - move: {claw: 510}\n    time: 1s\n  - move: {claw: 520}\n"
+      "    time: 1s\n  - move: {claw: 530}\n    time: 1s\n";
+  for (const std::size_t capacity : {std::size_t{3}, std::size_t{2}}) {
+    SCOPED_TRACE(capacity);
+    seqc::SourceManager sources;
+    seqc::Diagnostics diags;
+    compiler::FileLoader loader(files, sources, diags);
+    compiler::Reporter reporter(diags);
+    const auto main = loader.load("main.yaml");
+    ASSERT_TRUE(main.ok());
+    const compiler::LoadedFile& file = **main;
+    ASSERT_TRUE(file.root.has_value());
+    const std::optional<compiler::Robot> robot =
+        compiler::parse_robot(*file.root->find("robot"), reporter);
+    ASSERT_TRUE(robot.has_value());
+    compiler::ServoWalk walk = compiler::walk_servo_file(*robot, file, loader, reporter);
+    ASSERT_TRUE(compiler::ready_to_fit(walk, *robot, reporter));
+    EXPECT_EQ(walk.capacity, 1020u);  // the xarm's: 4 blocks of 255
+    walk.capacity = capacity;
+    const compiler::FitResult fit = compiler::fit_timeline_on_board(
+        walk.timeline, compiler::servo_fit_options(*robot, true), 0);
+    ASSERT_EQ(fit.actions.size(), 3u);
+    const compiler::ServoProgram p = compiler::servo_program(*robot, walk, fit, 0, reporter);
+    if (capacity == 3) {
+      EXPECT_FALSE(diags.has_errors(false)) << seqc::render_all(diags, sources);
+      EXPECT_EQ(p.keyframes.size(), 3u);
+    } else {
+      ASSERT_EQ(diags.error_count(), 1u);
+      EXPECT_NE(diags.all()[0].message.find("needs 3/2 actions"), std::string::npos)
+          << diags.all()[0].message;
+      EXPECT_EQ(p.keyframes.size(), 2u);
+    }
+    EXPECT_EQ(p.group_capacity, capacity);
+  }
+}
+
 }  // namespace
 }  // namespace seqc::compiler
