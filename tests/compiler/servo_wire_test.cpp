@@ -10,10 +10,10 @@
 #include "compiler/frontend/profiles.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/robot_section.hpp"
-#include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
-#include "runtime/io/disk.hpp"
+#include "compiler/targets/servo_controller/servo_wire.hpp"
 #include "protocol/lsc/lsc_stream.hpp"
+#include "runtime/io/disk.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {
@@ -213,6 +213,23 @@ TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{500});
 }
 
+// main.yaml of `files` loaded with its robot section read: what the driver hands the servo
+// target's stages. `file` is null (and `robot` empty) when either cannot be read.
+struct StagesInput {
+  explicit StagesInput(FileReader& files) : loader(files, sources, diags), reporter(diags) {
+    const auto main = loader.load("main.yaml");
+    if (!main.ok() || !(**main).root) return;
+    file = &**main;
+    robot = compiler::parse_robot(*file->root->find("robot"), reporter);
+  }
+  seqc::SourceManager sources;
+  seqc::Diagnostics diags;
+  compiler::FileLoader loader;
+  compiler::Reporter reporter;
+  const compiler::LoadedFile* file = nullptr;
+  std::optional<compiler::Robot> robot;
+};
+
 // The program carries the robot's model (its profile's, or the file's `controller:`), which
 // simulate and --compare read. Every built-in profile names the straight line, which is also the
 // program's default, so the copy is seen only through a robot that names another: the xarm with
@@ -223,21 +240,14 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
   for (const compiler::ControllerModel model :
        {compiler::ControllerModel::Rounds, compiler::ControllerModel::Truncates}) {
     SCOPED_TRACE(static_cast<int>(model));
-    seqc::SourceManager sources;
-    seqc::Diagnostics diags;
-    compiler::FileLoader loader(files, sources, diags);
-    compiler::Reporter reporter(diags);
-    const auto main = loader.load("main.yaml");
-    ASSERT_TRUE(main.ok());
-    const compiler::LoadedFile& file = **main;
-    ASSERT_TRUE(file.root.has_value());
-    std::optional<compiler::Robot> robot =
-        compiler::parse_robot(*file.root->find("robot"), reporter);
-    ASSERT_TRUE(robot.has_value());
-    EXPECT_EQ(robot->controller, compiler::ControllerModel::StraightLine);  // the xarm's
-    robot->controller = model;
-    const compiler::ServoProgram p = compiler::compile_servo(*robot, file, loader, reporter);
-    ASSERT_FALSE(diags.has_errors(false)) << seqc::render_all(diags, sources);
+    StagesInput in(files);
+    ASSERT_NE(in.file, nullptr) << seqc::render_all(in.diags, in.sources);
+    ASSERT_TRUE(in.robot.has_value()) << seqc::render_all(in.diags, in.sources);
+    EXPECT_EQ(in.robot->controller, compiler::ControllerModel::StraightLine);  // the xarm's
+    in.robot->controller = model;
+    const compiler::ServoProgram p =
+        compiler::compile_servo(*in.robot, *in.file, in.loader, in.reporter);
+    ASSERT_FALSE(in.diags.has_errors(false)) << seqc::render_all(in.diags, in.sources);
     ASSERT_EQ(p.keyframes.size(), 1u);
     EXPECT_EQ(p.controller, model);
   }
@@ -254,32 +264,25 @@ TEST(Backend, TheFittedActionsAreCheckedAgainstTheGroupsCapacity) {
       "    time: 1s\n  - move: {claw: 530}\n    time: 1s\n";
   for (const std::size_t capacity : {std::size_t{3}, std::size_t{2}}) {
     SCOPED_TRACE(capacity);
-    seqc::SourceManager sources;
-    seqc::Diagnostics diags;
-    compiler::FileLoader loader(files, sources, diags);
-    compiler::Reporter reporter(diags);
-    const auto main = loader.load("main.yaml");
-    ASSERT_TRUE(main.ok());
-    const compiler::LoadedFile& file = **main;
-    ASSERT_TRUE(file.root.has_value());
-    const std::optional<compiler::Robot> robot =
-        compiler::parse_robot(*file.root->find("robot"), reporter);
-    ASSERT_TRUE(robot.has_value());
-    compiler::ServoWalk walk = compiler::walk_servo_file(*robot, file, loader, reporter);
-    ASSERT_TRUE(compiler::ready_to_fit(walk, *robot, reporter));
+    StagesInput in(files);
+    ASSERT_NE(in.file, nullptr) << seqc::render_all(in.diags, in.sources);
+    ASSERT_TRUE(in.robot.has_value()) << seqc::render_all(in.diags, in.sources);
+    compiler::ServoWalk walk =
+        compiler::walk_servo_file(*in.robot, *in.file, in.loader, in.reporter);
+    ASSERT_TRUE(compiler::ready_to_fit(walk, *in.robot, in.reporter));
     EXPECT_EQ(walk.capacity, 1020u);  // the xarm's: 4 blocks of 255
     walk.capacity = capacity;
     const compiler::FitResult fit = compiler::fit_timeline_on_board(
-        walk.timeline, compiler::servo_fit_options(*robot, true), 0);
+        walk.timeline, compiler::servo_fit_options(*in.robot, true), 0);
     ASSERT_EQ(fit.actions.size(), 3u);
-    const compiler::ServoProgram p = compiler::servo_program(*robot, walk, fit, 0, reporter);
+    const compiler::ServoProgram p = compiler::servo_program(*in.robot, walk, fit, 0, in.reporter);
     if (capacity == 3) {
-      EXPECT_FALSE(diags.has_errors(false)) << seqc::render_all(diags, sources);
+      EXPECT_FALSE(in.diags.has_errors(false)) << seqc::render_all(in.diags, in.sources);
       EXPECT_EQ(p.keyframes.size(), 3u);
     } else {
-      ASSERT_EQ(diags.error_count(), 1u);
-      EXPECT_NE(diags.all()[0].message.find("needs 3/2 actions"), std::string::npos)
-          << diags.all()[0].message;
+      ASSERT_EQ(in.diags.error_count(), 1u);
+      EXPECT_NE(in.diags.all()[0].message.find("needs 3/2 actions"), std::string::npos)
+          << in.diags.all()[0].message;
       EXPECT_EQ(p.keyframes.size(), 2u);
     }
     EXPECT_EQ(p.group_capacity, capacity);
