@@ -30,7 +30,7 @@ IncomingFault FaultInjector::on_request() {
   f.silent = silent_;
   f.drop = drop < faults_.drop;
   f.corrupt = !f.drop && corrupt < faults_.corrupt;
-  f.corrupt_offset = static_cast<std::size_t>(where * 3.0);
+  f.corrupt_where = where;
   const double reset = extra_.unit();
   const double busy = extra_.unit();
   f.reset = reset < faults_.reset || (faults_.reset_at && f.number == *faults_.reset_at);
@@ -53,11 +53,16 @@ OutgoingFault FaultInjector::on_reply() {
   return f;
 }
 
-void FaultInjector::flip(Bytes& frame, double where) {
-  if (frame.empty()) return;
-  auto i = static_cast<std::size_t>(where * static_cast<double>(frame.size()));
-  if (i >= frame.size()) i = frame.size() - 1;
+std::size_t FaultInjector::flip_index(std::size_t size, double where) {
+  const auto i = static_cast<std::size_t>(where * static_cast<double>(size));
+  return i >= size ? size - 1 : i;
+}
+
+std::size_t FaultInjector::flip(Bytes& frame, double where) {
+  if (frame.empty()) return 0;
+  const std::size_t i = flip_index(frame.size(), where);
   frame[i] = static_cast<std::uint8_t>(frame[i] ^ 0xff);
+  return i;
 }
 
 }  // namespace seqc::emu

@@ -30,7 +30,10 @@ struct IncomingFault {
   bool silent = false;     // the controller has stopped answering
   bool drop = false;
   bool corrupt = false;
-  std::size_t corrupt_offset = 0;  // 0..2: which of 55 55 LEN is flipped
+  // [0, 1): which byte is flipped, scaled by the frame's length (flip_index). A flip in
+  // 55 55 LEN leaves a frame the controller cannot take; anywhere else the controller takes
+  // the frame as it arrived, for the protocol has no checksum.
+  double corrupt_where = 0;
   bool reset = false;              // the controller resets as this frame arrives
   bool busy = false;               // processing this frame takes busy_for longer
 };
@@ -53,8 +56,10 @@ class FaultInjector {
   // Called once per frame the controller sends (replies and notifications), in order.
   OutgoingFault on_reply();
 
-  // Flips one byte of `frame` (xor 0xff) at the position `where` selects.
-  static void flip(Bytes& frame, double where);
+  // The byte `where` selects in a frame of `size` bytes (size > 0).
+  static std::size_t flip_index(std::size_t size, double where);
+  // Flips one byte of `frame` (xor 0xff) at flip_index(frame.size(), where); returns it.
+  static std::size_t flip(Bytes& frame, double where);
 
   bool silent() const { return silent_; }
   std::size_t frames_seen() const { return frames_; }

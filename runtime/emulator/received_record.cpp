@@ -47,6 +47,9 @@ std::string xarm_record_csv(const XArmEmulator& emu) {
       auto request = lsc::decode_request(*frame);
       message = request ? lsc::describe(*request) : request.error().message;
     }
+    if (r.flipped_at) {
+      message += " (byte " + std::to_string(*r.flipped_at) + " flipped by the corrupt fault)";
+    }
     const bool framed = r.frame.has_value() || r.dropped != DropReason::None;
     out += line(r.at, status_of(r.dropped, framed), r.raw, message);
   }

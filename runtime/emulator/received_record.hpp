@@ -2,7 +2,8 @@
 // per piece, under the header `time_s,status,bytes,message`:
 //   time_s   when the piece reached the controller, in seconds with six decimals
 //   status   ok                 a frame the controller took (it may still ignore an unknown
-//                               command; message says so)
+//                               command; message says so, and names a byte the `corrupt`
+//                               fault flipped after 55 55 LEN: no checksum tells)
 //            dropped:<reason>   a whole frame the controller dropped on purpose, so it had no
 //                               effect; <reason> is drop_reason_name (busy, fault-drop, ...)
 //            unframed           bytes the controller could not frame (noise between frames, a

@@ -18,7 +18,7 @@ namespace {
 constexpr FaultKey kKeys[] = {
     {"seed", FaultValue::Seed, "seed of the faults (1)"},
     {"drop", FaultValue::Rate, "an incoming frame is lost"},
-    {"corrupt", FaultValue::Rate, "a byte of a reply or of a request's framing is flipped"},
+    {"corrupt", FaultValue::Rate, "a byte of a request or a reply is flipped"},
     {"late", FaultValue::Rate, "a reply comes late-by later"},
     {"late-by", FaultValue::Duration, "how much later a late reply comes (400ms)"},
     {"dup", FaultValue::Rate, "a reply is sent twice"},

@@ -22,8 +22,8 @@ namespace seqc::emu {
 struct XArmFaults {
   std::uint64_t seed = 1;
   double drop = 0;      // an incoming frame is lost (no effect, no reply)
-  double corrupt = 0;   // a byte is flipped: in a reply (anywhere), or in a request's framing
-                        // bytes (55 55 LEN) so the controller cannot frame it and ignores it
+  double corrupt = 0;   // a byte is flipped anywhere in a reply or a request; a request whose
+                        // 55 55 LEN is hit is ignored, any other is taken as it arrived
   double late_ack = 0;  // a reply is sent late_by later than normal
   io::Duration late_by = std::chrono::milliseconds(400);
   double duplicate_ack = 0;                 // a reply is sent twice

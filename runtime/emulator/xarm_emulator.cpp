@@ -67,11 +67,15 @@ void XArmEmulator::handle_piece(RequestFramer::Piece piece, io::TimePoint at) {
     return;
   }
   if (fault.corrupt) {
-    rec.raw[fault.corrupt_offset] = static_cast<std::uint8_t>(rec.raw[fault.corrupt_offset] ^ 0xff);
-    rec.dropped_fault = true;
-    rec.dropped = DropReason::FaultCorrupt;
-    received_.push_back(std::move(rec));
-    return;
+    const std::size_t at_byte = FaultInjector::flip(rec.raw, fault.corrupt_where);
+    if (at_byte < 3) {
+      // 55 55 LEN no longer frames these bytes: the controller ignores them.
+      rec.dropped_fault = true;
+      rec.dropped = DropReason::FaultCorrupt;
+      received_.push_back(std::move(rec));
+      return;
+    }
+    rec.flipped_at = at_byte;
   }
   if (fault.reset) {
     // The dip takes the frame with it; the controller boots and is deaf meanwhile.

@@ -83,6 +83,9 @@ struct ReceivedFrame {
   bool dropped_busy = false;              // arrived while the controller was busy
   bool dropped_fault = false;             // lost, corrupted, unanswered or hung up by a fault
   DropReason dropped = DropReason::None;  // which of those, and which fault
+  // The byte a `corrupt` fault flipped, when it was past 55 55 LEN: the controller took the
+  // frame as it arrived (raw and frame hold the flipped byte).
+  std::optional<std::size_t> flipped_at;
 };
 
 class XArmEmulator final : public ControllerDevice {

@@ -47,8 +47,8 @@ int main(int argc, char** argv) {
     const bool met = t.completion() >= 0.999 && t.wrong_success == 0 && t.run_after_failure == 0 &&
                      never.empty() && t.tally_mismatches == 0;
     std::printf(
-        "targets (>= 99.9%% complete, 0 wrong successes, 0 GroupRun after failure, every kind "
-        "of fault happened): %s\n",
+        "targets (>= 99.9%% complete, 0 wrong successes no flipped byte explains, 0 GroupRun "
+        "after failure, every kind of fault happened): %s\n",
         met ? "met" : "NOT met");
     for (const std::string& kind : never) std::printf("  never happened: %s\n", kind.c_str());
     std::printf("wall time: %.1f s (%.2f ms per upload)\n\n", secs,

@@ -108,29 +108,101 @@ TEST(XArmFaults, DropLosesFramesWithoutReply) {
   EXPECT_EQ(run("drop=1").replies, 0u);
 }
 
-TEST(XArmFaults, CorruptFlipsRequestFramingOrOneReplyByte) {
+TEST(XArmFaults, CorruptFlipsOneByteOfARequestOrAReply) {
   expect_deterministic("corrupt=0.2,seed=3", "corrupt=0.2,seed=4");
   // Requests: with every frame corrupted, each recorded frame differs from 55 55 02 0f in
-  // exactly one of its first three bytes, and nothing is answered.
+  // exactly one byte. A flip in 55 55 LEN leaves nothing the controller can frame; a flip of
+  // the command byte (0f -> f0) is taken as it arrived, an unknown command. Nothing is answered.
   XArmConfig config;
   config.faults.corrupt = 1.0;
   XArmEmulator emu(config);
-  for (int i = 0; i < 20; ++i) emu.receive(hex("55 55 02 0f"), at_ms(50 * i));
+  for (int i = 0; i < 40; ++i) emu.receive(hex("55 55 02 0f"), at_ms(50 * i));
   EXPECT_EQ(emu.take_output(at_ms(5000)), Bytes{});
-  ASSERT_EQ(emu.received().size(), 20u);
+  ASSERT_EQ(emu.received().size(), 40u);
+  int framing = 0, command = 0;
   for (const auto& f : emu.received()) {
-    EXPECT_TRUE(f.dropped_fault);
-    EXPECT_FALSE(f.frame.has_value());
     int diffs = 0;
     for (std::size_t i = 0; i < 4; ++i) diffs += f.raw[i] != hex("55 55 02 0f")[i];
     EXPECT_EQ(diffs, 1);
-    EXPECT_EQ(f.raw[3], 0x0f);
+    if (f.raw[3] == 0xf0) {
+      ++command;
+      EXPECT_EQ(f.flipped_at, std::optional<std::size_t>(3));
+      EXPECT_FALSE(f.dropped_fault);
+      ASSERT_TRUE(f.frame.has_value());
+      EXPECT_EQ(f.frame->cmd, 0xf0);
+    } else {
+      ++framing;
+      EXPECT_EQ(f.flipped_at, std::nullopt);
+      EXPECT_TRUE(f.dropped_fault);
+      EXPECT_EQ(f.dropped, DropReason::FaultCorrupt);
+      EXPECT_FALSE(f.frame.has_value());
+    }
   }
+  // A quarter of the bytes is the command byte: both kinds happen in 40 frames.
+  EXPECT_GT(framing, 0);
+  EXPECT_GT(command, 0);
   // Replies: the output has the same length as without faults, but some replies differ.
   const FaultRun r = run("corrupt=0.2,seed=3");
   const FaultRun clean = run("");
   EXPECT_LT(r.replies, 200u);
   EXPECT_EQ(clean.replies, 200u);
+}
+
+TEST(XArmFaults, TheFlippedByteIsTheDrawScaledByTheFrameLength) {
+  // where in [0, 1) picks byte floor(where * size): each of a 4-byte frame's bytes a quarter.
+  EXPECT_EQ(FaultInjector::flip_index(4, 0.0), 0u);
+  EXPECT_EQ(FaultInjector::flip_index(4, 0.249), 0u);
+  EXPECT_EQ(FaultInjector::flip_index(4, 0.25), 1u);
+  EXPECT_EQ(FaultInjector::flip_index(4, 0.75), 3u);
+  EXPECT_EQ(FaultInjector::flip_index(4, 0.9999), 3u);
+  EXPECT_EQ(FaultInjector::flip_index(14, 0.65), 9u);  // 9.1
+  Bytes frame = hex("55 55 02 0f");
+  EXPECT_EQ(FaultInjector::flip(frame, 0.8), 3u);
+  EXPECT_EQ(hex_of(frame), "55 55 02 f0");
+}
+
+// The protocol has no checksum: a byte of an action's time or position flipped on the wire is
+// acknowledged like any other and stored as it arrived. Over many seeds, every such flip in the
+// hand-written one-action download (time 1000 ms = e8 03, servo 1 at 800 = 20 03) ends with
+// the flipped value stored, as if the host had sent it.
+TEST(XArmFaults, AFlippedPositionByteIsAcknowledgedAndStored) {
+  const std::vector<std::string> frames{"55 55 05 05 01 02 01", "55 55 07 05 02 02 00 01 00",
+                                        "55 55 06 05 03 02 00 00",
+                                        "55 55 0c 05 04 02 00 00 0b e8 03 01 20 03",
+                                        "55 55 04 05 05 02"};
+  int stored_flipped = 0;
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    XArmConfig config;
+    config.faults.corrupt = 0.2;
+    config.faults.seed = seed;
+    XArmEmulator emu(config);
+    io::TimePoint t{0};
+    std::vector<std::string> acks;
+    for (const auto& f : frames) acks.push_back(hex_of(exchange(emu, hex(f), t)));
+    ASSERT_EQ(emu.received().size(), 5u);
+    const ReceivedFrame& step4 = emu.received()[3];
+    // Bytes 9..13 are tLo tHi id posLo posHi.
+    if (!step4.flipped_at || *step4.flipped_at < 9) continue;
+    bool others_clean = true;
+    for (std::size_t i : {0, 1, 2, 4}) others_clean = others_clean && !emu.received()[i].flipped_at &&
+                                                     !emu.received()[i].dropped_fault;
+    if (!others_clean) continue;
+    // The reply may carry a flip of its own; the group being stored shows step 4 was taken.
+    const auto stored = emu.stored_group(2);
+    ASSERT_TRUE(stored.has_value()) << "seed " << seed;
+    ASSERT_EQ(stored->size(), 1u);
+    const lsc::GroupAction& a = (*stored)[0];
+    switch (*step4.flipped_at) {
+      case 9: EXPECT_EQ(a.time_ms, 0x0317); break;   // e8 -> 17
+      case 10: EXPECT_EQ(a.time_ms, 0xfce8); break;  // 03 -> fc
+      case 11: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{0xfe, 800}})); break;
+      case 12: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0x03df}})); break;
+      case 13: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0xfc20}})); break;
+      default: ADD_FAILURE() << "flipped byte " << *step4.flipped_at;
+    }
+    ++stored_flipped;
+  }
+  EXPECT_GT(stored_flipped, 0) << "no seed flipped only an action byte";
 }
 
 TEST(XArmFaults, LateReplyComesLateByLater) {

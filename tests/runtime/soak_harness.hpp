@@ -4,6 +4,7 @@
 // time; every fault is drawn from seeds, so a run is the same on every machine.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "runtime/emulator/emulator_transport.hpp"
@@ -35,7 +37,8 @@ inline std::string fault_model(double scale) {
       buf, sizeof buf,
       "fault model (x%.2f), drawn per upload from its own seed:\n"
       "  per request frame the controller receives:\n"
-      "    lost %.4f%%; a framing byte flipped, so it is ignored, %.4f%%;\n"
+      "    lost %.4f%%; a byte flipped %.4f%%: in 55 55 LEN the frame is ignored, anywhere\n"
+      "      else it is taken as it arrived (there is no checksum);\n"
       "    busy %.4f%%: processed 400 ms longer (700 ms in a quarter of the uploads), frames\n"
       "      arriving meanwhile are dropped;\n"
       "    controller reset %.5f%%: the frame is lost, the download in progress forgotten,\n"
@@ -126,10 +129,10 @@ class LastNotes final : public upload::UploadObserver {
 
 // The kinds of fault the soak injects, as the tally names them.
 inline const std::vector<std::string>& fault_kinds() {
-  static const std::vector<std::string> kinds{"lost request",     "request framing flipped",
-                                              "busy controller",  "controller reset",
-                                              "port hang-up",     "reply late",
-                                              "reply sent twice", "reply byte flipped"};
+  static const std::vector<std::string> kinds{
+      "lost request",       "request framing flipped", "request byte flipped",
+      "busy controller",    "controller reset",        "port hang-up",
+      "reply late",         "reply sent twice",        "reply byte flipped"};
   return kinds;
 }
 
@@ -153,12 +156,17 @@ inline std::optional<std::map<std::string, std::size_t>> injected_faults(
       continue;
     } else if (in.drop) {
       ++n["lost request"];
-    } else if (in.corrupt) {
+    } else if (in.corrupt &&
+               emu::FaultInjector::flip_index(rec.raw.size(), in.corrupt_where) < 3) {
       ++n["request framing flipped"];
     } else if (in.reset) {
       ++n["controller reset"];
     } else if (in.busy && rec.frame && !rec.dropped_busy) {
       ++n["busy controller"];
+    }
+    if (in.corrupt && !in.hangup && !in.drop &&
+        emu::FaultInjector::flip_index(rec.raw.size(), in.corrupt_where) >= 3) {
+      ++n["request byte flipped"];
     }
   }
   if (framed != emulator.frames_received()) return std::nullopt;
@@ -169,6 +177,51 @@ inline std::optional<std::map<std::string, std::size_t>> injected_faults(
     if (out.corrupt) ++n["reply byte flipped"];
   }
   return n;
+}
+
+// Where a request byte flipped past 55 55 LEN landed (rec.raw holds the flipped byte, so
+// raw[3] is the command as the controller saw it).
+inline std::string flip_place(const emu::ReceivedFrame& rec) {
+  const std::size_t at = *rec.flipped_at;
+  if (at == 3) return "command byte";
+  if (rec.raw[3] == static_cast<std::uint8_t>(lsc::Command::GroupDownload)) {
+    if (at == 4) return "download step byte";
+    if (at == 5) return "download group byte";
+    if (rec.raw[4] == 4) return at <= 7 ? "action block or index" : "action time, ids, positions";
+    return "other download step data";
+  }
+  if (rec.raw[3] == static_cast<std::uint8_t>(lsc::Command::GroupRun)) return "GroupRun data";
+  return "other request data";
+}
+
+// Request bytes flipped past 55 55 LEN, by where they landed, and what came of them.
+struct FlipTally {
+  std::size_t flips = 0;
+  std::size_t stored_wrong = 0;     // uploads reporting success with the flipped action stored
+  std::size_t run_unreported = 0;   // uploads whose GroupRun was flipped and not reported started
+};
+
+// The actions of `stored` that differ from `planned` and that a flipped step-4 frame the
+// controller received carries, byte for byte: what no reply can reveal. False when some
+// difference has no such frame (a fault of the uploader, not of the wire).
+inline bool wrong_actions_explained_by_flips(const emu::XArmEmulator& emulator,
+                                             const std::vector<lsc::GroupAction>& stored,
+                                             const std::vector<lsc::GroupAction>& planned) {
+  if (stored.size() != planned.size()) return false;
+  std::vector<lsc::GroupAction> flipped;
+  for (const emu::ReceivedFrame& rec : emulator.received()) {
+    if (!rec.flipped_at || !rec.frame) continue;
+    auto request = lsc::decode_group_download(*rec.frame);
+    if (!request) continue;
+    if (const auto* a = std::get_if<lsc::GroupDownloadAction>(&*request)) {
+      flipped.push_back(lsc::GroupAction{a->time_ms, a->servos});
+    }
+  }
+  for (std::size_t k = 0; k < stored.size(); ++k) {
+    if (stored[k] == planned[k]) continue;
+    if (std::find(flipped.begin(), flipped.end(), stored[k]) == flipped.end()) return false;
+  }
+  return true;
 }
 
 // One kind of fault over the mixed soak: how often it happened, in how many uploads.
@@ -197,7 +250,13 @@ struct IsolatedTally {
 
 struct Totals {
   std::size_t uploads = 0, completed = 0, failed = 0;
-  std::size_t wrong_success = 0;      // reported success, stored group differs from the plan
+  // Reported success while the stored group differs from the plan, where no flipped byte
+  // explains it: the uploader's fault.
+  std::size_t wrong_success = 0;
+  // Reported success with an action stored as a flipped step-4 frame carried it: the protocol
+  // has no checksum and no read-back, so nothing on the wire can reveal it.
+  std::size_t undetectable_flip = 0;
+  std::map<std::string, FlipTally> flips;  // every upload, by flip_place
   std::size_t run_after_failure = 0;  // GroupRun reached the controller after a failure
   std::size_t with_hangup = 0, with_reset = 0;
   std::size_t retries = 0, restarts = 0, reopens = 0;
@@ -316,9 +375,22 @@ inline void soak_one(std::size_t i, double scale, Totals& t, const std::string& 
   if (hangup && emulator.frames_received() >= *config.faults.hangup_at) ++t.with_hangup;
   if (emulator.resets() > 0) ++t.with_reset;
   const auto stored = emulator.stored_group(options.group);
+  std::map<std::string, std::size_t> flipped_here;
+  for (const emu::ReceivedFrame& rec : emulator.received()) {
+    if (rec.flipped_at) ++flipped_here[flip_place(rec)];
+  }
+  for (const auto& [place, n] : flipped_here) t.flips[place].flips += n;
+  if (flipped_here.count("GroupRun data") && !r.run_reported) {
+    ++t.flips["GroupRun data"].run_unreported;
+  }
   if (r.ok()) {
     ++t.completed;
-    if (!stored || *stored != actions) ++t.wrong_success;
+    if (stored && *stored != actions && wrong_actions_explained_by_flips(emulator, *stored, actions)) {
+      ++t.undetectable_flip;
+      ++t.flips["action time, ids, positions"].stored_wrong;
+    } else if (!stored || *stored != actions) {
+      ++t.wrong_success;
+    }
     return;
   }
   ++t.failed;
@@ -365,6 +437,21 @@ inline std::string fault_table(const Totals& t) {
       out += "      " + what + " x" + std::to_string(n) + "\n";
     }
   }
+  if (!t.flips.empty()) {
+    out += "request bytes flipped past 55 55 LEN (taken as they arrived), by where they landed:\n";
+  }
+  for (const auto& [place, f] : t.flips) {
+    std::snprintf(buf, sizeof buf, "  %-30s %6zu", place.c_str(), f.flips);
+    out += buf;
+    if (f.stored_wrong > 0) {
+      out += ", " + std::to_string(f.stored_wrong) +
+             " uploads reported success with a flipped action stored (undetectable)";
+    }
+    if (f.run_unreported > 0) {
+      out += ", " + std::to_string(f.run_unreported) + " uploads saw no start reported";
+    }
+    out += "\n";
+  }
   if (t.tally_mismatches > 0) {
     out += "  uploads whose faults could not be replayed: " + std::to_string(t.tally_mismatches) +
            "\n";
@@ -384,11 +471,12 @@ inline std::string report(const Totals& t, double scale) {
   char buf[600];
   std::snprintf(buf, sizeof buf,
                 "soak x%.2f: %zu uploads of 1020 actions: %zu completed (%.3f%%), %zu failed; "
-                "%zu reported success with a wrong group; %zu GroupRun after a failed "
+                "%zu reported success with a wrong group no flipped byte explains, %zu with "
+                "an action a flipped byte changed; %zu GroupRun after a failed "
                 "download; %zu met a hang-up, %zu a controller reset; %zu re-sends, %zu "
                 "restarts, %zu reconnects\n",
                 scale, t.uploads, t.completed, 100 * t.completion(), t.failed, t.wrong_success,
-                t.run_after_failure, t.with_hangup, t.with_reset, t.retries, t.restarts, t.reopens);
+                t.undetectable_flip, t.run_after_failure, t.with_hangup, t.with_reset, t.retries, t.restarts, t.reopens);
   std::string out = buf;
   for (const auto& [what, n] : t.restart_causes) {
     out += "  restarts x" + std::to_string(n) + ": " + what + "\n";
