@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/io/clock.hpp"
 #include "base/result.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

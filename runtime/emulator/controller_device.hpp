@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/io/clock.hpp"
 #include "base/bytes.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "protocol/raspblock/raspblock.hpp"
 #include "runtime/emulator/group_dump.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/pty_device.hpp"
@@ -15,7 +16,6 @@
 #include "runtime/emulator/received_record.hpp"
 #include "runtime/emulator/xarm_config.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc::emu {
 namespace {

@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "runtime/emulator/xarm_config.hpp"
 #include "base/bytes.hpp"
+#include "runtime/emulator/xarm_config.hpp"
 
 namespace seqc::emu {
 
@@ -34,8 +34,8 @@ struct IncomingFault {
   // 55 55 LEN leaves a frame the controller cannot take; anywhere else the controller takes
   // the frame as it arrived, for the protocol has no checksum.
   double corrupt_where = 0;
-  bool reset = false;              // the controller resets as this frame arrives
-  bool busy = false;               // processing this frame takes busy_for longer
+  bool reset = false;  // the controller resets as this frame arrives
+  bool busy = false;   // processing this frame takes busy_for longer
 };
 
 struct OutgoingFault {

@@ -11,10 +11,10 @@
 #include <optional>
 #include <vector>
 
-#include "runtime/emulator/servo_model.hpp"
-#include "runtime/io/clock.hpp"
 #include "protocol/lsc/group_download.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
+#include "runtime/emulator/servo_model.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

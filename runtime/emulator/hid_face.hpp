@@ -17,9 +17,9 @@
 #include <memory>
 #include <string>
 
+#include "protocol/lsc/lsc_stream.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc/lsc_stream.hpp"
 #include "runtime/transport/hid_backend.hpp"
 
 namespace seqc::emu {

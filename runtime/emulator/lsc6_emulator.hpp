@@ -42,11 +42,11 @@
 #include <string_view>
 #include <vector>
 
+#include "base/result.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/serial_line.hpp"
-#include "protocol/lsc6/lsc6_messages.hpp"
-#include "base/result.hpp"
 
 namespace seqc::emu {
 

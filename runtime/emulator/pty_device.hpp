@@ -14,12 +14,12 @@
 #include <ostream>
 #include <vector>
 
+#include "base/bytes.hpp"
 #include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/raspblock_emulator.hpp"
 #include "runtime/emulator/serial_line.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "base/bytes.hpp"
 
 namespace seqc::emu {
 

@@ -17,9 +17,9 @@
 #include <optional>
 #include <string>
 
+#include "base/result.hpp"
 #include "runtime/emulator/pty_device.hpp"
 #include "runtime/io/clock.hpp"
-#include "base/result.hpp"
 
 namespace seqc::emu {
 

@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/io/clock.hpp"
 #include "base/bytes.hpp"
 #include "protocol/raspblock/raspblock.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

@@ -2,9 +2,9 @@
 
 #include <chrono>
 
-#include "runtime/io/time_text.hpp"
-#include "protocol/lsc6/lsc6_messages.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
+#include "runtime/io/time_text.hpp"
 
 namespace seqc::emu {
 namespace {

@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include "runtime/io/clock.hpp"
 #include "base/bytes.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

@@ -16,8 +16,8 @@
 #include <optional>
 #include <vector>
 
-#include "runtime/io/clock.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

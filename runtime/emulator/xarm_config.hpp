@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "runtime/io/clock.hpp"
 #include "base/result.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
 

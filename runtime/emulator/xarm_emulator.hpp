@@ -56,6 +56,10 @@
 #include <optional>
 #include <vector>
 
+#include "base/bytes.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/emulator/controller_device.hpp"
 #include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/group_player.hpp"
@@ -64,10 +68,6 @@
 #include "runtime/emulator/servo_model.hpp"
 #include "runtime/emulator/xarm_config.hpp"
 #include "runtime/io/clock.hpp"
-#include "base/bytes.hpp"
-#include "protocol/lsc/group_download.hpp"
-#include "protocol/lsc/lsc_frame.hpp"
-#include "protocol/lsc/lsc_messages.hpp"
 
 namespace seqc::emu {
 

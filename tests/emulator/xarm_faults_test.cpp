@@ -166,10 +166,9 @@ TEST(XArmFaults, TheFlippedByteIsTheDrawScaledByTheFrameLength) {
 // hand-written one-action download (time 1000 ms = e8 03, servo 1 at 800 = 20 03) ends with
 // the flipped value stored, as if the host had sent it.
 TEST(XArmFaults, AFlippedPositionByteIsAcknowledgedAndStored) {
-  const std::vector<std::string> frames{"55 55 05 05 01 02 01", "55 55 07 05 02 02 00 01 00",
-                                        "55 55 06 05 03 02 00 00",
-                                        "55 55 0c 05 04 02 00 00 0b e8 03 01 20 03",
-                                        "55 55 04 05 05 02"};
+  const std::vector<std::string> frames{
+      "55 55 05 05 01 02 01", "55 55 07 05 02 02 00 01 00", "55 55 06 05 03 02 00 00",
+      "55 55 0c 05 04 02 00 00 0b e8 03 01 20 03", "55 55 04 05 05 02"};
   int stored_flipped = 0;
   for (std::uint64_t seed = 1; seed <= 400; ++seed) {
     XArmConfig config;
@@ -184,8 +183,9 @@ TEST(XArmFaults, AFlippedPositionByteIsAcknowledgedAndStored) {
     // Bytes 9..13 are tLo tHi id posLo posHi.
     if (!step4.flipped_at || *step4.flipped_at < 9) continue;
     bool others_clean = true;
-    for (std::size_t i : {0, 1, 2, 4}) others_clean = others_clean && !emu.received()[i].flipped_at &&
-                                                     !emu.received()[i].dropped_fault;
+    for (std::size_t i : {0, 1, 2, 4})
+      others_clean =
+          others_clean && !emu.received()[i].flipped_at && !emu.received()[i].dropped_fault;
     if (!others_clean) continue;
     // The reply may carry a flip of its own; the group being stored shows step 4 was taken.
     const auto stored = emu.stored_group(2);
@@ -193,12 +193,23 @@ TEST(XArmFaults, AFlippedPositionByteIsAcknowledgedAndStored) {
     ASSERT_EQ(stored->size(), 1u);
     const lsc::GroupAction& a = (*stored)[0];
     switch (*step4.flipped_at) {
-      case 9: EXPECT_EQ(a.time_ms, 0x0317); break;   // e8 -> 17
-      case 10: EXPECT_EQ(a.time_ms, 0xfce8); break;  // 03 -> fc
-      case 11: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{0xfe, 800}})); break;
-      case 12: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0x03df}})); break;
-      case 13: EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0xfc20}})); break;
-      default: ADD_FAILURE() << "flipped byte " << *step4.flipped_at;
+      case 9:
+        EXPECT_EQ(a.time_ms, 0x0317);
+        break;  // e8 -> 17
+      case 10:
+        EXPECT_EQ(a.time_ms, 0xfce8);
+        break;  // 03 -> fc
+      case 11:
+        EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{0xfe, 800}}));
+        break;
+      case 12:
+        EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0x03df}}));
+        break;
+      case 13:
+        EXPECT_EQ(a.servos, (std::vector<lsc::ServoTarget>{{1, 0xfc20}}));
+        break;
+      default:
+        ADD_FAILURE() << "flipped byte " << *step4.flipped_at;
     }
     ++stored_flipped;
   }

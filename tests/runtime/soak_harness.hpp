@@ -15,10 +15,10 @@
 #include <variant>
 #include <vector>
 
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/fault_injector.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
-#include "protocol/lsc/group_download.hpp"
 #include "runtime/upload/uploader.hpp"
 
 namespace seqc::soak {
@@ -130,9 +130,9 @@ class LastNotes final : public upload::UploadObserver {
 // The kinds of fault the soak injects, as the tally names them.
 inline const std::vector<std::string>& fault_kinds() {
   static const std::vector<std::string> kinds{
-      "lost request",       "request framing flipped", "request byte flipped",
-      "busy controller",    "controller reset",        "port hang-up",
-      "reply late",         "reply sent twice",        "reply byte flipped"};
+      "lost request",    "request framing flipped", "request byte flipped",
+      "busy controller", "controller reset",        "port hang-up",
+      "reply late",      "reply sent twice",        "reply byte flipped"};
   return kinds;
 }
 
@@ -156,8 +156,7 @@ inline std::optional<std::map<std::string, std::size_t>> injected_faults(
       continue;
     } else if (in.drop) {
       ++n["lost request"];
-    } else if (in.corrupt &&
-               emu::FaultInjector::flip_index(rec.raw.size(), in.corrupt_where) < 3) {
+    } else if (in.corrupt && emu::FaultInjector::flip_index(rec.raw.size(), in.corrupt_where) < 3) {
       ++n["request framing flipped"];
     } else if (in.reset) {
       ++n["controller reset"];
@@ -197,8 +196,8 @@ inline std::string flip_place(const emu::ReceivedFrame& rec) {
 // Request bytes flipped past 55 55 LEN, by where they landed, and what came of them.
 struct FlipTally {
   std::size_t flips = 0;
-  std::size_t stored_wrong = 0;     // uploads reporting success with the flipped action stored
-  std::size_t run_unreported = 0;   // uploads whose GroupRun was flipped and not reported started
+  std::size_t stored_wrong = 0;    // uploads reporting success with the flipped action stored
+  std::size_t run_unreported = 0;  // uploads whose GroupRun was flipped and not reported started
 };
 
 // The actions of `stored` that differ from `planned` and that a flipped step-4 frame the
@@ -257,7 +256,7 @@ struct Totals {
   // has no checksum and no read-back, so nothing on the wire can reveal it.
   std::size_t undetectable_flip = 0;
   std::map<std::string, FlipTally> flips;  // every upload, by flip_place
-  std::size_t run_after_failure = 0;  // GroupRun reached the controller after a failure
+  std::size_t run_after_failure = 0;       // GroupRun reached the controller after a failure
   std::size_t with_hangup = 0, with_reset = 0;
   std::size_t retries = 0, restarts = 0, reopens = 0;
   std::map<std::string, std::size_t> failures;  // status: first words of the message -> count
@@ -385,7 +384,8 @@ inline void soak_one(std::size_t i, double scale, Totals& t, const std::string& 
   }
   if (r.ok()) {
     ++t.completed;
-    if (stored && *stored != actions && wrong_actions_explained_by_flips(emulator, *stored, actions)) {
+    if (stored && *stored != actions &&
+        wrong_actions_explained_by_flips(emulator, *stored, actions)) {
       ++t.undetectable_flip;
       ++t.flips["action time, ids, positions"].stored_wrong;
     } else if (!stored || *stored != actions) {
@@ -476,7 +476,8 @@ inline std::string report(const Totals& t, double scale) {
                 "download; %zu met a hang-up, %zu a controller reset; %zu re-sends, %zu "
                 "restarts, %zu reconnects\n",
                 scale, t.uploads, t.completed, 100 * t.completion(), t.failed, t.wrong_success,
-                t.undetectable_flip, t.run_after_failure, t.with_hangup, t.with_reset, t.retries, t.restarts, t.reopens);
+                t.undetectable_flip, t.run_after_failure, t.with_hangup, t.with_reset, t.retries,
+                t.restarts, t.reopens);
   std::string out = buf;
   for (const auto& [what, n] : t.restart_causes) {
     out += "  restarts x" + std::to_string(n) + ": " + what + "\n";

@@ -2,10 +2,10 @@
 // seeded fault mix of soak_harness.hpp, in emulated time. Checked: no upload reports success
 // while the stored group differs from the plan, except where the controller stored an action
 // whose time, ids or positions a flipped byte changed on the wire (no checksum, no read-back:
-// the report counts them, and every other flipped byte was caught); no GroupRun reaches the controller after a
-// failed download; at least 99.9 % of the uploads complete (hang-ups included: the device
-// comes back); every kind of fault injected happened at least once (the per-kind table of
-// faults and the recoveries that handled them is printed). SEQC_SOAK_UPLOADS sets the number of
+// the report counts them, and every other flipped byte was caught); no GroupRun reaches the
+// controller after a failed download; at least 99.9 % of the uploads complete (hang-ups included:
+// the device comes back); every kind of fault injected happened at least once (the per-kind table
+// of faults and the recoveries that handled them is printed). SEQC_SOAK_UPLOADS sets the number of
 // uploads (default 1,000), SEQC_SOAK_SCALE the fault scale (default 1); tests/bench/soak_bench runs
 // 10,000 at x1 and x4.
 #include <gtest/gtest.h>
