@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <linux/magic.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <sys/vfs.h>
 #include <unistd.h>
@@ -130,7 +131,10 @@ Status replace_file(const std::string& path, const std::string& target, std::str
 }  // namespace
 
 Result<std::string> DiskFileReader::read(const std::string& path) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_NOCTTY | O_CLOEXEC));
+  // O_NONBLOCK: opening a FIFO no one writes to would otherwise wait for a writer forever, and
+  // a serial device for its carrier. What is not a regular file is then read as it comes, each
+  // wait bounded (poll).
+  Fd fd(::open(path.c_str(), O_RDONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK));
   if (fd.get() < 0) return make_error(path + ": " + std::strerror(errno));
   struct stat st {};
   if (::fstat(fd.get(), &st) != 0) return make_error(path + ": " + std::strerror(errno));
@@ -143,17 +147,33 @@ Result<std::string> DiskFileReader::read(const std::string& path) {
   std::string text;
   if (regular) text.reserve(static_cast<std::size_t>(st.st_size));
   std::size_t have = 0;
+  // A FIFO read before any writer opened it reads as ended: wait for one first.
+  bool await_writer = S_ISFIFO(st.st_mode);
   for (;;) {
     const std::size_t want = std::min(kChunk, max_bytes_ + 1 - have);
     text.resize(have + want);
     const ssize_t n = ::read(fd.get(), text.data() + have, want);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return make_error(path + ": " + std::strerror(errno));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno != EAGAIN) return make_error(path + ": " + std::strerror(errno));
+    if (n > 0) {
+      await_writer = false;
+      have += static_cast<std::size_t>(n);
+      if (have > max_bytes_) return make_error(too_large(path, max_bytes_));
+      continue;
     }
-    if (n == 0) break;
-    have += static_cast<std::size_t>(n);
-    if (have > max_bytes_) return make_error(too_large(path, max_bytes_));
+    if (n == 0 && !await_writer) break;
+    pollfd p{fd.get(), POLLIN, 0};
+    const auto wait = await_writer ? writer_wait_ : idle_wait_;
+    const int ready = ::poll(&p, 1, static_cast<int>(wait.count()));
+    if (ready < 0 && errno != EINTR) return make_error(path + ": " + std::strerror(errno));
+    if (ready == 0) {
+      return make_error(path + (await_writer ? ": no process opened this FIFO for writing"
+                                             : ": nothing arrived for " +
+                                                   std::to_string(wait.count() / 1000) + " s"));
+    }
+    // A writer came and went without writing: the FIFO ends here, empty.
+    if (ready > 0 && await_writer && (p.revents & POLLIN) == 0) break;
+    await_writer = false;
   }
   text.resize(have);
   return text;

@@ -5,6 +5,7 @@
 // ask for, never leaves a partial file behind and never turns a device into a regular file.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <iosfwd>
 #include <string>
@@ -22,12 +23,19 @@ class DiskFileReader final : public seqc::FileReader {
  public:
   // Files larger than max_bytes are refused: a regular file by its size, unread; anything else
   // (a device, a FIFO) after max_bytes + 1 bytes, so no file can exhaust memory or never end.
-  explicit DiskFileReader(std::size_t max_bytes = kMaxInputBytes) : max_bytes_(max_bytes) {}
+  // Nor can one make a read wait forever: a FIFO no process opens for writing within
+  // writer_wait, or a device or pipe that gives nothing for idle_wait, is an error.
+  explicit DiskFileReader(std::size_t max_bytes = kMaxInputBytes,
+                          std::chrono::milliseconds writer_wait = std::chrono::milliseconds(500),
+                          std::chrono::milliseconds idle_wait = std::chrono::seconds(10))
+      : max_bytes_(max_bytes), writer_wait_(writer_wait), idle_wait_(idle_wait) {}
   Result<std::string> read(const std::string& path) override;
   std::optional<std::uint64_t> size(const std::string& path) override;
 
  private:
   std::size_t max_bytes_;
+  std::chrono::milliseconds writer_wait_;
+  std::chrono::milliseconds idle_wait_;
 };
 
 // Reads `in` to its end, or refuses once it has given more than max_bytes ("NAME: file is too

@@ -217,6 +217,42 @@ TEST_F(Disk, AFifoThatNeverEndsIsRefusedAtTheLimit) {
   EXPECT_EQ(read.error().message, path("pipe") + ": file is too large (more than 100000 bytes)");
 }
 
+TEST_F(Disk, AFifoNoOneWritesToIsAnErrorNotAWaitForever) {
+  ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+  const auto read =
+      DiskFileReader(1000, std::chrono::milliseconds(20), std::chrono::milliseconds(20))
+          .read(path("pipe"));
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.error().message, path("pipe") + ": no process opened this FIFO for writing");
+}
+
+TEST_F(Disk, AFifoWhoseWriterComesLateOrFallsSilentIsReadOrRefused) {
+  ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+  // The writer opens it after the reader, writes, and ends: read whole.
+  std::thread late([this] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const int fd = ::open(path("pipe").c_str(), O_WRONLY);
+    (void)!::write(fd, "name: x\n", 8);
+    ::close(fd);
+  });
+  const auto whole = DiskFileReader(1000, std::chrono::seconds(5)).read(path("pipe"));
+  late.join();
+  EXPECT_EQ(whole.value(), "name: x\n");
+  // A writer that holds it open and says nothing more: refused after the idle wait.
+  int writer_fd = -1;
+  std::thread silent([&] {
+    writer_fd = ::open(path("pipe").c_str(), O_WRONLY);
+    (void)!::write(writer_fd, "abc", 3);
+  });
+  const auto stalled =
+      DiskFileReader(1000, std::chrono::seconds(5), std::chrono::milliseconds(1000))
+          .read(path("pipe"));
+  silent.join();
+  ::close(writer_fd);
+  ASSERT_FALSE(stalled.ok());
+  EXPECT_EQ(stalled.error().message, path("pipe") + ": nothing arrived for 1 s");
+}
+
 TEST(ReadStream, StopsAtTheLimitOnAStreamWithoutEnd) {
   std::istringstream small(std::string(10, 'x'));
   EXPECT_EQ(read_stream(small, "<stdin>", 10).value(), std::string(10, 'x'));
