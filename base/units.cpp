@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -84,10 +85,14 @@ Result<PositionValue> parse_position(std::string_view text) {
         "(+50, -10deg)",
         text));
   }
-  if (!v.degrees && rest.find('.') != std::string_view::npos) {
-    return make_error("position '" + std::string(text) +
-                      "' is not a whole number of device units; use degrees ('" +
-                      std::string(text) + "deg') for fractions");
+  // 1000.0 is a whole number; 500.5 is not, and "500.5deg" would be another value entirely
+  // (an angle), so the hint offers the whole numbers around it.
+  if (!v.degrees && amount != std::floor(amount)) {
+    const std::string sign_text = v.relative ? std::string(1, text[0]) : "";
+    return make_error(fmt::format(
+        "position '{}' is not a whole number of device units; round it to {}{} or {}{} (an angle "
+        "may have a fraction: 90.5deg)",
+        text, sign_text, std::floor(amount), sign_text, std::ceil(amount)));
   }
   v.amount = sign * amount;
   return v;

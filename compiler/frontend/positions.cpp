@@ -32,13 +32,18 @@ std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const Yam
 bool check_position_limits(const PositionEntry& e, std::string_view name, long long min,
                            long long max, double units, std::string how,
                            std::optional<Reporter::Note> note, Reporter& reporter) {
-  const long long p = std::llround(units);
-  if (p >= min && p <= max) return true;
-  if (how.empty() && e.value.degrees) how = e.written;
-  std::string message = fmt::format("'{}' would move to {}", name, p);
+  // A value no servo's range comes near (22 digits, 1e300deg) is compared as written: rounded
+  // to an integer it would wrap around.
+  const bool huge = !(std::fabs(units) < 1e15);
+  const long long p = huge ? 0 : std::llround(units);
+  if (!huge && p >= min && p <= max) return true;
+  if (how.empty() && (e.value.degrees || huge)) how = e.written;
+  const bool above = huge ? !(units < 0) : p > max;
+  std::string message = huge ? fmt::format("'{}' would move far outside its range", name)
+                             : fmt::format("'{}' would move to {}", name, p);
   if (!how.empty()) message += " (" + how + ")";
   message +=
-      p > max ? ", above its max " + std::to_string(max) : ", below its min " + std::to_string(min);
+      above ? ", above its max " + std::to_string(max) : ", below its min " + std::to_string(min);
   reporter.error(e.at, std::move(message), std::move(note));
   return false;
 }
@@ -53,6 +58,10 @@ std::optional<double> relative_units(const PositionEntry& e, std::string_view na
                        e.written + "' has nothing to add to; move it to an absolute position first",
                    note);
     return std::nullopt;
+  }
+  if (!(std::fabs(delta) < 1e15)) {
+    how = std::to_string(*base) + " " + e.written;
+    return delta;  // far outside every range: check_position_limits says so
   }
   const long long d = std::llround(delta);
   how = std::to_string(*base) + (d < 0 ? " " : " +") + std::to_string(d);

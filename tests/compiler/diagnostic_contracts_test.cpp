@@ -77,6 +77,50 @@ TEST(DiagnosticContracts, EveryMistakeOfAStepIsReportedInOneRun) {
   EXPECT_EQ(out.servo_program(), nullptr);
 }
 
+TEST(DiagnosticContracts, AbsurdPositionsAreSaidAsWrittenNotWrappedAround) {
+  // 22 digits do not fit a 64-bit integer: rounding them would wrap to -9223372036854775808.
+  const std::string arm =
+      "robot: xarm\n"
+      "sequence:\n"
+      "  - move: {base: 9999999999999999999999, claw: 1e3deg}\n"
+      "    time: 1s\n"
+      "  - move: {base: -99999999999999999999999, elbow: 1000.0}\n"
+      "    time: 1s\n";
+  const CompileOutput out = testing::compile_text(arm);
+  EXPECT_EQ(sorted(rendered(out)),
+            sorted(std::vector<std::string>{
+                "main.yaml:3:18: error: 'base' would move far outside its range "
+                "(9999999999999999999999), above its max 1000\n"
+                "    3 |   - move: {base: 9999999999999999999999, claw: 1e3deg}\n"
+                "      |                  ^\n",
+                "main.yaml:3:48: error: '1e3deg' is not a position; write device units (500), "
+                "degrees (90deg) or a relative move (+50, -10deg)\n"
+                "    3 |   - move: {base: 9999999999999999999999, claw: 1e3deg}\n"
+                "      |                                                ^\n",
+                "main.yaml:5:18: error: 'base' has no known position yet, so the relative move "
+                "'-99999999999999999999999' has nothing to add to; move it to an absolute "
+                "position first\n"
+                "    5 |   - move: {base: -99999999999999999999999, elbow: 1000.0}\n"
+                "      |                  ^\n"}))
+      << testing::diagnostics_of(out);
+  // From a known position, a relative move of 23 digits is below the minimum, said as written.
+  const std::string relative =
+      "robot: xarm\n"
+      "sequence:\n"
+      "  - move: home\n"
+      "    time: 1s\n"
+      "  - move: {base: -99999999999999999999999}\n"
+      "    time: 1s\n";
+  const CompileOutput rel = testing::compile_text(relative);
+  EXPECT_EQ(
+      rendered(rel),
+      std::vector<std::string>{"main.yaml:5:18: error: 'base' would move far outside its range "
+                               "(500 -99999999999999999999999), below its min 0\n"
+                               "    5 |   - move: {base: -99999999999999999999999}\n"
+                               "      |                  ^\n"})
+      << testing::diagnostics_of(rel);
+}
+
 TEST(DiagnosticContracts, TheCaretStandsUnderTheTokenAfterMultiByteCharactersAndTabs) {
   // Line 3: "é" is two bytes (C3 A9), so 'base''s value is at byte column 27 but at screen
   // column 26: the caret line has 25 spaces. Line 4: a tab separates the key from its value,

@@ -56,6 +56,17 @@ TEST(ParsePosition, Rejects) {
   }
 }
 
+TEST(ParsePosition, AWholeNumberMayBeWrittenWithZeroDecimals) {
+  EXPECT_DOUBLE_EQ(parse_position("1000.0")->amount, 1000);
+  EXPECT_DOUBLE_EQ(parse_position("-20.00")->amount, -20);
+  EXPECT_EQ(parse_position("500.5").error().message,
+            "position '500.5' is not a whole number of device units; round it to 500 or 501 (an "
+            "angle may have a fraction: 90.5deg)");
+  EXPECT_EQ(parse_position("-2.5").error().message,
+            "position '-2.5' is not a whole number of device units; round it to -2 or -3 (an "
+            "angle may have a fraction: 90.5deg)");
+}
+
 TEST(ParseSpeed, UnitsAndDegrees) {
   auto u = parse_speed("400/s");
   ASSERT_TRUE(u);
