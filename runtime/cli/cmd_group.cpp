@@ -1,5 +1,6 @@
 // `seqc group run|stop|erase|speed`: the stored action groups on the servo controller
 // (GroupRun, GroupStop, GroupErase, GroupSpeed).
+#include <charconv>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -126,15 +127,22 @@ ExitCode erase_group(Context& ctx, const EraseOptions& o) {
 struct SpeedOptions {
   DeviceOptions device;
   std::string group;
-  long long percent = 100;
+  std::string percent;
 };
 
 ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
   auto target = boards::parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
-  auto percent = lsc::checked_u16(o.percent, "percent");
-  if (!percent) return usage_error(ctx, percent.error().message);
-  if (*percent == 0) return usage_error(ctx, "percent must be 1..65535 (100 = as stored), got 0");
+  // One message for every value out of range or not a number, with the same range as --help.
+  long long value = 0;
+  const auto [end, ec] =
+      std::from_chars(o.percent.data(), o.percent.data() + o.percent.size(), value);
+  if (ec != std::errc() || end != o.percent.data() + o.percent.size() || value < 1 ||
+      value > 65535) {
+    return usage_error(
+        ctx, "percent must be a whole number 1..65535 (100 = as stored), got '" + o.percent + "'");
+  }
+  const auto percent = std::optional<std::uint16_t>(static_cast<std::uint16_t>(value));
   return tell_on_controller(ctx, o.device, lsc::GroupSpeed{target->group, *percent},
                             target_text(*target) + " speed " + std::to_string(*percent) +
                                 "% (volatile: back to 100% at power-off)\n");
@@ -175,7 +183,9 @@ void add_group_command(CLI::App& app, Context& ctx, Outcome& result) {
       "Play a group faster or slower (GroupSpeed): 100 = as stored, 200 = twice as fast.\n"
       "Volatile: back to 100 at power-off");
   speed_cmd->add_option("GROUP", speed->group, "Group number 0-254, or `all`")->required();
-  speed_cmd->add_option("PERCENT", speed->percent, "Speed in percent (1-65535)")->required();
+  speed_cmd->add_option("PERCENT", speed->percent, "Speed in percent (1-65535)")
+      ->type_name("INT")
+      ->required();
   add_device_options(*speed_cmd, speed->device);
   speed_cmd->callback([speed, &ctx, &result] { result.code = speed_group(ctx, *speed); });
 }

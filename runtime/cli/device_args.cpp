@@ -7,10 +7,16 @@
 namespace seqc::cli {
 
 Result<io::Duration> parse_timeout(std::string_view text) {
+  // A reply is waited for in clock time: the language's beats and bars mean nothing here, so
+  // the parse's own message, which offers them, is not passed on (but its hint for a number
+  // without a unit is).
   auto time = seqc::parse_time(text);
-  if (!time) return make_error("--timeout: " + time.error().message);
-  if (time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
-    return make_error("--timeout: give ms or s");
+  if (!time && time.error().message.find("has no unit") != std::string::npos) {
+    return make_error("--timeout: " + time.error().message);
+  }
+  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
+    return make_error("--timeout: '" + std::string(text) +
+                      "' is not a time in ms or s; write it like '500ms' or '2s'");
   }
   const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
   if (ms <= 0 || ms > 3600.0 * 1000) {

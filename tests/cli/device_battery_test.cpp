@@ -65,6 +65,13 @@ TEST(DeviceBattery, BadTimeoutAndPortAreUsageErrors) {
   r = h.run({"battery", "--port", "emu:xarm", "--timeout", "5"});
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "seqc: error: --timeout: time '5' has no unit; write '5ms' or '5s'\n");
+  // A reply is waited for in clock time: no beats offered, none taken.
+  for (const char* t : {"abc", "2b", "1bar"}) {
+    r = h.run({"battery", "--port", "emu:xarm", "--timeout", t});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.err, std::string("seqc: error: --timeout: '") + t +
+                         "' is not a time in ms or s; write it like '500ms' or '2s'\n");
+  }
   r = h.run({"battery", "--port", "emu:raspblock"});
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(h.received(), "");

@@ -128,10 +128,19 @@ TEST(DeviceGroup, SpeedOutOfRangeIsAUsageError) {
   DeviceHarness h;
   RunResult r = h.run({"group", "speed", "3", "70000", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "seqc: error: percent must be 0..65535, got 70000\n");
+  EXPECT_EQ(r.err,
+            "seqc: error: percent must be a whole number 1..65535 (100 = as stored), got "
+            "'70000'\n");
   r = h.run({"group", "speed", "3", "0", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "seqc: error: percent must be 1..65535 (100 = as stored), got 0\n");
+  EXPECT_EQ(r.err,
+            "seqc: error: percent must be a whole number 1..65535 (100 = as stored), got '0'\n");
+  // Not a number: the same words as a number out of range, not the option parser's.
+  r = h.run({"group", "speed", "3", "abc", "--port", "emu:xarm"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "seqc: error: percent must be a whole number 1..65535 (100 = as stored), got "
+            "'abc'\n");
   EXPECT_EQ(h.received(), "");
 }
 
