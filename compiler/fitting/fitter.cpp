@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -28,6 +29,13 @@ using fitting::SearchKind;
 using fitting::SearchLimits;
 using fitting::Stretch;
 using fitting::StretchSource;
+
+// Instants at which an action of a long stretch is checked (fine stretches: every millisecond).
+constexpr std::int64_t kCoarseCheckPoints = 64;
+// After a shortfall in a long stretch, how far (in samples, at least four longest actions) the
+// next search looks before a cut: each search after a shortfall starts again from it, so
+// without a window the searches of a stretch that misses often would cost shortfalls x length.
+constexpr std::size_t kCoarseWindow = 1000;
 
 // One servo's segments with their boundaries rounded to whole milliseconds.
 struct RoundedTrack {
@@ -65,18 +73,35 @@ class Fitter {
                           [&](std::size_t s) { return has_knot(s, knots[end]); })) {
         ++end;
       }
-      const std::vector<std::int64_t> inner(knots.begin() + static_cast<std::ptrdiff_t>(j) + 1,
-                                            knots.begin() + static_cast<std::ptrdiff_t>(end) + 1);
-      const Stretch in = sample(curved, knots[j], inner);
-      memo_.enter(in, {curved, knots[j], inner},
-                  [this](const StretchSource& x) { return sample(x.curved, x.a, x.inner); });
-      fit_stretch(in, curved);
+      if (knots[end] - knots[j] <= fitting::kFineMs) {
+        const std::vector<std::int64_t> inner(knots.begin() + static_cast<std::ptrdiff_t>(j) + 1,
+                                              knots.begin() + static_cast<std::ptrdiff_t>(end) + 1);
+        fit_sampled(curved, knots[j], inner);
+      } else {
+        // A long stretch is fitted knot by knot, each interval sampled on its own grid (a
+        // servo mid-curve there has its target pinned, as at a cut).
+        for (std::size_t q = j; q < end; ++q) fit_sampled(curved, knots[q], {knots[q + 1]});
+      }
       j = end;
     }
     return std::move(result_);
   }
 
  private:
+  void fit_sampled(const std::vector<std::size_t>& curved, std::int64_t a,
+                   const std::vector<std::int64_t>& inner) {
+    const Stretch in = sample(curved, a, inner);
+    memo_.enter(in, {curved, a, inner},
+                [this](const StretchSource& x) { return sample(x.curved, x.a, x.inner); });
+    fit_stretch(in, curved);
+  }
+
+  // The whole millisecond of sample t of a stretch.
+  static std::int64_t ms_of(const Stretch& in, std::size_t t) {
+    if (in.step == 1) return in.a + static_cast<std::int64_t>(t);
+    return in.a + std::llround(static_cast<double>(t) * in.step);
+  }
+
   // [first, last) of servo s's segments that overlap the open interval (a, b).
   std::pair<std::size_t, std::size_t> overlapping(std::size_t s, std::int64_t a,
                                                   std::int64_t b) const {
@@ -150,12 +175,20 @@ class Fitter {
                 std::int64_t* worst_at = nullptr, double* worst_error = nullptr,
                 double* worst_tol = nullptr) const {
     double most = -1e300;
-    for (std::int64_t t = a; t <= b; ++t) {
+    // Every millisecond, but in a long stretch (whose bands kept a margin for the instants
+    // between samples) about two per sample it spans and at most kCoarseCheckPoints + 1 evenly
+    // spaced ones, so that the check costs the same for any length.
+    const std::int64_t len = b - a;
+    const auto per_samples =
+        static_cast<std::int64_t>(2 * std::ceil(static_cast<double>(len) / coarse_step_)) + 2;
+    const std::int64_t count = coarse_ ? std::min({len, kCoarseCheckPoints, per_samples}) : len;
+    for (std::int64_t i = 0; i <= count; ++i) {
+      const std::int64_t t = count == len ? a + i : a + len * i / count;
       const double td = static_cast<double>(t);
       const double line = controller_output(
           opt_.model, p0 + (p1 - p0) * (td - static_cast<double>(a)) / static_cast<double>(b - a));
-      const double want = intended(s, td).value_or(line);
-      const std::optional<Segment> seg = segment_at(s, td);
+      const std::optional<Segment> seg = segment_at(s, td);  // intended(s, td) is its value
+      const double want = seg ? seg->value(td) : line;
       const double tol = seg ? seg->tolerance : 1.0;
       const double err = std::abs(line - want);
       if (err - tol > most) {
@@ -207,13 +240,26 @@ class Fitter {
     }
   }
 
-  // The stretch from knot a over the knots `inner` (its end last).
+  // The stretch from knot a over the knots `inner` (its end last): every millisecond up to
+  // kFineMs; a longer one (then `inner` is its end alone) at evenly spaced instants, each band
+  // narrowed by a margin that keeps the controller within tolerance between them and when the
+  // boundaries are rounded to whole milliseconds (coarse_margins()). Under a rounding model the
+  // band is where the line may be so that the rounded output is within tolerance whatever the
+  // instant: tol less the rounding's reach.
   Stretch sample(const std::vector<std::size_t>& curved, std::int64_t a,
                  const std::vector<std::int64_t>& inner) const {
     const std::int64_t b = inner.back();
     Stretch in;
     in.a = a;
-    const std::size_t n = in.n = static_cast<std::size_t>(b - a);
+    const bool coarse = b - a > fitting::kFineMs;
+    const double samples = std::min<double>(
+        fitting::kCoarseSamples,
+        std::sqrt(fitting::kCoarseWork * static_cast<double>(b - a) / opt_.max_action_ms));
+    const std::size_t n = in.n =
+        coarse ? std::max<std::size_t>(static_cast<std::size_t>(samples),
+                                       static_cast<std::size_t>(4 * (b - a) / opt_.max_action_ms))
+               : static_cast<std::size_t>(b - a);
+    in.step = coarse ? static_cast<double>(b - a) / static_cast<double>(n) : 1.0;
     const std::size_t k = in.k = curved.size();
     for (auto* v : {&in.want, &in.lo, &in.hi, &in.tol}) v->resize(k * (n + 1));
     for (auto* v : {&in.pin, &in.vlo, &in.vhi}) v->resize(k * (n + 1));
@@ -223,27 +269,40 @@ class Fitter {
     std::size_t next = n;
     for (std::size_t t = n + 1; t-- > 0;) {
       in.next_knot[t] = static_cast<std::uint32_t>(next);
-      if (std::binary_search(inner.begin(), inner.end(), a + static_cast<std::int64_t>(t))) {
+      if (coarse
+              ? t == n
+              : std::binary_search(inner.begin(), inner.end(), a + static_cast<std::int64_t>(t))) {
         next = t;
         in.is_knot[t] = 1;
       }
     }
     for (std::int64_t knot : inner) {
-      const std::size_t t = static_cast<std::size_t>(knot - a);
+      const std::size_t t = coarse ? n : static_cast<std::size_t>(knot - a);
       for (std::size_t i = 0; i < k; ++i)
         in.pinned[in.at(i, t)] = has_knot(curved[i], knot) ? 1 : 0;
     }
     for (std::size_t i = 0; i < k; ++i) {
       const ServoLimits lim = limits(curved[i]);
       for (std::size_t t = 0; t <= n; ++t) {
-        const double at = static_cast<double>(a + static_cast<std::int64_t>(t));
-        const double w = intended(curved[i], at).value_or(0);
+        double at = static_cast<double>(a + static_cast<std::int64_t>(t));
+        if (coarse) {  // the last sample at the stretch's end exactly
+          at = t == n ? static_cast<double>(b)
+                      : static_cast<double>(a) + static_cast<double>(t) * in.step;
+        }
+        const std::size_t x = in.at(i, t);
+        in.want[x] = intended(curved[i], at).value_or(0);
         const std::optional<Segment> seg = segment_at(curved[i], at);
         const double tol = (seg ? seg->tolerance : 1.0) + 1e-9;
-        const std::size_t x = in.at(i, t);
-        in.want[x] = w;
         in.tol[x] = tol;
-        std::tie(in.lo[x], in.hi[x]) = line_band(w, tol);
+      }
+      const std::vector<double> margins = coarse ? coarse_margins(in, i) : std::vector<double>();
+      for (std::size_t t = 0; t <= n; ++t) {
+        const std::size_t x = in.at(i, t);
+        const double w = in.want[x];
+        // What the search may use of the tolerance: all of it, or in a long stretch what the
+        // margin leaves.
+        const double tol = coarse ? std::max(0.0, in.tol[x] - margins[t]) : in.tol[x];
+        std::tie(in.lo[x], in.hi[x]) = coarse ? coarse_band(w, tol) : line_band(w, tol);
         in.pin[x] = static_cast<int>(std::lround(w));
         // Free targets: whole units within tolerance and limits, at most kMaxValues of them
         // (around the rounded curve) so that each servo's set fits in 64 bits.
@@ -260,6 +319,63 @@ class Fitter {
     return in;
   }
 
+  // The margin at each sample of servo i of a long stretch (its `want` and `tol` filled in): how
+  // far the controller may stray from what the search sees there. Between two samples a line's
+  // distance from the curve bends by at most max|w''| step^2 / 8 (the second differences around
+  // the sample, taken twice over); and a boundary rounded to its whole millisecond moves by at
+  // most 0.5 ms, which moves a line by half its slope, at most the curve's steepest over the
+  // longest action around the sample plus 2 tol over the shortest action.
+  std::vector<double> coarse_margins(const Stretch& in, std::size_t i) const {
+    const std::size_t n = in.n;
+    auto w = [&](std::size_t t) { return in.want[in.at(i, t)]; };
+    std::vector<double> slope(n + 1, 0), bend(n + 1, 0);
+    for (std::size_t t = 0; t < n; ++t) slope[t] = std::abs(w(t + 1) - w(t)) / in.step;
+    if (n > 0) slope[n] = slope[n - 1];
+    for (std::size_t t = 1; t < n; ++t) bend[t] = std::abs(w(t + 1) - 2 * w(t) + w(t - 1));
+    // The steepest slope within the longest action either side (a sliding maximum).
+    const auto reach = static_cast<std::size_t>(std::ceil(opt_.max_action_ms / in.step)) + 1;
+    std::vector<double> steepest(n + 1, 0);
+    std::deque<std::size_t> window;  // indices of decreasing slopes
+    for (std::size_t t = 0, next = 0; t <= n; ++t) {
+      for (; next <= std::min(n, t + reach); ++next) {
+        while (!window.empty() && slope[window.back()] <= slope[next]) window.pop_back();
+        window.push_back(next);
+      }
+      while (window.front() + reach < t) window.pop_front();
+      steepest[t] = slope[window.front()];
+    }
+    std::vector<double> out(n + 1);
+    const double shortest = static_cast<double>(opt_.min_action_ms);
+    for (std::size_t t = 0; t <= n; ++t) {
+      double b = bend[t];
+      if (t > 0) b = std::max(b, bend[t - 1]);
+      if (t < n) b = std::max(b, bend[t + 1]);
+      out[t] = b / 4 + 0.5 * (steepest[t] + 2 * in.tol[in.at(i, t)] / shortest) + 1e-9;
+    }
+    return out;
+  }
+
+  // Where the straight line may pass at a sample of a long stretch where the curve is at `want`
+  // and the tolerance less the margin is `tol`, so that what the controller puts out is within
+  // tolerance at any instant near it: the rounding's reach taken off (empty bands shrink to the
+  // curve, whose actions then miss and say so).
+  std::pair<double, double> coarse_band(double want, double tol) const {
+    double lo = want - tol, hi = want + tol;
+    switch (opt_.model) {
+      case ControllerModel::StraightLine:
+        break;
+      case ControllerModel::Rounds:  // |round(x) - x| <= 0.5
+        lo += 0.5;
+        hi -= 0.5;
+        break;
+      case ControllerModel::Truncates:  // x - 1 < trunc(x) <= x, positions being non-negative
+        lo += 1;
+        break;
+    }
+    if (lo > hi) lo = hi = want;
+    return {lo, hi};
+  }
+
   // Fits a stretch. Each search keeps the free fit only when it beats the on-curve one, but where
   // a search stops short (a shortfall) or is cut, the searches after it start from different
   // places; then the whole stretch is fitted on the curve as well, and the fit with fewer
@@ -267,7 +383,19 @@ class Fitter {
   void fit_stretch(const Stretch& in, const std::vector<std::size_t>& curved) {
     // As long as the longest action this stretch can hold (a program of straight moves needs
     // none: the table is not allocated for it).
-    const std::size_t spans = std::min<std::size_t>(in.n, opt_.max_action_ms) + 1;
+    coarse_ = in.step != 1;
+    coarse_step_ = in.step;
+    if (in.step == 1) {
+      min_samples_ = opt_.min_action_ms;
+      max_samples_ = opt_.max_action_ms;
+    } else {
+      // Lengths in samples whose actions, their ends rounded to whole ms, stay within the limits.
+      const double shortest = opt_.min_action_ms + 1.0;
+      min_samples_ = static_cast<std::size_t>(std::ceil(shortest / in.step));
+      max_samples_ = static_cast<std::size_t>(std::floor((opt_.max_action_ms - 1.0) / in.step));
+      max_samples_ = std::max(max_samples_, min_samples_);
+    }
+    const std::size_t spans = std::min<std::size_t>(in.n, max_samples_) + 1;
     if (inverse_.size() < spans) {
       const std::size_t had = std::max<std::size_t>(inverse_.size(), 1);
       inverse_.resize(spans);
@@ -325,7 +453,7 @@ class Fitter {
   // in two where a search runs over its budget.
   void fit_range(const Stretch& in, const std::vector<std::size_t>& curved, std::size_t first,
                  std::size_t last) {
-    const std::size_t min = opt_.min_action_ms;
+    const std::size_t min = min_samples_;
     std::size_t cur = first;
     while (cur < last) {
       std::size_t work_on = 0, work_free = 0;
@@ -384,6 +512,15 @@ class Fitter {
       for (std::size_t i = 0; i < in.k; ++i) pinned[i] = in.pin[in.at(i, e)];
       emit_curved(in, curved, cur, e, pinned.data());
       cur = e;
+      const std::size_t window = std::max(kCoarseWindow, 4 * max_samples_);
+      if (coarse_ && last - cur > 2 * window) {
+        const std::size_t cut = cut_point(in, cur, cur + 2 * window);
+        if (cut > cur) {
+          fit_range(in, curved, cur, cut);
+          fit_range(in, curved, cut, last);
+          return;
+        }
+      }
     }
   }
 
@@ -407,7 +544,7 @@ class Fitter {
     return static_cast<double>(width) * len * len / actions <= fitting::kWorkBudget / 4.0;
   }
 
-  SearchLimits search_limits() const { return {opt_.min_action_ms, opt_.max_action_ms, &inverse_}; }
+  SearchLimits search_limits() const { return {min_samples_, max_samples_, &inverse_}; }
 
   // The on-curve search of [first, last] of the current stretch, and the work it spent.
   Path on_curve(const Stretch& in, std::size_t first, std::size_t last, std::size_t& work) {
@@ -452,7 +589,7 @@ class Fitter {
   // curved servos move least and lie nearest whole units (relative to their tolerances), or at
   // a knot inside, at least min from the knots around it (first if there is no such place).
   std::size_t cut_point(const Stretch& in, std::size_t first, std::size_t last) const {
-    const std::size_t min = opt_.min_action_ms;
+    const std::size_t min = min_samples_;
     if (last - first < 4 * min) return first;
     const std::size_t from = first + (last - first) / 4, to = last - (last - first) / 4;
     std::size_t best = first, since_knot = min;
@@ -486,7 +623,7 @@ class Fitter {
     for (std::size_t i = 0; i < in.k && e < in.n; ++i) {
       if (in.pinned[in.at(i, e)] == 0) free[curved[i]] = values[i];
     }
-    emit(in.a + static_cast<std::int64_t>(s), in.a + static_cast<std::int64_t>(e), &curved, &free);
+    emit(ms_of(in, s), ms_of(in, e), &curved, &free);
   }
 
   void emit(std::int64_t s, std::int64_t e, const std::vector<std::size_t>* curved = nullptr,
@@ -582,9 +719,13 @@ class Fitter {
   std::vector<RoundedTrack> tracks_;
   std::vector<std::optional<int>> pos_;  // each servo's last target
   std::vector<double> inverse_;          // SearchLimits::inverse
-  fitting::SearchMemo memo_;             // the searches run so far, by stretch content
-  bool free_ = true;                     // whether fit_range() tries free end points
-  bool restarted_ = false;               // whether a search stopped short or was cut
+  std::size_t min_samples_ = 20;         // the current stretch's action lengths, in samples
+  std::size_t max_samples_ = 30000;
+  bool coarse_ = false;       // whether the current stretch is sampled coarser
+  double coarse_step_ = 1;    // and its ms per sample
+  fitting::SearchMemo memo_;  // the searches run so far, by stretch content
+  bool free_ = true;          // whether fit_range() tries free end points
+  bool restarted_ = false;    // whether a search stopped short or was cut
   FitResult result_;
 };
 

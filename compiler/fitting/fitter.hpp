@@ -28,6 +28,13 @@
 // search in one piece is cut where its servos move least (or at a knot), the cut pinned like a
 // knot, and each part searched alone.
 //
+// A stretch longer than 10 s (fitting/stretch.hpp, kFineMs) is fitted knot interval by knot
+// interval, each searched on a bounded number of evenly spaced instants with its tolerance
+// narrowed by a margin for what lies between them and for rounding its boundaries to whole
+// milliseconds, so that its cost follows its actions rather than its milliseconds: its
+// boundaries fall on those instants, it is still within tolerance at every millisecond, and its
+// errors and shortfalls are measured at two instants per sample of each action, at most 65.
+//
 // Where even the shortest action cannot meet a tolerance, the result says where and by how
 // much (a shortfall), and the fit goes on with shortest actions.
 //

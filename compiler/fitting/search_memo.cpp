@@ -9,7 +9,7 @@ namespace {
 // A hash of the stretch's length, servos and intended positions: the other samples mostly
 // follow from these, and same_content() compares them all.
 std::uint64_t content_hash(const Stretch& in) {
-  std::uint64_t h = in.n * 0x9e3779b97f4a7c15ULL ^ in.k;
+  std::uint64_t h = (in.n * 0x9e3779b97f4a7c15ULL ^ in.k) + std::bit_cast<std::uint64_t>(in.step);
   for (const double w : in.want) {
     h = (h ^ std::bit_cast<std::uint64_t>(w)) * 0xff51afd7ed558ccdULL;
     h ^= h >> 32;
@@ -19,8 +19,8 @@ std::uint64_t content_hash(const Stretch& in) {
 
 // Everything a search reads is equal.
 bool same_content(const Stretch& x, const Stretch& y) {
-  return x.n == y.n && x.k == y.k && x.want == y.want && x.lo == y.lo && x.hi == y.hi &&
-         x.tol == y.tol && x.pin == y.pin && x.vlo == y.vlo && x.vhi == y.vhi &&
+  return x.n == y.n && x.step == y.step && x.k == y.k && x.want == y.want && x.lo == y.lo &&
+         x.hi == y.hi && x.tol == y.tol && x.pin == y.pin && x.vlo == y.vlo && x.vhi == y.vhi &&
          x.pinned == y.pinned && x.next_knot == y.next_knot && x.is_knot == y.is_knot;
 }
 

@@ -21,11 +21,24 @@ constexpr std::size_t kWorkBudget = 40'000'000;
 // End values the free fit tracks per servo and boundary: one 64-bit set.
 constexpr int kMaxValues = 64;
 constexpr int kNoKey = std::numeric_limits<int>::max() / 2;
+// Stretches up to this long (ms) are sampled every millisecond; longer ones at about
+// sqrt(kCoarseWork x length / longest action) instants (a search tries each sample's actions,
+// about kCoarseWork lines in all), at most kCoarseSamples (more only where the longest action
+// would span fewer than four).
+constexpr std::int64_t kFineMs = 10'000;
+constexpr double kCoarseWork = 4e6;
+constexpr std::size_t kCoarseSamples = 10'000;
 
-// What the searches read, per curved servo and millisecond of a stretch [a, a + n].
+// What the searches read, per curved servo and sample of a stretch: sample t lies at
+// a + t * step ms. A stretch of up to kFineMs is sampled every millisecond (step 1); a longer one
+// at a bounded number of evenly spaced instants, its bands narrowed by a margin that covers the
+// curve between them and the rounding of its boundaries to whole milliseconds (fitter.cpp,
+// Fitter::sample), so a search's cost follows its samples, not its milliseconds. The searches
+// count in samples: every length they read (min_ms, max_ms, n, next_knot) is in samples.
 struct Stretch {
   std::int64_t a = 0;
-  std::size_t n = 0;           // its length in ms
+  std::size_t n = 0;           // its length in samples (in ms when step is 1)
+  double step = 1;             // ms per sample
   std::size_t k = 0;           // curved servos
   std::vector<double> want;    // the intended position
   std::vector<double> lo, hi;  // where the straight line may be there (the model applied)
@@ -49,8 +62,8 @@ struct Path {
   std::size_t reached = 0;  // the last end (first when none)
 };
 
-// The action lengths every search keeps, and 1 / d for every length d up to the stretch's
-// longest (so that the searches multiply instead of divide).
+// The action lengths every search keeps (in samples), and 1 / d for every length d up to the
+// stretch's longest (so that the searches multiply instead of divide).
 struct SearchLimits {
   std::size_t min_ms = 20;
   std::size_t max_ms = 30000;

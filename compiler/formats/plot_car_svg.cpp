@@ -60,9 +60,15 @@ std::string path_panel(const CarSimulation& sim, double top) {
     ys.push_back(Y(p.y));
   }
   out += svg::polylines(xs, ys, "fill=\"none\" stroke=\"#1f2937\" stroke-width=\"1.6\"");
-  // Heading arrows once a second.
+  // Heading arrows once a second (every so many whole seconds for a long program, so that there
+  // are at most kArrows): at the first sample at or after each.
+  constexpr std::uint64_t kArrows = 200;
+  const std::uint64_t every =
+      std::max<std::uint64_t>(1, (sim.duration_ms + kArrows * 1000 - 1) / (kArrows * 1000)) * 1000;
+  std::uint64_t next_arrow = 0;
   for (std::size_t i = 0; i < path.size(); ++i) {
-    if (sim.samples[i].time_ms % 1000 != 0) continue;
+    if (sim.samples[i].time_ms < next_arrow) continue;
+    while (next_arrow <= sim.samples[i].time_ms) next_arrow += every;
     const double h = path[i].heading * kPi / 180;
     out += svg::line(X(path[i].x), Y(path[i].y), X(path[i].x) + 9 * std::sin(h),
                      Y(path[i].y) - 9 * std::cos(h), "stroke=\"#2563eb\" stroke-width=\"1.2\"");
@@ -89,7 +95,7 @@ std::string path_panel(const CarSimulation& sim, double top) {
 
 std::string plot_car_program(const compiler::RaspblockProgram& program,
                              const PlotOptions& options) {
-  const CarSimulation sim = simulate_car(program, 20);
+  const CarSimulation sim = simulate_car(program, car_picture_step_ms(program));
   const double duration = sim.duration_ms;
   plot::Frame f;
   f.from = options.from_ms.value_or(0);

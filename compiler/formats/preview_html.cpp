@@ -194,7 +194,7 @@ PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const st
                              double end_ms) {
   // The state at every millisecond, kept where it changes: the page looks up the last change at
   // or before its instant, as `seqc simulate` samples it.
-  const CarSimulation fine = simulate_car(program, 1);
+  const CarSimulation fine = car_changes(program);
   std::string j = "{\"kind\":\"car\",\"title\":" + json_string(title) +
                   ",\"duration\":" + std::to_string(fine.duration_ms) + ",\"changes\":[";
   auto opt = [](const std::optional<int>& v) { return v ? std::to_string(*v) : "null"; };
@@ -214,8 +214,8 @@ PreviewPart preview_car_part(const compiler::RaspblockProgram& program, const st
   for (int i = 0; i < 4; ++i) {
     if (used[i]) j += ",\"servo" + std::to_string(i + 1) + "\"";
   }
-  // The path as `seqc plot` integrates it (20 ms samples), in mm.
-  const CarSimulation coarse = simulate_car(program, 20);
+  // The path as `seqc plot` integrates it (20 ms samples, coarser for a long program), in mm.
+  const CarSimulation coarse = simulate_car(program, car_picture_step_ms(program));
   const std::vector<CarPose> path = car_path(coarse);
   j += "],\"path\":[";
   for (std::size_t i = 0; i < path.size(); ++i) {

@@ -116,6 +116,17 @@ std::optional<PreviewSong> preview_song(const compiler::Program& program,
   return PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
 }
 
+std::uint32_t default_simulate_step_ms(const compiler::Program& program) {
+  std::uint64_t duration = 0;
+  if (const auto* servo = std::get_if<compiler::ServoProgram>(&program)) {
+    duration = servo->duration_ms();
+  } else if (const auto* car = std::get_if<compiler::RaspblockProgram>(&program)) {
+    duration = car->duration_ms;
+  }
+  const std::uint64_t step = (duration + kDefaultSimulateRows - 1) / kDefaultSimulateRows;
+  return static_cast<std::uint32_t>(std::max<std::uint64_t>(20, step));
+}
+
 Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool compare) {
   Simulated out;
   if (const auto* servo = std::get_if<compiler::ServoProgram>(&program)) {

@@ -80,4 +80,9 @@ struct Simulated {
 };
 Simulated simulate(const compiler::Program& program, std::uint32_t step_ms, bool compare);
 
+// `seqc simulate`'s step without --step: 20 ms, or the whole milliseconds that keep a long
+// program to kDefaultSimulateRows rows, so that its output grows no further with its length.
+constexpr std::uint64_t kDefaultSimulateRows = 50'000;
+std::uint32_t default_simulate_step_ms(const compiler::Program& program);
+
 }  // namespace seqc::compiler

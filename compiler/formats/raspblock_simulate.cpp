@@ -48,6 +48,29 @@ CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint3
   return sim;
 }
 
+CarSimulation car_changes(const compiler::RaspblockProgram& program) {
+  CarSimulation sim;
+  sim.duration_ms = program.duration_ms;
+  CarState state;
+  std::size_t next = 0;
+  std::uint32_t t = 0;
+  for (;;) {
+    while (next < program.packets.size() && program.packets[next].at_ms <= t) {
+      apply(state, program.packets[next].packet);
+      ++next;
+    }
+    sim.samples.push_back({t, state});
+    if (next == program.packets.size() || program.packets[next].at_ms > sim.duration_ms) break;
+    t = program.packets[next].at_ms;
+  }
+  return sim;
+}
+
+std::uint32_t car_picture_step_ms(const compiler::RaspblockProgram& program) {
+  const std::uint32_t step = (program.duration_ms + kCarPictureSamples - 1) / kCarPictureSamples;
+  return std::max<std::uint32_t>(20, step);
+}
+
 std::string to_csv(const CarSimulation& sim) {
   std::string out = "time_ms,x,y,z,pan,tilt,servo1,servo2,servo3,servo4\n";
   for (const CarSimulation::Sample& s : sim.samples) {

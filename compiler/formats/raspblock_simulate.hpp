@@ -34,6 +34,16 @@ struct CarSimulation {
 // step_ms >= 1.
 CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint32_t step_ms);
 
+// The same state only where it can change: at 0 and at each packet's instant up to the end, so
+// what simulate_car(program, 1) says at every millisecond is the last of these at or before it,
+// at the cost of the packets rather than the milliseconds.
+CarSimulation car_changes(const compiler::RaspblockProgram& program);
+
+// The step of the car's pictures (`seqc plot`'s lanes and path, the preview's path): 20 ms, or
+// coarser for a long program so that they hold at most kCarPictureSamples samples.
+constexpr std::uint32_t kCarPictureSamples = 10'000;
+std::uint32_t car_picture_step_ms(const compiler::RaspblockProgram& program);
+
 // "time_ms,x,y,z,pan,tilt,servo1,servo2,servo3,servo4\n0,0,0,0,1500,1500,,,,\n...".
 std::string to_csv(const CarSimulation& sim);
 

@@ -1,5 +1,6 @@
 #include "compiler/formats/simulate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -51,6 +52,40 @@ class Motion {
   std::size_t k_ = 0;
 };
 
+// The instants --compare looks at for servo index s: every millisecond between two
+// boundaries (an action's start or end, a segment's) up to kCompareExactMs apart, and
+// kComparePoints evenly spaced ones where they lie farther apart (a long action or hold, whose
+// line and curve are smooth between them), so that a long program costs its actions, not its
+// milliseconds.
+constexpr std::uint64_t kCompareExactMs = 10'000;
+constexpr std::uint64_t kComparePoints = 1'000;
+std::vector<std::uint64_t> compare_instants(const compiler::ServoProgram& program, std::size_t s) {
+  const std::uint64_t end = program.duration_ms();
+  std::vector<std::uint64_t> bounds = {0, end};
+  for (const compiler::Keyframe& key : program.keyframes) {
+    bounds.push_back(key.start_ms);
+    bounds.push_back(key.start_ms + std::uint64_t{key.time_ms});
+  }
+  if (s < program.timeline.servo_count()) {
+    for (std::size_t i = 0; i < program.timeline.count(s); ++i) {
+      for (const Instant x : {program.timeline.start_of(s, i), program.timeline.end_of(s, i)}) {
+        bounds.push_back(static_cast<std::uint64_t>(std::max<std::int64_t>(0, x.round())));
+      }
+    }
+  }
+  std::sort(bounds.begin(), bounds.end());
+  bounds.erase(std::unique(bounds.begin(), bounds.end()), bounds.end());
+  while (!bounds.empty() && bounds.back() > end) bounds.pop_back();
+  std::vector<std::uint64_t> out;
+  for (std::size_t i = 0; i + 1 < bounds.size(); ++i) {
+    const std::uint64_t a = bounds[i], len = bounds[i + 1] - a;
+    const std::uint64_t count = len <= kCompareExactMs ? len : kComparePoints;
+    for (std::uint64_t j = 0; j < count; ++j) out.push_back(a + len * j / count);
+  }
+  out.push_back(end);
+  return out;
+}
+
 }  // namespace
 
 std::vector<Difference> compare_with_intent(const compiler::ServoProgram& program) {
@@ -60,7 +95,7 @@ std::vector<Difference> compare_with_intent(const compiler::ServoProgram& progra
     Difference d;
     d.servo = program.robot.servos[s].name;
     Motion motion(program);
-    for (std::uint64_t t = 0; t <= program.duration_ms(); ++t) {
+    for (const std::uint64_t t : compare_instants(program, s)) {
       const auto want = program.timeline.value(s, static_cast<double>(t));
       const double got = motion.at(s, t);
       if (!want) continue;

@@ -20,6 +20,7 @@ struct SimulateOptions {
   std::string file;
   std::string output;
   int step_ms = 20;
+  bool step_given = false;  // without --step, a long program is sampled coarser (see below)
   bool strict = false;
   bool compare = false;
 };
@@ -28,8 +29,9 @@ struct SimulateOptions {
 // cannot be simulated (said).
 bool simulate_one(Context& ctx, const compiler::CompileOutput& output, const std::string& name,
                   const SimulateOptions& o, std::string& csv) {
-  const compiler::Simulated sim =
-      compiler::simulate(*output.program, static_cast<std::uint32_t>(o.step_ms), o.compare);
+  const std::uint32_t step = o.step_given ? static_cast<std::uint32_t>(o.step_ms)
+                                          : compiler::default_simulate_step_ms(*output.program);
+  const compiler::Simulated sim = compiler::simulate(*output.program, step, o.compare);
   if (!sim.ok) {
     ctx.err << "seqc: error: " << name << ": this robot kind cannot be simulated\n";
     return false;
@@ -90,14 +92,16 @@ void add_simulate_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_option("-o,--output", opts->output,
                   "Write the CSV here instead of stdout (- is stdout); a show writes one per "
                   "performer, OUT-NAME.csv");
-  cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
-      ->check(CLI::Range(1, 60000))
-      ->default_val(20);
+  CLI::Option* step =
+      cmd->add_option("--step", opts->step_ms, "Sample every this many milliseconds")
+          ->check(CLI::Range(1, 60000))
+          ->default_val(20);
   cmd->add_flag("--compare", opts->compare,
                 "Add each servo's intended curve to the CSV and print, per servo, the largest "
                 "difference from the compiled motion and when");
   cmd->add_flag("--strict", opts->strict, "Treat warnings as errors");
-  cmd->callback([&ctx, &result, opts] {
+  cmd->callback([&ctx, &result, opts, step] {
+    opts->step_given = step->count() > 0;
     const Loaded loaded = load_and_report(ctx, opts->file, opts->strict, SongCheck::Decode);
     result.code = loaded.code;
     if (result.code != ExitCode::Ok) return;

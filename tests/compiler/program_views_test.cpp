@@ -3,6 +3,7 @@
 // packets; a show's parts stacked on one time axis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "compiler/compile.hpp"
 #include "compiler/formats/program_views.hpp"
+#include "compiler/formats/raspblock_simulate.hpp"
 #include "runtime/io/disk.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
@@ -84,6 +86,53 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
   const std::string svg = plot_program(*car.program, options);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("car title"), std::string::npos);
+}
+
+// The state the preview reads where it changes, from the packets alone, is the state at every
+// millisecond: the last change at or before it.
+TEST(ProgramViews, TheCarsChangesAreItsStateAtEveryMillisecond) {
+  io::DiskFileReader disk;
+  const compiler::CompileOutput car =
+      compiler::compile_file(std::string(SEQC_SOURCE_DIR) + "/examples/car-dance.yaml", disk);
+  ASSERT_NE(car.raspblock_program(), nullptr);
+  const CarSimulation every = simulate_car(*car.raspblock_program(), 1);
+  const CarSimulation changes = car_changes(*car.raspblock_program());
+  ASSERT_FALSE(changes.samples.empty());
+  EXPECT_EQ(changes.samples.front().time_ms, 0u);
+  std::size_t c = 0;
+  for (const CarSimulation::Sample& s : every.samples) {
+    while (c + 1 < changes.samples.size() && changes.samples[c + 1].time_ms <= s.time_ms) ++c;
+    ASSERT_TRUE(changes.samples[c].state == s.state) << s.time_ms << " ms";
+  }
+  EXPECT_EQ(c + 1, changes.samples.size());  // none after the end
+  EXPECT_LT(changes.samples.size(), every.samples.size() / 10);
+}
+
+// Hours-long programs: simulate's default rows, the car's pictures and the comparison with the
+// intended curve stay bounded (the steps written here: 6,000 s over 50,000 rows is 120 ms, over
+// 10,000 picture samples 600 ms).
+TEST(ProgramViews, LongProgramsHaveBoundedViews) {
+  MemoryFiles files;
+  files.files["car.yaml"] = "robot: raspblock\nsequence:\n  - drive: {x: 15}\n    time: 6000s\n";
+  files.files["arm.yaml"] =
+      "robot: xarm\nsequence:\n  - move: {base: 500}\n    time: 1s\n"
+      "  - move: {base: 700}\n    time: 5999s\n    ease: elastic-out\n";
+  const compiler::CompileOutput car = compiler::compile_file("car.yaml", files);
+  const compiler::CompileOutput arm = compiler::compile_file("arm.yaml", files);
+  ASSERT_NE(car.raspblock_program(), nullptr);
+  ASSERT_NE(arm.servo_program(), nullptr);
+  EXPECT_EQ(default_simulate_step_ms(*car.program), 120u);
+  EXPECT_EQ(default_simulate_step_ms(*arm.program), 120u);
+  EXPECT_EQ(default_simulate_step_ms(*compile_try().program), 20u);
+  EXPECT_EQ(car_picture_step_ms(*car.raspblock_program()), 600u);
+  const Simulated sim = simulate(*arm.program, 120, true);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(sim.csv.begin(), sim.csv.end(), '\n')),
+            1 + 50'000 + 1);
+  ASSERT_EQ(sim.differences.size(), 1u);
+  EXPECT_LE(sim.differences[0].largest, 1.0 + 1e-9);
+  PlotOptions options;
+  EXPECT_LT(plot_program(*car.program, options).size(), 1'000'000u);
+  EXPECT_LT(plot_program(*arm.program, options).size(), 200'000u);
 }
 
 // A second performer for the shows: the claw to 300 over 500 ms.

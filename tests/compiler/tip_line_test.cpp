@@ -5,6 +5,7 @@
 // lines it refuses, with where along the line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "tests/compiler/lang_test_util.hpp"
 #include "tests/compiler/xarm_reference.hpp"
@@ -401,6 +403,89 @@ TEST(TipLine, JointLimitAlongTheLineSaysWhichJointAndWhere) {
   EXPECT_NE(m[0].find(", " + std::to_string(units - 1000) + " above its max 1000"),
             std::string::npos)
       << m[0];
+}
+
+// Each servo's pieces (from its previous target to the action's over the action's time), for
+// sampling a long program at every millisecond without walking every action each time.
+class PieceSampler {
+ public:
+  explicit PieceSampler(const ServoProgram& p) {
+    std::map<int, double> target;
+    for (const Keyframe& k : p.keyframes) {
+      for (const auto& s : k.targets) {
+        const double from = target.count(s.id) ? target[s.id] : s.position;
+        pieces_[s.id].push_back({static_cast<double>(k.start_ms),
+                                 static_cast<double>(k.start_ms + k.time_ms), from,
+                                 static_cast<double>(s.position)});
+        target[s.id] = s.position;
+      }
+    }
+  }
+  double at(int id, double t) const {
+    const std::vector<Piece>& v = pieces_.at(id);
+    const auto it =
+        std::lower_bound(v.begin(), v.end(), t, [](const Piece& x, double u) { return x.end < u; });
+    if (it == v.end()) return v.back().to;
+    if (t <= it->start) return it == v.begin() ? it->from : (it - 1)->to;
+    return it->from + (it->to - it->from) * (t - it->start) / (it->end - it->start);
+  }
+  // forward() above, on the four joints without a map (this runs for millions of instants).
+  Vec tip(double t) const {
+    const double rad = kDegPerUnit * std::numbers::pi / 180;
+    const double base = (at(6, t) - 500) * rad;
+    const double s = -(at(5, t) - 500) * rad;
+    const double e = -(at(4, t) - 500) * rad;
+    const double w = -(at(3, t) - 500) * rad;
+    const double r = 97 * std::sin(s) + 96 * std::sin(s + e) + 150 * std::sin(s + e + w);
+    const double z = 72 + 97 * std::cos(s) + 96 * std::cos(s + e) + 150 * std::cos(s + e + w);
+    return {r * std::cos(base), r * std::sin(base), z};
+  }
+
+ private:
+  struct Piece {
+    double start, end, from, to;
+  };
+  std::map<int, std::vector<Piece>> pieces_;
+};
+
+// A line of minutes or hours is searched on a bounded grid and its long actions checked at a
+// bounded number of instants (with a margin): the tip must still stay within the millimetre at
+// every millisecond (of the 100-minute line, every fifth, to keep the test quick), and the
+// line's actions be as long as the controller allows, near enough.
+TEST(TipLine, LongLinesAreFollowedWithinTheMillimetreEveryMillisecond) {
+  struct Case {
+    std::uint32_t ms;
+    const char* ease;
+    Vec to;
+    std::uint32_t every;
+  };
+  for (const Case& c :
+       {Case{700'000, "in-out", {200, 100, 60}, 1}, Case{6'002'000, "linear", {200, 0, 40}, 5}}) {
+    const std::string text =
+        std::string(kStart) + "  - move: {tip: [" + std::to_string(static_cast<int>(c.to[0])) +
+        "mm, " + std::to_string(static_cast<int>(c.to[1])) + "mm, " +
+        std::to_string(static_cast<int>(c.to[2])) + "mm]}\n    time: " + std::to_string(c.ms) +
+        "ms\n    path: line\n    ease: " + c.ease + "\n";
+    const auto out = compile_text(text);
+    ASSERT_TRUE(messages(out).empty()) << c.ms << ": " << ::testing::PrintToString(messages(out));
+    const ServoProgram& p = program_of(out);
+    const PieceSampler s(p);
+    const Vec from = s.tip(2000);
+    double worst = 0;
+    std::uint32_t worst_at = 0;
+    for (std::uint32_t t = 2000; t <= 2000 + c.ms; t += c.every) {
+      const double u = static_cast<double>(t - 2000) / c.ms;
+      const double f = std::string(c.ease) == "linear" ? u : quad_in_out(u);
+      const Vec want = {from[0] + (c.to[0] - from[0]) * f, from[1] + (c.to[1] - from[1]) * f,
+                        from[2] + (c.to[2] - from[2]) * f};
+      const double d = distance(s.tip(t), want);
+      if (d > worst) worst = d, worst_at = t;
+    }
+    EXPECT_LE(worst, 1.0 + 1e-9) << c.ms << " ms line, at " << worst_at;
+    const std::size_t fewest = (c.ms + 29'999) / 30'000;
+    EXPECT_GE(p.keyframes.size(), 2 + fewest) << c.ms;
+    EXPECT_LE(p.keyframes.size(), 2 + fewest + fewest / 4 + 4) << c.ms;
+  }
 }
 
 TEST(TipLine, PathNeedsATipAndMillimetreTolerance) {

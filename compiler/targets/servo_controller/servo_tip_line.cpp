@@ -267,11 +267,12 @@ void ServoLowering::refit_lines() {
       for (std::size_t i = f.first; i < f.first + f.count; ++i) {
         o.tolerance = std::min(o.tolerance, timeline_.segment(f.servo, i).tolerance);
       }
-      for (std::uint32_t t = r.start_ms; t <= r.end_ms; ++t) {
-        o.curve.push_back(*timeline_.value(f.servo, t));
-      }
-      o.from = o.curve.front();
-      o.to = o.curve.back();
+      // Its segments from the one in force at the line's start to the one at its end.
+      const std::size_t from = timeline_.index_at(f.servo, r.start_ms).value_or(f.first);
+      const std::size_t to = timeline_.index_at(f.servo, r.end_ms).value_or(f.first);
+      for (std::size_t i = from; i <= to; ++i) o.curve.push_back(timeline_.segment(f.servo, i));
+      o.from = *timeline_.value(f.servo, r.start_ms);
+      o.to = *timeline_.value(f.servo, r.end_ms);
       r.others.push_back(std::move(o));
       all.servos.push_back(f.servo);
     }

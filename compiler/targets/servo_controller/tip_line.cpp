@@ -15,6 +15,33 @@ constexpr std::uint32_t kGridPoints = 200;
 constexpr int kGiveUp = 6;
 constexpr std::size_t kCandidates = 6;
 constexpr int kRetries = 5;  // doublings of the tolerance tried to suggest one that works
+// A line up to kFullCheckMs is checked (table, reach, limits, the measured error) at every
+// millisecond; a longer one at about kFullCheckMs evenly spaced instants and its grid points.
+constexpr std::uint32_t kFullCheckMs = 60'000;
+// An action up to kExactActionMs is checked at every millisecond; a longer one (only in a long
+// line, whose tip moves little between them) at kActionChecks evenly spaced instants against
+// the tolerance less kSampledMargin of it, so that an action costs the same for any length.
+constexpr std::uint32_t kExactActionMs = 2'000;
+constexpr std::uint32_t kActionChecks = 128;
+constexpr double kSampledMargin = 0.05;
+
+// The instants (ms from the line's start) at which an action from t1 to t2 is checked: every
+// one inside, or kActionChecks evenly spaced ones for a long action.
+template <typename F>
+bool all_inside(std::uint32_t t1, std::uint32_t t2, F&& ok) {
+  const std::uint32_t dt = t2 - t1;
+  if (dt <= kExactActionMs) {
+    for (std::uint32_t t = t1 + 1; t < t2; ++t) {
+      if (!ok(t, false)) return false;
+    }
+    return true;
+  }
+  for (std::uint32_t i = 1; i < kActionChecks; ++i) {
+    const auto t = static_cast<std::uint32_t>(t1 + std::uint64_t{dt} * i / kActionChecks);
+    if (!ok(t, true)) return false;
+  }
+  return true;
+}
 
 double distance(const Point& a, const Point& b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -29,11 +56,20 @@ std::array<double, 4> as_double(const Joints& j) {
           static_cast<double>(j[3])};
 }
 
+// The line's point at ms i from its start: the step's easing applied to the distance.
+Point line_point(const TipLineRequest& r, const Point& from, std::uint32_t i) {
+  const std::uint32_t n = r.end_ms - r.start_ms;
+  const double f = n == 0 ? 1.0 : r.ease.at(static_cast<double>(i) / static_cast<double>(n));
+  Point p{};
+  for (std::size_t k = 0; k < 3; ++k) p[k] = from[k] + (r.to[k] - from[k]) * f;
+  return p;
+}
+
 class LineSearch {
  public:
-  LineSearch(const TipLineRequest& r, std::vector<Point> points, std::vector<std::uint32_t> grid,
+  LineSearch(const TipLineRequest& r, Point from, std::vector<std::uint32_t> grid,
              std::vector<std::vector<Joints>> candidates)
-      : r_(r), points_(std::move(points)), grid_(std::move(grid)), cand_(std::move(candidates)) {
+      : r_(r), from_(from), grid_(std::move(grid)), cand_(std::move(candidates)) {
     forced_.assign(grid_.size(), 0);
     for (std::size_t g = 0; g < grid_.size(); ++g) {
       forced_[g] = std::binary_search(r_.forced_ms.begin(), r_.forced_ms.end(), grid_[g]) ? 1 : 0;
@@ -100,7 +136,8 @@ class LineSearch {
   double action_error(std::uint32_t t1, const Joints& c1, std::uint32_t t2, const Joints& c2,
                       std::uint32_t& at) const {
     double worst = -1;
-    for (std::uint32_t t = t1; t <= t2; ++t) {
+    const std::uint32_t stride = t2 - t1 <= kExactActionMs ? 1 : (t2 - t1) / kActionChecks;
+    for (std::uint32_t t = t1; t <= t2; t = t == t2 ? t2 + 1 : std::min(t2, t + stride)) {
       const double e = error_at(t1, c1, t2, c2, t);
       if (e > worst) worst = e, at = t;
     }
@@ -115,10 +152,9 @@ class LineSearch {
     const Joints& c2 = cand_[g][c];
     // The middle first: where a joint's straight line strays most from its curve.
     if (error_at(t1, c1, t2, c2, t1 + (t2 - t1) / 2) > tol) return false;
-    for (std::uint32_t t = t1 + 1; t < t2; ++t) {
-      if (error_at(t1, c1, t2, c2, t) > tol) return false;
-    }
-    return true;
+    return all_inside(t1, t2, [&](std::uint32_t t, bool sampled) {
+      return error_at(t1, c1, t2, c2, t) <= (sampled ? tol * (1 - kSampledMargin) : tol);
+    });
   }
 
   double error_at(std::uint32_t t1, const Joints& c1, std::uint32_t t2, const Joints& c2,
@@ -128,18 +164,20 @@ class LineSearch {
     for (std::size_t k = 0; k < 4; ++k) {
       j[k] = compiler::controller_output(r_.model, c1[k] + (c2[k] - c1[k]) * f);
     }
-    return distance(tip_of(r_.arm, j), points_[t - r_.start_ms]);
+    return distance(tip_of(r_.arm, j), line_point(r_, from_, t - r_.start_ms));
   }
 
   // Whether the other servos stay within their tolerance over an action.
   bool others_follow(std::uint32_t t1, std::uint32_t t2) const {
     for (std::size_t k = 0; k < r_.others.size(); ++k) {
       const double a = other_target(k, t1), b = other_target(k, t2);
-      for (std::uint32_t t = t1 + 1; t < t2; ++t) {
+      const double tol = r_.others[k].tolerance;
+      const bool inside = all_inside(t1, t2, [&](std::uint32_t t, bool sampled) {
         const double f = static_cast<double>(t - t1) / static_cast<double>(t2 - t1);
         const double v = compiler::controller_output(r_.model, a + (b - a) * f);
-        if (std::abs(v - other_value(k, t)) > r_.others[k].tolerance) return false;
-      }
+        return std::abs(v - other_value(k, t)) <= (sampled ? tol * (1 - kSampledMargin) : tol);
+      });
+      if (!inside) return false;
     }
     return true;
   }
@@ -147,7 +185,15 @@ class LineSearch {
  public:
   double other_value(std::size_t k, std::uint32_t t) const {
     const OtherServo& o = r_.others[k];
-    if (!o.curve.empty()) return o.curve[t - r_.start_ms];
+    if (!o.curve.empty()) {
+      // As Timeline::value(): the last segment starting at or before t.
+      const double at = t;
+      auto it = std::upper_bound(
+          o.curve.begin(), o.curve.end(), at,
+          [](double v, const compiler::Segment& s) { return v < s.start.value(); });
+      if (it != o.curve.begin()) --it;
+      return it->value(at);
+    }
     const std::uint32_t n = r_.end_ms - r_.start_ms;
     const double f =
         n == 0 ? 1.0 : r_.ease.at(static_cast<double>(t - r_.start_ms) / static_cast<double>(n));
@@ -177,7 +223,7 @@ class LineSearch {
   }
 
   const TipLineRequest& r_;
-  std::vector<Point> points_;  // the line's point at every millisecond from start_ms
+  Point from_;  // the line's start
   std::vector<std::uint32_t> grid_;
   std::vector<std::vector<Joints>> cand_;
   std::vector<char> forced_;  // per grid point: a boundary every chain must have
@@ -192,19 +238,42 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
   out.from = tip_of(arm, as_double(r.from));
   const std::uint32_t n = r.end_ms - r.start_ms;
 
-  // The line at every millisecond, checked for the table, the reach and the limits, with the
-  // exact joint positions there.
-  std::vector<Point> points(n + 1);
-  std::vector<std::array<double, 4>> ideal(n + 1);
-  for (std::uint32_t i = 0; i <= n; ++i) {
-    const double f = n == 0 ? 1.0 : r.ease.at(static_cast<double>(i) / static_cast<double>(n));
-    for (std::size_t k = 0; k < 3; ++k) points[i][k] = out.from[k] + (r.to[k] - out.from[k]) * f;
+  // The boundaries searched: every millisecond of a short line, an even grid beyond (no
+  // coarser than a quarter of the longest action, so that actions join its points).
+  std::vector<std::uint32_t> grid;
+  std::uint32_t step = n <= kFullGridMs ? 1 : (n + kGridPoints - 1) / kGridPoints;
+  step = std::max<std::uint32_t>(1, std::min(step, r.max_action_ms / 4));
+  for (std::uint32_t t = r.start_ms; t < r.end_ms; t += step) grid.push_back(t);
+  grid.push_back(r.end_ms);
+  if (!r.forced_ms.empty()) {
+    grid.insert(grid.end(), r.forced_ms.begin(), r.forced_ms.end());
+    std::sort(grid.begin(), grid.end());
+    grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
   }
+
+  // The instants (ms from the start) the line is checked at for the table, the reach and the
+  // limits, with the exact joint positions there: every millisecond of a line up to
+  // kFullCheckMs, about kFullCheckMs evenly spaced ones and the grid's beyond.
+  std::vector<std::uint32_t> checks;
+  if (n <= kFullCheckMs) {
+    checks.resize(n + 1);
+    for (std::uint32_t i = 0; i <= n; ++i) checks[i] = i;
+  } else {
+    const std::uint32_t stride = (n + kFullCheckMs - 1) / kFullCheckMs;
+    for (std::uint32_t i = 0; i < n; i += stride) checks.push_back(i);
+    for (const std::uint32_t t : grid) checks.push_back(t - r.start_ms);
+    checks.push_back(n);
+    std::sort(checks.begin(), checks.end());
+    checks.erase(std::unique(checks.begin(), checks.end()), checks.end());
+  }
+  std::vector<Point> points(checks.size());
+  std::vector<std::array<double, 4>> ideal(checks.size());
+  for (std::size_t c = 0; c < checks.size(); ++c) points[c] = line_point(r, out.from, checks[c]);
   // Below the table: the lowest point, where it is worst (an overshooting ease dips past the end).
   const auto lowest = std::min_element(points.begin(), points.end(),
                                        [](const Point& a, const Point& b) { return a[2] < b[2]; });
   if ((*lowest)[2] < 0) {
-    const double t = static_cast<double>(lowest - points.begin());
+    const double t = static_cast<double>(checks[static_cast<std::size_t>(lowest - points.begin())]);
     TipLineProblem p;
     p.kind = TipLineProblem::Kind::BelowTable;
     p.fraction = n == 0 ? 1.0 : r.ease.at(t / n);
@@ -214,9 +283,10 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
   }
   std::optional<TipLineProblem> limit;
   double base = joints[0]->sign * (r.from[0] - joints[0]->zero) * arm.degrees_per_unit;
-  for (std::uint32_t i = 0; i <= n; ++i) {
+  for (std::size_t c = 0; c < checks.size(); ++c) {
+    const std::uint32_t i = checks[c];
     const double f = n == 0 ? 1.0 : r.ease.at(static_cast<double>(i) / static_cast<double>(n));
-    const Point& p = points[i];
+    const Point& p = points[c];
     const double pitch = r.pitch_from + (r.pitch_to - r.pitch_from) * f;
     TipLineProblem here;
     here.fraction = f;
@@ -233,8 +303,8 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
     base = s.angles->base;
     const double angles[] = {s.angles->base, s.angles->shoulder, s.angles->elbow, s.angles->wrist};
     for (std::size_t k = 0; k < 4; ++k) {
-      ideal[i][k] = joints[k]->zero + joints[k]->sign * angles[k] / arm.degrees_per_unit;
-      const long long units = std::llround(ideal[i][k]);
+      ideal[c][k] = joints[k]->zero + joints[k]->sign * angles[k] / arm.degrees_per_unit;
+      const long long units = std::llround(ideal[c][k]);
       const long long over =
           units > r.max[k] ? units - r.max[k] : (units < r.min[k] ? r.min[k] - units : 0);
       // The first joint to leave its limits, at its worst point along the line.
@@ -252,20 +322,15 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
     out.problem = limit;
     return out;
   }
-
-  std::vector<std::uint32_t> grid;
-  const std::uint32_t step = n <= kFullGridMs ? 1 : (n + kGridPoints - 1) / kGridPoints;
-  for (std::uint32_t t = r.start_ms; t < r.end_ms; t += step) grid.push_back(t);
-  grid.push_back(r.end_ms);
-  if (!r.forced_ms.empty()) {
-    grid.insert(grid.end(), r.forced_ms.begin(), r.forced_ms.end());
-    std::sort(grid.begin(), grid.end());
-    grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
-  }
+  // Where ms i from the start is among the checked instants (every grid point is).
+  auto checked = [&](std::uint32_t i) {
+    return static_cast<std::size_t>(std::lower_bound(checks.begin(), checks.end(), i) -
+                                    checks.begin());
+  };
 
   // Candidate targets at each boundary, nearest the line first; the start is where the joints are.
   auto candidates = [&](std::uint32_t t, double tol, double* best) {
-    const std::size_t i = t - r.start_ms;
+    const std::size_t i = checked(t - r.start_ms);
     std::vector<std::pair<double, Joints>> found;
     double nearest = INFINITY;
     for (int mask = 0; mask < 16; ++mask) {
@@ -299,8 +364,8 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
       cand.push_back(candidates(grid[g], tol, g + 1 == grid.size() ? end_error : nullptr));
     }
     if (r.end_joints) cand.back() = {*r.end_joints};
-    LineSearch s(r, points, grid, std::move(cand));
-    return std::pair{s.run(tol, farthest), LineSearch(r, points, grid, {})};
+    LineSearch s(r, out.from, grid, std::move(cand));
+    return std::pair{s.run(tol, farthest), LineSearch(r, out.from, grid, {})};
   };
 
   double end_error = 0;
@@ -311,7 +376,7 @@ TipLineResult fit_tip_line(const TipLineRequest& r) {
     const bool rounding = end_error > r.tolerance_mm;
     p.kind = rounding ? TipLineProblem::Kind::Rounding : TipLineProblem::Kind::Tolerance;
     const std::uint32_t at = rounding ? r.end_ms : farthest;
-    p.point = points[at - r.start_ms];
+    p.point = line_point(r, out.from, at - r.start_ms);
     p.fraction = n == 0 ? 1.0 : r.ease.at(static_cast<double>(at - r.start_ms) / n);
     p.error = end_error;
     // A tolerance that works: the rounding at the end with a margin, doubled until it does.
@@ -372,10 +437,10 @@ TipLineError measure_tip_line(const TipLineRequest& r, const std::array<std::siz
   const Point from = tip_of(r.arm, as_double(r.from));
   const std::uint32_t n = r.end_ms - r.start_ms;
   TipLineError out;
-  for (std::uint32_t i = 0; i <= n; ++i) {
-    const double f = n == 0 ? 1.0 : r.ease.at(static_cast<double>(i) / static_cast<double>(n));
-    Point want{};
-    for (std::size_t k = 0; k < 3; ++k) want[k] = from[k] + (r.to[k] - from[k]) * f;
+  // Every millisecond of a line up to kFullCheckMs, about kFullCheckMs instants of a longer one.
+  const std::uint32_t stride = n <= kFullCheckMs ? 1 : (n + kFullCheckMs - 1) / kFullCheckMs;
+  for (std::uint32_t i = 0; i <= n; i = i == n ? n + 1 : std::min(n, i + stride)) {
+    const Point want = line_point(r, from, i);
     const double t = static_cast<double>(r.start_ms + i) * board_per_ms;
     const std::array<double, 4> j = {position(0, t), position(1, t), position(2, t),
                                      position(3, t)};

@@ -12,7 +12,8 @@
 // within the tolerance; an action joins two candidates when every millisecond between them
 // passes. Layers are counted in actions, so the first layer that reaches the end has the fewest
 // actions among the boundaries searched. Boundaries are every millisecond for a move of up to
-// kFullGridMs and an even grid of about kGridPoints points beyond, and an action stops being
+// kFullGridMs and an even grid of about kGridPoints points beyond (no coarser than a quarter of
+// the longest action), and an action stops being
 // extended once kGiveUp grid points in a row past the minimum fail (a longer one could pass
 // again only by luck of rounding). The move's other servos share the actions (each action names
 // every servo of the move, so the fitter keeps them as they are): their targets are their eased
@@ -20,6 +21,12 @@
 // tolerance at every millisecond. Another track's servo whose curve runs within the line's time
 // may be one of them too (OtherServo::curve), so that the fitter need not cut the joints'
 // pieces to fit it.
+//
+// So that a line of minutes or hours costs its actions rather than its milliseconds, a line
+// longer than a minute is checked for the table, the reach and the limits (and its error
+// measured) at about 60,000 evenly spaced instants and its grid points rather than at every
+// millisecond, and an action longer than 2 s at 128 evenly spaced instants against the
+// tolerance less 5 % (its tip moves far less than that between them).
 //
 // Other servos' segment boundaries inside the line (another track of a `together` block) are
 // action boundaries for every servo (compiler/fitting/fitter.hpp), so the caller may name them
@@ -46,12 +53,14 @@ using Point = std::array<double, 3>;
 
 // Another servo of the same move (the claw, the wrist's roll): it follows the step's easing from
 // `from` to `to` in device units, within `tolerance` units, on the line's actions. Or one of
-// another track whose curve runs during the line: `curve` holds where it is meant to be at
-// every millisecond from start_ms to end_ms (`from` its first).
+// another track whose curve runs during the line: `curve` holds its segments in time order, from
+// the one in force at start_ms to the one in force at end_ms, so that where it is meant to be at
+// any millisecond of the line is the value of the last of them starting at or before it
+// (`from` its value at start_ms).
 struct OtherServo {
   double from = 0, to = 0;
   double tolerance = 1;
-  std::vector<double> curve;
+  std::vector<compiler::Segment> curve;
 };
 
 struct TipLineRequest {
