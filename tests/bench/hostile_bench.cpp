@@ -281,6 +281,70 @@ std::vector<Case> file_cases() {
   return c;
 }
 
+// Long moves: what they cost must follow their actions, not their milliseconds.
+std::vector<Case> long_move_cases() {
+  std::vector<Case> c;
+  const auto valid = [](std::string name, std::string text, std::string expect) {
+    Case k = fixed(std::move(name), std::move(text));
+    k.exit = 0;
+    k.expect = std::move(expect);
+    return k;
+  };
+  c.push_back(valid("long_tip_line_6002s",
+                    kHead +
+                        "sequence:\n  - move: {tip: {x: 90mm, y: 156mm, z: 120mm}, pitch: 135deg, "
+                        "claw: 300}\n    time: 1s\n  - move: {tip: {x: 90mm, y: 156mm, z: 40mm}}\n"
+                        "    time: 6002s\n    path: line\n",
+                    R"(actions, 6003\.000 s, fit within)"));
+  c.push_back(valid("long_elastic_1000s",
+                    kHead + "sequence:\n  - move: {base: 300}\n    time: 1s\n  - move: {base: "
+                            "600}\n    time: 1000s\n    ease: elastic-out\n",
+                    R"(actions, 1001\.000 s)"));
+  c.push_back(valid("long_joint_100_minutes",
+                    kHead + "sequence:\n  - move: {base: 300, elbow: 400}\n    time: 1s\n"
+                            "  - move: {base: 700, elbow: 600}\n    time: 6000s\n"
+                            "    ease: sine-in-out\n",
+                    R"(actions, 6001\.000 s)"));
+  c.push_back(valid("long_car_drive_6000s",
+                    "name: hostile\nrobot: raspblock\nsequence:\n  - drive: {x: 15}\n"
+                    "    time: 6000s\n  - drive: {x: 15, y: 10}\n    move: {pan: 2000, tilt: "
+                    "1500}\n    time: 100s\n    ease: in-out\n",
+                    R"(6100 s)"));
+  {
+    // Twelve 1,000 s curves of three servos at tolerance 0.1: more actions than a group holds,
+    // said at once.
+    const char* eases[] = {"elastic-out", "bounce-in-out",  "back-in-out", "sine-in-out",
+                           "in-out",      "cubic-in",       "expo-out",    "circ-in-out",
+                           "quart-out",   "elastic-in-out", "bounce-out",  "back-out"};
+    std::string text = kHead +
+                       "tolerance: 0.1\nsequence:\n  - move: {base: 300, shoulder: 350, "
+                       "elbow: 400}\n    time: 1s\n";
+    for (int i = 0; i < 12; ++i) {
+      text += i % 2 == 0 ? "  - move: {base: 600, shoulder: 350, elbow: 600}\n"
+                         : "  - move: {base: 300, shoulder: 550, elbow: 400}\n";
+      text += std::string("    time: 1000s\n    ease: ") + eases[i] + "\n";
+    }
+    c.push_back(fixed("twelve_1000s_moves_tolerance_0_1", text));
+  }
+  {
+    // The same long line through every view: each bounded in time, memory and output.
+    const std::string line = kHead +
+                             "sequence:\n  - move: {tip: {x: 90mm, y: 156mm, z: 120mm}, pitch: "
+                             "135deg, claw: 300}\n    time: 1s\n  - move: {tip: {x: 90mm, y: "
+                             "156mm, z: 40mm}}\n    time: 6002s\n    path: line\n";
+    for (const auto& [view, args] :
+         {std::pair<std::string, std::vector<std::string>>{
+              "simulate_compare", {"simulate", "{file}", "--compare", "-o", "{dir}/view.csv"}},
+          {"plot", {"plot", "{file}", "-o", "{dir}/view.svg"}},
+          {"preview", {"preview", "{file}", "-o", "{dir}/view.html"}}}) {
+      Case k = valid("long_tip_line_" + view, line, ".*");
+      k.args = args;
+      c.push_back(k);
+    }
+  }
+  return c;
+}
+
 struct Run {
   double ms = 0;
   long rss_kib = 0;
@@ -366,6 +430,7 @@ int main(int argc, char** argv) {
   std::sort(cases.begin(), cases.end(),
             [](const Case& x, const Case& y) { return x.name < y.name; });
   for (Case& c : generated()) cases.push_back(std::move(c));
+  for (Case& c : long_move_cases()) cases.push_back(std::move(c));
   for (Case& c : file_cases()) cases.push_back(std::move(c));
   if (!only.empty()) {
     std::erase_if(cases, [&](const Case& c) { return c.name.find(only) == std::string::npos; });
