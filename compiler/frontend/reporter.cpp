@@ -22,17 +22,35 @@ void Reporter::report(Severity severity, Location at, std::string message,
     diags_.warning(at, std::move(message));
   }
   if (note) diags_.note(note->at, std::move(note->message));
-  for (auto it = contexts_.rbegin(); it != contexts_.rend(); ++it) {
-    diags_.note(it->at, it->message);
+  for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) {
+    if (it->with_values) diags_.note(it->note.at, it->note.message);
   }
   if (severity == Severity::Warning) {
-    for (auto it = performances_.rbegin(); it != performances_.rend(); ++it) {
-      diags_.note(it->first, "in section '" + it->second + "', performed here");
+    for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) {
+      if (!it->with_values) diags_.note(it->note.at, it->note.message);
     }
   }
   for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {
     diags_.note(*it, "included from here");
   }
+}
+
+std::vector<Reporter::Note> Reporter::chain() const {
+  std::vector<Note> notes;
+  for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) notes.push_back(it->note);
+  for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {
+    notes.push_back({*it, "included from here"});
+  }
+  return notes;
+}
+
+void Reporter::error_with_notes(Location at, std::string message, const std::vector<Note>& notes) {
+  auto key =
+      std::make_tuple(static_cast<int>(Severity::Error), at.file, at.line, at.column, message);
+  if (!seen_.insert(std::move(key)).second) return;
+  ++errors_;
+  diags_.error(at, std::move(message));
+  for (const Note& n : notes) diags_.note(n.at, n.message);
 }
 
 void Reporter::unknown(Location at, std::string_view what, std::string_view word,

@@ -2,7 +2,8 @@
 // (a pose used in a loop is wrong once, not once per iteration), with a note for every
 // performance of a section with parameters the mistake is inside (its values explain it), for a
 // warning inside a plain section a note at the `- section:` step that performed it, and an
-// "included from here" note for every include that led to the file the mistake is in.
+// "included from here" note for every include that led to the file the mistake is in. An error
+// that stops the walk (a budget passed) names the whole chain: every performance and include.
 #pragma once
 
 #include <initializer_list>
@@ -38,8 +39,8 @@ class Reporter {
 
   // While a section with parameters is performed: every diagnostic gets `note` (innermost
   // performance first).
-  void push_context(Note note) { contexts_.push_back(std::move(note)); }
-  void pop_context() { contexts_.pop_back(); }
+  void push_context(Note note) { performing_.push_back({std::move(note), true}); }
+  void pop_context() { performing_.pop_back(); }
 
   // The include sites (outermost first) of the file being lowered.
   void push_include(Location site) { includes_.push_back(site); }
@@ -49,10 +50,17 @@ class Reporter {
   // The `- section:` steps performing the steps being lowered (outermost first): a warning
   // raised inside a section names its performance with a note, since the section's own lines
   // are the same each time it is performed.
-  void push_performance(Location site, std::string name) {
-    performances_.push_back({site, std::move(name)});
+  void push_performance(Location site, const std::string& name) {
+    performing_.push_back({{site, "in section '" + name + "', performed here"}, false});
   }
-  void pop_performance() { performances_.pop_back(); }
+  void pop_performance() { performing_.pop_back(); }
+  // Everything that led to the steps being lowered, innermost first: each section's
+  // performance (with its values, if any) and each include. An error that stops the walk
+  // names the whole chain, also when it is reported once the walk has left it.
+  std::vector<Note> chain() const;
+  // An error followed by exactly `notes` (nothing added from the running performances and
+  // includes, which `notes` usually holds already: see chain()).
+  void error_with_notes(Location at, std::string message, const std::vector<Note>& notes);
   std::size_t errors_reported() const { return errors_; }
   std::size_t include_depth() const { return includes_.size(); }
 
@@ -79,8 +87,13 @@ class Reporter {
 
   Diagnostics& diags_;
   std::vector<Location> includes_;
-  std::vector<std::pair<Location, std::string>> performances_;  // site, section name
-  std::vector<Note> contexts_;
+  // The running performances, outermost first; `with_values`: a performance with parameters,
+  // whose note every diagnostic gets (the others' only warnings).
+  struct Performance {
+    Note note;
+    bool with_values = false;
+  };
+  std::vector<Performance> performing_;
   std::size_t errors_ = 0;
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };

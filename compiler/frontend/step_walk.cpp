@@ -42,6 +42,32 @@ std::string format_exact_ms(ExactMs t) {
   return format_ms(ms);
 }
 
+// "10,000": a count in a message.
+std::string with_commas(std::size_t n) {
+  const std::string digits = std::to_string(n);
+  std::string out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// "s0 -> s1 -> s2 -> ... -> s63 -> s64": a chain of section names, its middle left out when
+// it is long (the ends say where it starts and where it ran away).
+std::string chain_text(const std::vector<std::string_view>& names) {
+  constexpr std::size_t kEnds = 3;
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names.size() > 2 * kEnds + 1 && i >= kEnds && i < names.size() - kEnds) {
+      if (i == kEnds) out += " -> ...";
+      continue;
+    }
+    out += (i == 0 ? "" : " -> ") + std::string(names[i]);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<ExactMs> musical_time(const TempoMap& map, const YamlNode& node,
@@ -239,13 +265,19 @@ void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const Yaml
 void StepWalker::run_steps(const YamlNode& list, std::string_view what) {
   lists_.push_back({now_, std::nullopt});
   for (const YamlNode& step : step_items(list, what, reporter_)) {
-    if (stopped()) break;
+    if (halted()) break;
     run_step(step);
   }
   lists_.pop_back();
 }
 
 void StepWalker::run_step(const YamlNode& step) {
+  if (++steps_walked_ > kMaxWalkedSteps) {
+    halt(step.location, "the sequence walks more than " + with_commas(kMaxWalkedSteps) +
+                            " steps, each counted again every time a section, include or repeat "
+                            "runs it; is there a runaway fan-out of sections or includes?");
+    return;
+  }
   if (!step.is_map()) {
     reporter_.error(step.location, "a step must be a map such as " + std::string(table_.example) +
                                        ", not " + std::string(kind_name(step)));
@@ -322,21 +354,51 @@ bool StepWalker::change_meter(int beats_per_bar, Location at, std::string_view w
   return compiler::change_meter(timeline_.tempo_map, now_, beats_per_bar, at, what, reporter_);
 }
 
+bool StepWalker::open_block(Location at, std::string_view verb) {
+  if (blocks_deep_ >= kMaxBlockDepth) {
+    const std::string through =
+        section_names_.empty() ? "" : ", through sections " + chain_text(section_names_);
+    reporter_.error(at, "this '" + std::string(verb) + "' nests more than " +
+                            std::to_string(kMaxBlockDepth) +
+                            " blocks deep ('together', 'repeat' and 'mirror' inside each other" +
+                            through + "); is there a runaway chain of sections or includes?");
+    halted_ = true;
+    return false;
+  }
+  ++blocks_deep_;
+  return true;
+}
+
+void StepWalker::halt(Location at, std::string message) {
+  reporter_.error_with_notes(at, std::move(message), reporter_.chain());
+  halted_ = true;
+}
+
 void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
   const auto repeat = parse_repeat(step, value, reporter_);
   if (!repeat) return;
+  if (!open_block(step.location, "repeat")) return;
   const std::unique_ptr<RepeatBudget> budget = repeat_budget(step, repeat->times);
-  for (long long i = 0; i < repeat->times && !stopped(); ++i) {
-    if (!budget->before_pass(i)) break;
+  for (long long i = 0; i < repeat->times; ++i) {
+    // The budget first: a walk stopped inside the last pass still has the passes left counted.
+    if (!budget->before_pass(i) || halted()) break;
     const std::size_t errors_before = reporter_.errors_reported();
     run_steps(*repeat->body, "'do'");
     // A pass with mistakes would only repeat them in the passes after it (and nested repeats
     // would never end).
     if (reporter_.errors_reported() > errors_before || !budget->after_pass(i)) break;
   }
+  close_block();
 }
 
 void StepWalker::include_step(const YamlNode& value) {
+  if (++includes_walked_ > kMaxIncludesWalked) {
+    halt(value.location, "the sequence includes files more than " +
+                             with_commas(kMaxIncludesWalked) +
+                             " times, each include counted again every time a section, include "
+                             "or repeat runs it; is there a runaway fan-out of includes?");
+    return;
+  }
   const LoadedFile* loaded = scopes_.load_include(value, table_.include_example,
                                                   table_.cannot_include, loader_, reporter_);
   if (loaded == nullptr) return;
@@ -346,10 +408,21 @@ void StepWalker::include_step(const YamlNode& value) {
 }
 
 void StepWalker::section_step(const YamlNode& step, const YamlNode& value) {
+  if (section_names_.size() >= kMaxSectionDepth) {
+    std::vector<std::string_view> chain = section_names_;
+    chain.push_back(value.scalar);
+    reporter_.error(value.location,
+                    "sections perform sections more than " + std::to_string(kMaxSectionDepth) +
+                        " deep: " + chain_text(chain) + "; is there a runaway chain of sections?");
+    halted_ = true;
+    return;
+  }
   run_section(step, value, scopes_, sections_running_, reporter_,
               [&](const YamlNode& steps, const std::string& what) {
                 timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
+                section_names_.push_back(value.scalar);
                 run_steps(steps, what);
+                section_names_.pop_back();
               });
 }
 
@@ -359,6 +432,7 @@ void StepWalker::together_step(const YamlNode& step, const YamlNode& tracks) {
                                          std::string(table_.together_example));
     return;
   }
+  if (!open_block(step.location, "together")) return;
   const std::unique_ptr<BlockRun> run = block_run(step);
   const ExactMs start = now_;
   ExactMs longest = start;
@@ -370,11 +444,12 @@ void StepWalker::together_step(const YamlNode& step, const YamlNode& tracks) {
     run_steps(list, "track '" + name.scalar + "'");
     run->track_ends();
     longest = std::max(longest, now_);
-    if (stopped()) break;
+    if (halted()) break;
   }
   claims_.end_block();
   now_ = longest;
   run->block_ends(start, longest);
+  close_block();
 }
 
 void StepWalker::check_included_music(const YamlNode& root) {

@@ -8,6 +8,14 @@
 //
 // The free functions are the walk's pieces: each reports what is wrong with what it reads and
 // returns nullopt / nullptr / false.
+//
+// The walk has budgets of its own, counted as it goes (a fan-out of sections or includes would
+// otherwise run for ever before anything counted it): sections performing sections, blocks
+// (`together`, `repeat`, a front end's `mirror`) inside blocks, steps walked and includes
+// expanded in all. Passing one is a located error naming how the walk got there, and the walk
+// stops. Every nested step list is the main sequence, an included file's (kMaxIncludeDepth),
+// a section's or a block's, so no input makes the walk recurse deeper than
+// 1 + kMaxIncludeDepth + kMaxSectionDepth + kMaxBlockDepth lists.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +38,16 @@
 #include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
+
+// Sections performing sections, and blocks (`together`, `repeat`, `mirror`) inside blocks,
+// through any number of sections and includes: deeper is taken for a runaway chain.
+inline constexpr std::size_t kMaxSectionDepth = 64;
+inline constexpr std::size_t kMaxBlockDepth = 64;
+// Steps walked in all (each performance of a section, pass of a repeat and include counts its
+// steps again): far beyond what a group's actions need, yet fast to walk and hold.
+inline constexpr std::size_t kMaxWalkedSteps = 200'000;
+// Files included in all (each include step walked counts once).
+inline constexpr std::size_t kMaxIncludesWalked = 10'000;
 
 // `node` (a time) after `from`: ms and s as written, beats and bars counted through `map`;
 // nullopt after reporting.
@@ -145,6 +163,8 @@ class StepWalker {
   virtual bool hold_until(ExactMs target, const YamlNode& at) = 0;
   // True once the walk cannot go on (the front end's budget is spent, already reported).
   virtual bool stopped() const { return false; }
+  // True once the walk's own budget or the front end's is spent (see stopped()).
+  bool halted() const { return halted_ || stopped(); }
 
   // The budget of the repeat `step` of `times` passes, and the run of the `together` `step`
   // (made as the block starts).
@@ -163,6 +183,14 @@ class StepWalker {
   // `node` (a time) after `from`, through the tempo map; nullopt after reporting.
   std::optional<ExactMs> musical_time(const YamlNode& node, std::string_view what, ExactMs from);
   bool change_meter(int beats_per_bar, Location at, std::string_view what);
+  // Counts a block (`verb`, written at `at`) whose steps run inside the running ones; false
+  // after reporting one nested more than kMaxBlockDepth deep (the walk then stops). Each true
+  // is followed by close_block() once the block's steps have run.
+  bool open_block(Location at, std::string_view verb);
+  void close_block() { --blocks_deep_; }
+  // The walk stops here: `message` at `at`, with notes naming every performance and include
+  // that led here.
+  void halt(Location at, std::string message);
 
   struct ListFrame {
     ExactMs start;                    // for `at:`
@@ -191,6 +219,11 @@ class StepWalker {
 
   const StepTable& table_;
   std::vector<const YamlNode*> sections_running_;  // for cycle detection
+  std::vector<std::string_view> section_names_;    // the running sections, outermost first
+  std::size_t blocks_deep_ = 0;
+  std::size_t steps_walked_ = 0;
+  std::size_t includes_walked_ = 0;
+  bool halted_ = false;
 };
 
 }  // namespace seqc::compiler

@@ -58,6 +58,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   walk.min_actions = min_actions_;
   walk.truncated = truncated_;
   walk.over_budget_at = over_budget_at_;
+  walk.over_budget_notes = over_budget_notes_;
   walk.sequence_at = sequence_at_;
   walk.capacity = capacity();
   for (const LineRecord& line : lines_) {
@@ -75,16 +76,17 @@ ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader
 }
 
 bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter) {
-  if (reporter.errors_reported() > 0) return false;
   if (walk.over_budget_at) {
-    // Fitting tens of thousands of steps would only cost time.
-    reporter.error(*walk.over_budget_at, "the sequence needs at least " +
-                                             std::to_string(walk.min_actions) + "/" +
-                                             std::to_string(walk.capacity) + " actions; " +
-                                             group_capacity_text(robot.profile));
+    // The walk stopped there (its count includes the passes left of the repeats it was in),
+    // whatever mistakes came before: the steps after it were never read.
+    reporter.error_with_notes(*walk.over_budget_at,
+                              "the sequence needs at least " + std::to_string(walk.min_actions) +
+                                  "/" + std::to_string(walk.capacity) + " actions; " +
+                                  group_capacity_text(robot.profile),
+                              walk.over_budget_notes);
     return false;
   }
-  return true;
+  return reporter.errors_reported() == 0;
 }
 
 FitOptions servo_fit_options(const Robot& robot, bool free_end_points) {
@@ -412,9 +414,11 @@ void ServoLowering::mirror_step(const YamlNode& step, const YamlNode& body) {
                     "'mirror: {left_arm: right_arm}' under 'robot:'");
     return;
   }
+  if (!open_block(step.location, "mirror")) return;
   mirrored_ = !mirrored_;
   run_steps(body, "'mirror'");
   mirrored_ = !mirrored_;
+  close_block();
 }
 
 void ServoLowering::tolerance_step(const YamlNode& value) {

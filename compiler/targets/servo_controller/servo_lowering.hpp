@@ -38,8 +38,10 @@ struct ServoWalk {
   // stopped expanding once it passed the group's capacity.
   std::uint64_t min_actions = 0;
   bool truncated = false;
-  // The step that made the count pass the capacity (then the file is not fitted).
+  // The step that made the count pass the capacity (the walk stopped there and the file is not
+  // fitted), and the performances and includes that led to it.
   std::optional<Location> over_budget_at;
+  std::vector<Reporter::Note> over_budget_notes;
   std::optional<Location> sequence_at;  // the main file's `sequence:`
   std::vector<ServoTipLine> lines;      // every `path: line` move, in the order walked
   std::size_t capacity = 0;             // actions one group holds on the robot's controller
@@ -52,7 +54,8 @@ ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more
-// actions than a group holds (reported here).
+// actions than a group holds (reported here, where the walk stopped, with the performances and
+// includes that led there as notes).
 bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter);
 
 // How fitting treats this robot's servos: its controller's model and each servo's limits.

@@ -48,6 +48,7 @@ class ServoLowering final : public StepWalker {
   // 'tolerance' is a verb only on its own: on a move or through it is a setting.
   bool is_verb(std::string_view key, const YamlNode& step) const override;
   bool hold_until(ExactMs target, const YamlNode& at) override;
+  bool stopped() const override { return over_budget_at_.has_value(); }
   std::unique_ptr<RepeatBudget> repeat_budget(const YamlNode& step, long long times) override;
   std::unique_ptr<BlockRun> block_run(const YamlNode& step) override;
   // After a `together` block (from `start` to `longest`): unless some servo `held` a position
@@ -163,8 +164,10 @@ class ServoLowering final : public StepWalker {
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.
   std::uint64_t min_actions_ = 0;
   bool truncated_ = false;
-  // The step that made the count pass the group's limit (then the file is not fitted).
+  // The step that made the count pass the group's limit, and how the walk got there: the walk
+  // stops there, and the file is not fitted.
   std::optional<Location> over_budget_at_;
+  std::vector<Reporter::Note> over_budget_notes_;
   std::optional<Location> sequence_at_;
   std::vector<LineRecord> lines_;  // every `path: line` move, in the order walked
 };
