@@ -281,6 +281,74 @@ std::vector<Case> file_cases() {
   return c;
 }
 
+// Fan-out and depth: sections performing sections, wrappers, includes. Each ends with one
+// located error at the first budget passed, however much work the file describes.
+std::vector<Case> walk_cases() {
+  std::vector<Case> c;
+  const auto sections = [](int n, const std::function<std::string(int)>& body,
+                           const std::string& last, const std::string& sequence) {
+    std::string text = kHead + "sections:\n";
+    for (int i = 0; i + 1 < n; ++i) text += "  s" + std::to_string(i) + ": " + body(i + 1) + "\n";
+    return text + "  s" + std::to_string(n - 1) + ": " + last + "\nsequence:\n" + sequence;
+  };
+  const std::string move = "[{move: {claw: 600}, time: 20ms}]";
+  const auto twice = [](int next) {
+    const std::string s = "{section: s" + std::to_string(next) + "}";
+    return "[" + s + ", " + s + "]";
+  };
+  Case fan =
+      lazy("section_fanout_40", [=] { return sections(40, twice, move, "  - section: s0\n"); });
+  fan.expect = R"(error: the sequence needs at least 1021/1020 actions)";
+  c.push_back(fan);
+  Case quiet = lazy("section_fanout_40_no_actions",
+                    [=] { return sections(40, twice, "[]", "  - section: s0\n"); });
+  quiet.expect = R"(error: the sequence walks more than 200,000 steps)";
+  c.push_back(quiet);
+  Case pow = lazy("performances_2pow20", [=] {
+    return sections(21, twice, move, "  - move: {claw: 600}\n    time: 1s\n  - section: s0\n");
+  });
+  pow.expect = R"(error: the sequence needs at least 1021/1020 actions)";
+  c.push_back(pow);
+  const std::string deep = R"(error: sections perform sections more than 64 deep)";
+  Case chain = lazy("section_chain_14000", [=] {
+    return sections(
+        14000, [](int next) { return "[{section: s" + std::to_string(next) + "}]"; }, move,
+        "  - section: s0\n");
+  });
+  chain.expect = deep;
+  c.push_back(chain);
+  Case together = lazy("together_15000_deep", [=] {
+    return sections(
+        15000,
+        [](int next) { return "[{together: {a: [{section: s" + std::to_string(next) + "}]}}]"; },
+        move, "  - section: s0\n");
+  });
+  together.expect = deep;
+  c.push_back(together);
+  Case repeats = lazy("repeat1_15000_deep", [=] {
+    return sections(
+        15000,
+        [](int next) { return "[{repeat: 1, do: [{section: s" + std::to_string(next) + "}]}]"; },
+        move, "  - section: s0\n");
+  });
+  repeats.expect = deep;
+  c.push_back(repeats);
+  {
+    std::string main = kHead + "sequence:\n";
+    for (int k = 0; k < 10; ++k) main += "  - include: inc1.yaml\n";
+    Case inc = fixed("include_fanout_15x10", main);
+    for (int i = 1; i < 15; ++i) {
+      std::string text = "sequence:\n";
+      for (int k = 0; k < 10; ++k) text += "  - include: inc" + std::to_string(i + 1) + ".yaml\n";
+      inc.extra.push_back({"inc" + std::to_string(i) + ".yaml", text});
+    }
+    inc.extra.push_back({"inc15.yaml", "sequence: []\n"});
+    inc.expect = R"(error: the sequence includes files more than 10,000 times)";
+    c.push_back(inc);
+  }
+  return c;
+}
+
 // Long moves: what they cost must follow their actions, not their milliseconds.
 std::vector<Case> long_move_cases() {
   std::vector<Case> c;
@@ -430,6 +498,7 @@ int main(int argc, char** argv) {
   std::sort(cases.begin(), cases.end(),
             [](const Case& x, const Case& y) { return x.name < y.name; });
   for (Case& c : generated()) cases.push_back(std::move(c));
+  for (Case& c : walk_cases()) cases.push_back(std::move(c));
   for (Case& c : long_move_cases()) cases.push_back(std::move(c));
   for (Case& c : file_cases()) cases.push_back(std::move(c));
   if (!only.empty()) {
