@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace seqc::compiler {
 namespace {
@@ -64,9 +65,54 @@ std::optional<std::int64_t> whole(sqlite3_stmt* s, int column) {
   }
 }
 
+// Called by SQLite every kStepsPerCall instructions; a nonzero return interrupts the statement.
+constexpr int kStepsPerCall = 1000;
+struct StepBudget {
+  std::uint64_t calls_left = 0;
+  bool spent = false;
+};
+int over_budget(void* user) {
+  auto* budget = static_cast<StepBudget*>(user);
+  if (budget->calls_left == 0) {
+    budget->spent = true;
+    return 1;
+  }
+  --budget->calls_left;
+  return 0;
+}
+
+// Before any query: nothing the file's schema names runs unasked, nothing goes to a temporary
+// file, and a view, trigger or virtual table is refused by name (a view's rows can be endless, a
+// trigger or a virtual table runs code the file chose).
+Status guard(sqlite3* db) {
+  int off = 0;
+  sqlite3_db_config(db, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, &off);
+  sqlite3_db_config(db, SQLITE_DBCONFIG_DEFENSIVE, 1, &off);
+  sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_TRIGGER, 0, &off);
+  sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_VIEW, 0, &off);
+  if (sqlite3_exec(db, "PRAGMA temp_store = MEMORY", nullptr, nullptr, nullptr) != SQLITE_OK) {
+    return make_error(std::string("SQLite: ") + sqlite3_errmsg(db));
+  }
+  auto schema = prepare(db,
+                        "SELECT type, name FROM sqlite_master WHERE type IN ('view', 'trigger') "
+                        "OR (type = 'table' AND sql LIKE 'CREATE VIRTUAL TABLE%') LIMIT 1");
+  if (!schema) return make_error("a corrupt SQLite database: " + schema.error().message);
+  if (sqlite3_step(schema->get()) == SQLITE_ROW) {
+    const auto* type = sqlite3_column_text(schema->get(), 0);
+    const auto* name = sqlite3_column_text(schema->get(), 1);
+    std::string kind = type ? reinterpret_cast<const char*>(type) : "";
+    if (kind == "table") kind = "virtual table";
+    return make_error("the database holds a " + kind + ", " +
+                      (name ? reinterpret_cast<const char*>(name) : "") +
+                      " (a .d6a file is one plain table; seqc reads no views, triggers or "
+                      "virtual tables)");
+  }
+  return Ok{};
+}
+
 }  // namespace
 
-Result<D6aTable> read_d6a(std::string_view bytes) {
+Result<D6aTable> read_d6a(std::string_view bytes, const D6aReadLimits& limits) {
   static constexpr char kMagic[] = "SQLite format 3";  // the 16-byte header, NUL included
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
     return make_error(
@@ -84,6 +130,15 @@ Result<D6aTable> read_d6a(std::string_view bytes) {
       SQLITE_OK) {
     return make_error(std::string("SQLite cannot read it: ") + sqlite3_errmsg(db->get()));
   }
+  // Every step counts: the handler runs every kStepsPerCall instructions.
+  StepBudget budget{limits.max_steps / kStepsPerCall};
+  sqlite3_progress_handler(db->get(), kStepsPerCall, over_budget, &budget);
+  if (Status guarded = guard(db->get()); !guarded) return guarded.error();
+  auto interrupted = [&]() -> std::optional<Error> {
+    if (!budget.spent) return std::nullopt;
+    return make_error("reading it took more than " + std::to_string(limits.max_steps) +
+                      " SQLite steps, the most seqc spends on a .d6a file");
+  };
 
   auto columns = prepare(db->get(), "PRAGMA table_info(ActionGroup)");
   if (!columns) return make_error("a corrupt SQLite database: " + columns.error().message);
@@ -97,6 +152,7 @@ Result<D6aTable> read_d6a(std::string_view bytes) {
     if (name == "Index") has_index = true;
     if (const std::size_t k = servo_number(name)) servos[k] = name;
   }
+  if (auto spent = interrupted()) return *spent;
   if (servos.empty() && !has_time && !has_index) {
     std::string tables;
     if (auto list = prepare(db->get(), "SELECT name FROM sqlite_master WHERE type = 'table'")) {
@@ -125,11 +181,17 @@ Result<D6aTable> read_d6a(std::string_view bytes) {
 
   std::string sql = "SELECT [Index], Time";
   for (std::size_t k = 1; k <= table.servo_columns; ++k) sql += ", Servo" + std::to_string(k);
-  sql += " FROM ActionGroup ORDER BY [Index]";
+  // In stored order, sorted here: ORDER BY on a column that is not the table's key would sort
+  // every row inside SQLite (where no step budget reaches) before the row limit could stop it.
+  sql += " FROM ActionGroup";
   auto rows = prepare(db->get(), sql);
   if (!rows) return make_error("cannot read ActionGroup: " + rows.error().message);
   int step = SQLITE_ROW;
   while ((step = sqlite3_step(rows->get())) == SQLITE_ROW) {
+    if (table.rows.size() == limits.max_rows) {
+      return make_error("the ActionGroup table has more than " + std::to_string(limits.max_rows) +
+                        " rows, the most seqc reads");
+    }
     D6aRow row;
     const auto index = whole(rows->get(), 0);
     const auto time = whole(rows->get(), 1);
@@ -151,9 +213,12 @@ Result<D6aTable> read_d6a(std::string_view bytes) {
     }
     table.rows.push_back(std::move(row));
   }
+  if (auto spent = interrupted()) return *spent;
   if (step != SQLITE_DONE) {
     return make_error(std::string("a corrupt SQLite database: ") + sqlite3_errmsg(db->get()));
   }
+  std::stable_sort(table.rows.begin(), table.rows.end(),
+                   [](const D6aRow& a, const D6aRow& b) { return a.index < b.index; });
   return table;
 }
 

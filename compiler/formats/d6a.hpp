@@ -28,10 +28,19 @@ struct D6aTable {
   friend bool operator==(const D6aTable&, const D6aTable&) = default;
 };
 
+// What reading one .d6a file may cost. The file is hostile until read: a few KB can hold a view
+// whose rows never end, or a trigger, so the database is read only, never on disk (temporary
+// tables and sorts stay in memory), views and triggers are refused before any query runs, and
+// SQLite is interrupted past a budget of virtual-machine steps.
+struct D6aReadLimits {
+  std::size_t max_rows = 65536;          // a controller holds 1,020 actions
+  std::uint64_t max_steps = 50'000'000;  // SQLite VM instructions (checked every thousand)
+};
+
 // Reads a .d6a file's bytes. A file that is not SQLite, or has no ActionGroup table, or lacks
-// its Time or ServoK columns, or holds a value that is not a whole number, is an error naming
-// what is missing.
-Result<D6aTable> read_d6a(std::string_view bytes);
+// its Time or ServoK columns, or holds a value that is not a whole number, or holds a view,
+// trigger or virtual table, or is past a limit, is an error naming what is wrong.
+Result<D6aTable> read_d6a(std::string_view bytes, const D6aReadLimits& limits = {});
 
 // The bytes of a .d6a file holding `table` ([Index] 1..n in row order).
 Result<std::string> write_d6a(const D6aTable& table);

@@ -34,6 +34,9 @@ class MusicSession {
   audio::MonoAudio song;
   io::Duration downbeat{0};
   io::Duration audio_offset{0};
+  // Where audio_offset came from when a rig file gave it (its path), for the report; "" when it
+  // is --audio-offset's (or none).
+  std::string audio_offset_from;
   std::unique_ptr<audio::AudioOutput> output;
   std::optional<SongStart> started;
   // The robot is an in-process emulator on its own clock (boards::OpenedPort::own_clock): the

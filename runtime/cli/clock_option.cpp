@@ -3,7 +3,6 @@
 #include <ostream>
 
 #include "base/diagnostics.hpp"
-#include "compiler/frontend/rig_file.hpp"
 
 namespace seqc::cli {
 
@@ -15,20 +14,25 @@ void add_clock_options(CLI::App& cmd, ClockScaleOptions& options) {
                  "Rig file (YAML: clock_ppm, audio_offset; docs/music.md); --clock-ppm wins");
 }
 
+ExitCode read_rig(Context& ctx, const std::string& path, std::optional<compiler::Rig>& rig) {
+  auto text = ctx.files.read(path);
+  if (!text) {
+    ctx.err << "seqc: error: --rig: " << text.error().message << "\n";
+    return ExitCode::FileError;
+  }
+  seqc::SourceManager sources;
+  seqc::Diagnostics diags;
+  const std::uint32_t file = sources.add(path, *text);
+  rig = compiler::parse_rig(sources, file, diags);
+  ctx.err << seqc::render_all(diags, sources, false, ctx.color);
+  return rig ? ExitCode::Ok : ExitCode::InvalidInput;
+}
+
 ExitCode resolve_clock_ppm(Context& ctx, const ClockScaleOptions& options, std::int32_t& ppm) {
   ppm = 0;
   if (!options.rig.empty()) {
-    auto text = ctx.files.read(options.rig);
-    if (!text) {
-      ctx.err << "seqc: error: --rig: " << text.error().message << "\n";
-      return ExitCode::FileError;
-    }
-    seqc::SourceManager sources;
-    seqc::Diagnostics diags;
-    const std::uint32_t file = sources.add(options.rig, *text);
-    const auto rig = compiler::parse_rig(sources, file, diags);
-    ctx.err << seqc::render_all(diags, sources, false, ctx.color);
-    if (!rig) return ExitCode::InvalidInput;
+    std::optional<compiler::Rig> rig;
+    if (const ExitCode e = read_rig(ctx, options.rig, rig); e != ExitCode::Ok) return e;
     if (rig->clock_ppm) ppm = *rig->clock_ppm;
   }
   if (!options.clock_ppm.empty()) {

@@ -250,7 +250,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
 
   MusicSession music;
   if (a.music.music) {
-    if (const ExitCode e = open_music(ctx, c.output, a.file, a.music, music); e != ExitCode::Ok) {
+    MusicArgs music_args = a.music;
+    music_args.rig = a.clock.rig;  // its audio_offset, unless --audio-offset is given
+    if (const ExitCode e = open_music(ctx, c.output, a.file, music_args, music);
+        e != ExitCode::Ok) {
       return e;
     }
   }
@@ -365,7 +368,7 @@ void add_upload_command(CLI::App& app, Context& ctx, Outcome& result) {
                       "priority, so a busy machine cannot delay the start on the downbeat or at a "
                       "bar line (a plain --run keeps no time)",
                       run);
-  add_music_options(*cmd, a->music, run);
+  add_music_options(*cmd, a->music, run, false);  // --rig is the clock options'
   cmd->add_flag("--dry-run", a->dry_run, "Print the frames it would send; open no port");
   add_trace_option(*cmd, a->trace,
                    "Write every byte sent and received, with times, to this file (docs/trace.md)");

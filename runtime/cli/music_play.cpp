@@ -1,10 +1,12 @@
 #include "runtime/cli/music_play.hpp"
 
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 #include <fmt/format.h>
 
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/io/time_text.hpp"
 
 namespace seqc::cli {
@@ -19,22 +21,39 @@ std::string relative_text(io::Duration skew) {
 
 }  // namespace
 
-void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs) {
+void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs, bool rig_option) {
   CLI::Option* music = cmd.add_flag(
       "--music", args.music,
       "Play the song of the file's `music:` block and start the robot on its downbeat as heard "
       "(docs/music.md)");
   if (needs != nullptr) music->needs(needs);
-  cmd.add_option("--audio-offset", args.audio_offset_ms,
-                 "With --music: milliseconds the sound reaches you after the audio API says it "
-                 "does (speakers, Bluetooth; may be negative)")
-      ->check(CLI::Range(-5000.0, 5000.0))
-      ->needs(music);
+  args.audio_offset =
+      cmd.add_option("--audio-offset", args.audio_offset_ms,
+                     "With --music: milliseconds the sound reaches you after the audio API says "
+                     "it does (speakers, Bluetooth; may be negative)")
+          ->check(CLI::Range(-5000.0, 5000.0))
+          ->needs(music);
+  if (rig_option) {
+    cmd.add_option("--rig", args.rig,
+                   "Rig file (YAML; docs/music.md): its audio_offset, unless --audio-offset is "
+                   "given");
+  }
 }
 
 ExitCode open_music(Context& ctx, const compiler::Song& song, const MusicArgs& args,
                     MusicSession& out) {
-  const io::Duration offset{std::llround(args.audio_offset_ms * 1e6)};
+  io::Duration offset{std::llround(args.audio_offset_ms * 1e6)};
+  std::string offset_from;
+  const bool offset_given = args.audio_offset != nullptr && args.audio_offset->count() > 0;
+  if (!offset_given && !args.rig.empty()) {
+    std::optional<compiler::Rig> rig;
+    if (const ExitCode e = read_rig(ctx, args.rig, rig); e != ExitCode::Ok) return e;
+    if (rig->audio_offset) {
+      offset = *rig->audio_offset;
+      offset_from = args.rig;
+    }
+  }
+  out.audio_offset_from = offset_from;
   const boards::MusicOpen opened =
       boards::open_music(song, offset, ctx.audio_files, ctx.audio_output, out);
   switch (opened.status) {
@@ -81,8 +100,10 @@ std::string sync_text(const MusicSession& music, const boards::SyncedStart& star
   std::string text = "music: downbeat heard at +" + io::seconds_text(heard) + " (output latency " +
                      io::ms_text(p.latency, 1);
   if (music.audio_offset != io::Duration{0}) {
-    text += fmt::format(", --audio-offset {:g} ms",
-                        std::chrono::duration<double, std::milli>(music.audio_offset).count());
+    const double ms = std::chrono::duration<double, std::milli>(music.audio_offset).count();
+    text += music.audio_offset_from.empty()
+                ? fmt::format(", --audio-offset {:g} ms", ms)
+                : fmt::format(", audio_offset {:g} ms from {}", ms, music.audio_offset_from);
   }
   if (music.started && music.started->lead_in > io::Duration{0}) {
     text += ", after " + io::seconds_text(music.started->lead_in) + " of silence";

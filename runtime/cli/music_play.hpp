@@ -1,5 +1,6 @@
 // The song beside the robot, in words: `--music` and `--audio-offset MS` on `seqc play` and
-// `seqc upload --run`, and a show whose performer has `music:`. The session itself (the song
+// `seqc upload --run`, and a show whose performer has `music:`; without --audio-offset, the
+// `--rig` file's audio_offset. The session itself (the song
 // decoded, the sound server reached before anything is sent to a board, the song started just
 // before the robot) is boards::MusicSession (runtime/boards/music_session.hpp); this file words
 // its failures and its report. The report is one line on stderr: when the downbeat is heard,
@@ -21,11 +22,18 @@ namespace seqc::cli {
 
 struct MusicArgs {
   bool music = false;
-  double audio_offset_ms = 0;  // --audio-offset: what no audio API sees
+  double audio_offset_ms = 0;                 // --audio-offset: what no audio API sees
+  const CLI::Option* audio_offset = nullptr;  // --audio-offset itself, to tell whether it was given
+  // The rig file (--rig): its audio_offset is used when --audio-offset is not given, as its
+  // clock_ppm is when --clock-ppm is not.
+  std::string rig;
 };
 
-// --music and --audio-offset; `needs`: an option --music needs (upload's --run), or null.
-void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs = nullptr);
+// --music and --audio-offset, and --rig unless the command has it already (`rig_option` false:
+// the command copies its --rig into MusicArgs::rig). `needs`: an option --music needs (upload's
+// --run), or null.
+void add_music_options(CLI::App& cmd, MusicArgs& args, CLI::Option* needs = nullptr,
+                       bool rig_option = true);
 
 using boards::MusicSession;  // runtime/boards/music_session.hpp
 

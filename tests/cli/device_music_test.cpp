@@ -86,6 +86,47 @@ TEST(DeviceMusic, PlayStartsTheFirstMoveOnTheDownbeatAsHeard) {
       << r.err;
 }
 
+TEST(DeviceMusic, UploadRunTakesTheRigFilesAudioOffset) {
+  MusicHarness h;
+  h.files.add("rig.yaml", "audio_offset: 20ms\n");
+  RunResult r = h.run(
+      {"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music", "--rig", "rig.yaml"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // 50 ms of latency + the downbeat at 750 ms + the rig's 20 ms = 820 ms after the song's start.
+  auto at = h.arrival_ms("55 55 05 06 00 01 00");
+  ASSERT_TRUE(at.has_value()) << r.err;
+  EXPECT_NEAR(*at, 820.0, 1e-5);
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.820 s (output latency 50.0 ms, "
+                       "audio_offset 20 ms from rig.yaml); robot started on it"),
+            std::string::npos)
+      << r.err;
+
+  // --audio-offset wins over the rig's: 50 + 750 + 5 = 805 ms.
+  MusicHarness both;
+  both.files.add("rig.yaml", "audio_offset: 40ms\n");
+  r = both.run({"upload", "dance.yaml", "--port", "emu:xarm", "--run", "--music", "--rig",
+                "rig.yaml", "--audio-offset", "5"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  at = both.arrival_ms("55 55 05 06 00 01 00");
+  ASSERT_TRUE(at.has_value()) << r.err;
+  EXPECT_NEAR(*at, 805.0, 1e-5);
+  EXPECT_NE(r.err.find("(output latency 50.0 ms, --audio-offset 5 ms)"), std::string::npos)
+      << r.err;
+}
+
+TEST(DeviceMusic, PlayTakesTheRigFilesAudioOffset) {
+  MusicHarness h;
+  h.files.add("rig.yaml", "clock_ppm: 8000\naudio_offset: -0.01s\n");
+  const RunResult r = h.run(
+      {"play", "dance.yaml", "--port", "emu:xarm", "--music", "--force", "--rig", "rig.yaml"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The first move finishes arriving 50 + 750 - 10 = 790 ms after the song's start.
+  const auto at = h.arrival_ms("55 55 08 03 01 f4 01 06 90 01");
+  ASSERT_TRUE(at.has_value()) << r.err;
+  EXPECT_NEAR(*at, 790.0, 1e-5);
+  EXPECT_NE(r.err.find("audio_offset -10 ms from rig.yaml"), std::string::npos) << r.err;
+}
+
 // Without the harness's emulator, `--port emu:xarm` is a fresh one on a clock of its own, as on
 // the command line: the song is dated on the host's clock (here the harness's) and the start on
 // the emulator's, so the report says no skew is measured instead of "robot started on it".

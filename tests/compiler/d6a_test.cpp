@@ -186,5 +186,94 @@ TEST(D6a, RowsThatCannotBeActionsAreErrorsWithTheirRow) {
       "learm, raspblock)");
 }
 
+// The bytes of a database made in memory by `sql` (hostile files are built with SQLite itself).
+std::string database(const std::string& sql) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open(":memory:", &db), SQLITE_OK);
+  char* error = nullptr;
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK)
+      << (error ? error : "");
+  sqlite3_free(error);
+  sqlite3_int64 size = 0;
+  unsigned char* data = sqlite3_serialize(db, "main", &size, 0);
+  std::string bytes(reinterpret_cast<const char*>(data), static_cast<std::size_t>(size));
+  sqlite3_free(data);
+  sqlite3_close(db);
+  return bytes;
+}
+
+constexpr char kTable[] =
+    "CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY AUTOINCREMENT, Time INT, Servo1 INT);";
+constexpr char kRefusedTail[] =
+    " (a .d6a file is one plain table; seqc reads no views, triggers or virtual tables)";
+
+TEST(D6a, ViewsTriggersAndVirtualTablesAreRefusedByName) {
+  // A view whose rows never end (a recursive CTE) stands where the table should be.
+  EXPECT_EQ(
+      compiler::read_d6a(database("CREATE VIEW ActionGroup([Index], Time, Servo1) AS "
+                                  "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM "
+                                  "n) SELECT i, 100, 500 FROM n;"))
+          .error()
+          .message,
+      std::string("the database holds a view, ActionGroup") + kRefusedTail);
+  EXPECT_EQ(compiler::read_d6a(database(std::string(kTable) +
+                                        "CREATE VIEW extra AS SELECT 1; "
+                                        "INSERT INTO ActionGroup (Time, Servo1) VALUES (100, 1);"))
+                .error()
+                .message,
+            std::string("the database holds a view, extra") + kRefusedTail);
+  EXPECT_EQ(compiler::read_d6a(database(std::string(kTable) +
+                                        "CREATE TRIGGER grow AFTER INSERT ON ActionGroup BEGIN "
+                                        "INSERT INTO ActionGroup (Time, Servo1) VALUES (1, 1); "
+                                        "END;"))
+                .error()
+                .message,
+            std::string("the database holds a trigger, grow") + kRefusedTail);
+  EXPECT_EQ(compiler::read_d6a(database("CREATE VIRTUAL TABLE ActionGroup USING "
+                                        "fts5(Idx, Time, Servo1);"))
+                .error()
+                .message,
+            std::string("the database holds a virtual table, ActionGroup") + kRefusedTail);
+}
+
+TEST(D6a, AMillionRowsAreRefusedAtTheRowLimit) {
+  const std::string bytes =
+      database(std::string(kTable) +
+               "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 1000000) "
+               "INSERT INTO ActionGroup (Time, Servo1) SELECT 100, 500 FROM n;");
+  EXPECT_EQ(compiler::read_d6a(bytes).error().message,
+            "the ActionGroup table has more than 65536 rows, the most seqc reads");
+  // Exactly the limit is read.
+  compiler::D6aReadLimits limits;
+  limits.max_rows = 3;
+  const std::string three =
+      database(std::string(kTable) +
+               "INSERT INTO ActionGroup (Time, Servo1) VALUES (100, 1), (100, 2), (100, 3);");
+  EXPECT_EQ(compiler::read_d6a(three, limits)->rows.size(), 3u);
+  limits.max_rows = 2;
+  EXPECT_EQ(compiler::read_d6a(three, limits).error().message,
+            "the ActionGroup table has more than 2 rows, the most seqc reads");
+}
+
+TEST(D6a, SqliteIsInterruptedPastItsStepBudget) {
+  // No [Index] key, rows stored in reverse: read in stored order, returned in [Index] order.
+  const std::string reversed = database(
+      "CREATE TABLE ActionGroup([Index] INT, Time INT, Servo1 INT);"
+      "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 20000) "
+      "INSERT INTO ActionGroup SELECT 20001 - i, 100 + i % 7, 500 FROM n;");
+  compiler::D6aReadLimits limits;
+  limits.max_steps = 10'000;
+  EXPECT_EQ(compiler::read_d6a(reversed, limits).error().message,
+            "reading it took more than 10000 SQLite steps, the most seqc spends on a .d6a file");
+  auto table = compiler::read_d6a(reversed);
+  ASSERT_TRUE(table.ok()) << table.error().message;
+  ASSERT_EQ(table->rows.size(), 20000u);
+  // Row k (from 0) has [Index] k + 1 and was inserted as i = 20000 - k: Time 100 + i % 7.
+  for (std::size_t k = 0; k < 20000; ++k) {
+    ASSERT_EQ(table->rows[k].index, std::int64_t(k + 1)) << k;
+    ASSERT_EQ(table->rows[k].time_ms, int(100 + (20000 - k) % 7)) << k;
+  }
+}
+
 }  // namespace
 }  // namespace seqc

@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 #include <sndfile.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "runtime/audio/sndfile_audio.hpp"
@@ -30,6 +34,30 @@ class SndfileAudio : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   fs::path dir_;
 };
+
+// Writes `frames` frames of `channels` channels at `rate` with libsndfile itself; value(i, c)
+// is frame i's sample on channel c.
+template <typename Value>
+void write_song(const std::string& file, int format, int rate, int channels, int frames,
+                Value value) {
+  SF_INFO info{};
+  info.samplerate = rate;
+  info.channels = channels;
+  info.format = format;
+  SNDFILE* f = sf_open(file.c_str(), SFM_WRITE, &info);
+  ASSERT_NE(f, nullptr) << sf_strerror(nullptr);
+  std::vector<float> samples;
+  for (int i = 0; i < frames; ++i) {
+    for (int c = 0; c < channels; ++c) samples.push_back(value(i, c));
+  }
+  ASSERT_EQ(sf_writef_float(f, samples.data(), frames), frames);
+  sf_close(f);
+}
+
+std::string bytes_of(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 TEST_F(SndfileAudio, WavRoundTripsTo16Bits) {
   MonoAudio audio;
@@ -113,6 +141,100 @@ TEST_F(SndfileAudio, LongSongsAreRefusedUnread) {
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().message, path("3s.wav") + ": longer than 2 s, the most seqc reads");
   EXPECT_TRUE(SndfileAudioReader(3.5).read(path("3s.wav")).ok());
+}
+
+TEST_F(SndfileAudio, EightChannelsAt192kHzAreMixedThenDecimatedTo48kHz) {
+  // Frame i, channel c: ((i / 4) % 8 - 4 + c) / 64, exact in 16 bits. The mean of the channels is
+  // ((i / 4) % 8 - 0.5) / 64, the same for the 4 frames of each group of 4 (192 / 48); the 3
+  // frames of the last, partial group are dropped.
+  write_song(path("8ch.flac"), SF_FORMAT_FLAC | SF_FORMAT_PCM_16, 192000, 8, 4003,
+             [](int i, int c) { return float((i / 4) % 8 - 4 + c) / 64.0f; });
+  auto mono = SndfileAudioReader().read(path("8ch.flac"));
+  ASSERT_TRUE(mono.ok()) << mono.error().message;
+  EXPECT_EQ(mono->sample_rate, 48000);
+  ASSERT_EQ(mono->samples.size(), 1000u);
+  for (std::size_t g = 0; g < 1000; ++g) {
+    EXPECT_EQ(mono->samples[g], float(double(g % 8) - 0.5) / 64.0f) << g;
+  }
+}
+
+TEST_F(SndfileAudio, A655kHzFlacIsDecimatedBy14) {
+  // 655350 Hz, the most FLAC holds: 14 frames per kept sample, 46810.7 Hz.
+  write_song(path("fast.flac"), SF_FORMAT_FLAC | SF_FORMAT_PCM_16, 655350, 1, 14 * 300 + 5,
+             [](int i, int) { return float((i / 14) % 16) / 64.0f; });
+  auto mono = SndfileAudioReader().read(path("fast.flac"));
+  ASSERT_TRUE(mono.ok()) << mono.error().message;
+  EXPECT_EQ(mono->sample_rate, 655350.0 / 14);
+  ASSERT_EQ(mono->samples.size(), 300u);
+  for (std::size_t g = 0; g < 300; ++g) EXPECT_EQ(mono->samples[g], float(g % 16) / 64.0f) << g;
+}
+
+TEST_F(SndfileAudio, SamplesPastTheLimitsAreRefused) {
+  // 500 stereo frames are 1000 samples: exactly the limit; 501 are one frame too many.
+  write_song(path("500.wav"), SF_FORMAT_WAV | SF_FORMAT_PCM_16, 8000, 2, 500,
+             [](int, int) { return 0.25f; });
+  write_song(path("501.wav"), SF_FORMAT_WAV | SF_FORMAT_PCM_16, 8000, 2, 501,
+             [](int, int) { return 0.25f; });
+  AudioReadLimits limits;
+  limits.max_file_samples = 1000;
+  EXPECT_TRUE(SndfileAudioReader(limits).read(path("500.wav")).ok());
+  auto refused = SndfileAudioReader(limits).read(path("501.wav"));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message,
+            path("501.wav") + ": more than 1000 samples (frames x channels), the most seqc reads");
+  // The mono samples are counted as they are decoded.
+  AudioReadLimits mono;
+  mono.max_mono_samples = 500;
+  EXPECT_TRUE(SndfileAudioReader(mono).read(path("500.wav")).ok());
+  auto kept = SndfileAudioReader(mono).read(path("501.wav"));
+  ASSERT_FALSE(kept.ok());
+  EXPECT_EQ(
+      kept.error().message,
+      path("501.wav") + ": more than 500 samples once mixed down to mono, the most seqc keeps");
+}
+
+TEST_F(SndfileAudio, AFifoIsReadWithinItsByteLimit) {
+  write_song(path("song.wav"), SF_FORMAT_WAV | SF_FORMAT_PCM_16, 8000, 1, 4000,
+             [](int i, int) { return float(i % 32) / 64.0f; });
+  const std::string wav = bytes_of(path("song.wav"));  // 8044 bytes: fits a pipe's buffer
+  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
+  auto feed = [&] {
+    // Opening blocks until the reader has opened; the bytes then fit the pipe in one write.
+    if (std::FILE* f = std::fopen(path("fifo").c_str(), "wb")) {
+      std::fwrite(wav.data(), 1, wav.size(), f);
+      std::fclose(f);
+    }
+  };
+  std::thread writer(feed);
+  auto mono = SndfileAudioReader().read(path("fifo"));
+  writer.join();
+  ASSERT_TRUE(mono.ok()) << mono.error().message;
+  ASSERT_EQ(mono->samples.size(), 4000u);
+  for (std::size_t i = 0; i < 4000; ++i) EXPECT_EQ(mono->samples[i], float(i % 32) / 64.0f) << i;
+
+  AudioReadLimits small;
+  small.max_stream_bytes = 8000;
+  std::thread again(feed);
+  auto refused = SndfileAudioReader(small).read(path("fifo"));
+  again.join();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message,
+            path("fifo") + ": more than 8000 bytes, the most seqc reads from a FIFO or device");
+}
+
+TEST_F(SndfileAudio, AFifoWithNoWriterAndDevZeroEnd) {
+  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
+  AudioReadLimits limits;
+  limits.idle_seconds = 0.05;
+  auto waited = SndfileAudioReader(limits).read(path("fifo"));
+  ASSERT_FALSE(waited.ok());
+  EXPECT_EQ(waited.error().message,
+            path("fifo") + ": nothing to read for 0.05 s (a FIFO with no writer?)");
+  // Not audio: refused after its first block, not read to the byte limit.
+  auto zeros = SndfileAudioReader().read("/dev/zero");
+  ASSERT_FALSE(zeros.ok());
+  EXPECT_EQ(zeros.error().message.rfind("/dev/zero: cannot decode: ", 0), 0u)
+      << zeros.error().message;
 }
 
 }  // namespace
