@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "base/terminal_text.hpp"
+
 namespace seqc {
 
 void Diagnostics::error(Location at, std::string message) {
@@ -81,7 +83,9 @@ bool quotable(std::string_view line) {
 //      12 |   source line
 //         |   ^
 // Without a column the caret line is left out; with line 0 only "path: error: message" is
-// printed; a line that is not plain text (a control byte, invalid UTF-8) is not quoted; a location
+// printed; a line that is not plain text (a control byte, invalid UTF-8) is not quoted, nor is
+// any line of a file whose lines the SourceManager withholds; the path and the message show
+// their control characters as escapes (terminal_safe); a location
 // in no known file (kNoFile or a stale index) prints "seqc: error: message".
 std::string render(const Diagnostic& d, const SourceManager& sources, bool strict, bool color) {
   const Location& at = d.location;
@@ -91,7 +95,7 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
   if (!known_file) {
     out += "seqc";
   } else {
-    out += sources.path(at.file);
+    out += terminal_safe(sources.path(at.file));
     if (at.line > 0) {
       out += ':' + std::to_string(at.line);
       if (at.column > 0) out += ':' + std::to_string(at.column);
@@ -109,12 +113,14 @@ std::string render(const Diagnostic& d, const SourceManager& sources, bool stric
       out += ": " + sgr("\033[36m") + "note: ";
       break;
   }
-  out += sgr("\033[0m\033[1m") + d.message;
+  out += sgr("\033[0m\033[1m") + terminal_safe(d.message);
   if (promoted) out += " [--strict]";
   out += sgr("\033[0m") + '\n';
 
-  // No source line to quote: an unknown file, no line, or a file refused unread (empty text).
+  // No source line to quote: an unknown file, no line, a file refused unread (empty text) or one
+  // whose lines are withheld (an include that is no choreography: it could be any file).
   if (!known_file || at.line == 0 || sources.text(at.file).empty()) return out;
+  if (!sources.quotes_lines(at.file)) return out;
   if (at.line > sources.line_count(at.file)) return out;
 
   const std::string number = std::to_string(at.line);

@@ -43,8 +43,10 @@ class Diagnostics {
 };
 
 // "path:line:col: error: message", the source line, and a caret under the column. A line that
-// is not plain text (control bytes, invalid UTF-8: a binary file) is not quoted, so a file's
-// bytes never reach a terminal.
+// is not plain text (control bytes, invalid UTF-8: a binary file) is not quoted, nor is a line of
+// a file whose lines the SourceManager withholds (an include that is no choreography), so a
+// file's bytes never reach a terminal; the path and the message show any control character as
+// an escape (base/terminal_text.hpp), so a value quoted from a file cannot forge a line.
 // With strict, warnings are rendered as errors. With color, ANSI SGR codes as clang uses them:
 // bold location and message, red error, magenta warning, cyan note, green caret.
 std::string render(const Diagnostic& d, const SourceManager& sources, bool strict = false,

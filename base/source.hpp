@@ -61,12 +61,18 @@ class SourceManager {
   std::size_t file_count() const { return files_.size(); }
   // Lines in the file (a final '\n' starts one more, empty, line); 0 for an unknown file.
   std::size_t line_count(std::uint32_t file) const;
+  // Whether diagnostics may quote the file's lines: true unless withheld. An include that did not
+  // parse as a choreography file may be any file the user can read (`include: /etc/shadow`), so
+  // its problems are located but none of its lines is copied into a message or a report.
+  bool quotes_lines(std::uint32_t file) const;
+  void withhold_lines(std::uint32_t file);
 
  private:
   struct File {
     std::string path;
     std::string text;
     std::vector<std::size_t> line_starts;
+    bool quoted = true;
   };
   std::vector<File> files_;
 };

@@ -11,7 +11,7 @@ const std::string kEmpty;
 }  // namespace
 
 std::uint32_t SourceManager::add(std::string path, std::string text) {
-  File f{std::move(path), std::move(text), {0}};
+  File f{std::move(path), std::move(text), {0}, true};
   for (std::size_t i = 0; i < f.text.size(); ++i) {
     if (f.text[i] == '\n') f.line_starts.push_back(i + 1);
   }
@@ -29,6 +29,14 @@ const std::string& SourceManager::text(std::uint32_t file) const {
 
 std::size_t SourceManager::line_count(std::uint32_t file) const {
   return file < files_.size() ? files_[file].line_starts.size() : 0;
+}
+
+bool SourceManager::quotes_lines(std::uint32_t file) const {
+  return file < files_.size() && files_[file].quoted;
+}
+
+void SourceManager::withhold_lines(std::uint32_t file) {
+  if (file < files_.size()) files_[file].quoted = false;
 }
 
 std::string_view SourceManager::line(std::uint32_t file, std::uint32_t line) const {

@@ -1,5 +1,6 @@
 #include "compiler/formats/listing.hpp"
 #include "base/json_text.hpp"
+#include "base/terminal_text.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +12,8 @@ namespace {
 
 std::string servo_label(const compiler::ServoProgram& program, std::uint8_t id) {
   const compiler::ServoInfo* s = program.robot.find_id(id);
-  return s != nullptr ? fmt::format("{}({})", s->name, id) : fmt::format("servo({})", id);
+  return s != nullptr ? fmt::format("{}({})", seqc::terminal_safe(s->name), id)
+                      : fmt::format("servo({})", id);
 }
 
 }  // namespace
@@ -42,7 +44,7 @@ std::string render_listing(const compiler::ServoProgram& program,
     if (!p.keyframe) continue;
     const compiler::Keyframe& k = program.keyframes[*p.keyframe];
     // An action no step wrote (the hold before an `at:` cue) says so rather than "from :".
-    const std::string from = location_text(k.source, sources);
+    const std::string from = seqc::terminal_safe(location_text(k.source, sources));
     out += from.empty()
                ? fmt::format("  action {} at {} ms, a hold:", *p.keyframe + 1, k.start_ms)
                : fmt::format("  action {} at {} ms from {}:", *p.keyframe + 1, k.start_ms, from);

@@ -129,9 +129,9 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
     body += "<g class=\"lane\"><title>" + svg::escape(info->name) + "</title>\n";
     body +=
         svg::rect(kLeft, y0, kWidth - kLeft - kRight, kLane, "fill=\"none\" stroke=\"#d1d5db\"");
-    const std::string band = "fill=\"#fde2e2\"><title>outside " + info->name + "'s limits " +
-                             std::to_string(info->min) + "-" + std::to_string(info->max) +
-                             "</title></rect";
+    const std::string band = "fill=\"#fde2e2\"><title>outside " + svg::escape(info->name) +
+                             "'s limits " + std::to_string(info->min) + "-" +
+                             std::to_string(info->max) + "</title></rect";
     body += "<rect x=\"" + num(kLeft) + "\" y=\"" + num(y0) + "\" width=\"" +
             num(kWidth - kLeft - kRight) + "\" height=\"" + num(y(info->max) - y0) + "\" " + band +
             ">\n";

@@ -71,12 +71,30 @@ std::string joint_json(const compiler::ArmJoint& j) {
          ",\"sign\":" + std::to_string(j.sign) + "}";
 }
 
-// What the script must not see as the end of its <script> element.
-std::string script_safe(std::string json) {
-  for (std::size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 3)) {
-    json.replace(at, 2, "<\\/");
+// The data for a <script type="application/json"> element. HTML ends that element at the first
+// "</script" and reads "<!--" as an escape that can hide the end, so no <, > or & may appear in
+// it: each is written as a JSON escape, as are U+2028 and U+2029 (line ends to a JavaScript
+// reader of old). Outside strings JSON has none of these, so the whole text can be rewritten
+// and parses to the same value.
+std::string script_safe(std::string_view json) {
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (json.substr(i, 3) == "\xE2\x80\xA8" || json.substr(i, 3) == "\xE2\x80\xA9") {
+      out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else {
+      out += c;
+    }
   }
-  return json;
+  return out;
 }
 
 // The skeleton with each @name@ of `parts` replaced by its text. Only the skeleton is scanned: an

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "base/terminal_text.hpp"
 #include "compiler/formats/listing.hpp"
 #include "protocol/raspblock/raspblock.hpp"
 
@@ -43,7 +44,7 @@ std::string render_stream_listing(const compiler::RaspblockProgram& program,
     std::string hex = to_hex(frames[i].bytes);
     hex.resize(std::max<std::size_t>(hex.size(), 41), ' ');
     out += time_column(frames[i].at_ms) + hex + "  " + raspblock::describe(p.packet);
-    const std::string where = location_text(p.source, sources);
+    const std::string where = seqc::terminal_safe(location_text(p.source, sources));
     if (!where.empty()) out += "  (" + where + ")";
     out += "\n";
   }

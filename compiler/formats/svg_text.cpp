@@ -3,11 +3,28 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/utf8.hpp"
+
 namespace seqc::compiler::svg {
+namespace {
+constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
+}  // namespace
 
 std::string escape(std::string_view text) {
   std::string out;
-  for (char c : text) {
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = seqc::utf8_length(text, i);
+    const std::string_view one = text.substr(i, n == 0 ? 1 : n);
+    i += one.size();
+    // U+FFFE and U+FFFF (EF BF BE, EF BF BF) are no XML characters either.
+    const bool nonchar = n == 3 && c == 0xEF && static_cast<unsigned char>(one[1]) == 0xBF &&
+                         static_cast<unsigned char>(one[2]) >= 0xBE;
+    if (n == 0 || nonchar || (n == 1 && c < 0x20 && c != '\t' && c != '\n' && c != '\r')) {
+      out += kReplacement;
+      continue;
+    }
     switch (c) {
       case '&':
         out += "&amp;";
@@ -22,7 +39,7 @@ std::string escape(std::string_view text) {
         out += "&quot;";
         break;
       default:
-        out += c;
+        out.append(one);
     }
   }
   return out;

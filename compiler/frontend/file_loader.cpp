@@ -28,6 +28,18 @@ Result<const LoadedFile*> FileLoader::load(const std::string& path) {
   return result;
 }
 
+Result<const LoadedFile*> FileLoader::load_included(const std::string& path) {
+  auto loaded = load(path);
+  if (!loaded) return loaded;
+  const LoadedFile& f = **loaded;
+  if (!is_choreography(f)) sources_.withhold_lines(f.file);
+  return loaded;
+}
+
+bool is_choreography(const LoadedFile& f) {
+  return f.root && f.root->is_map() && f.root->find("sequence") != nullptr;
+}
+
 std::string resolve_include(const std::string& from, const std::string& target) {
   // Pure path arithmetic; nothing here touches the file system.
   std::filesystem::path t(target);

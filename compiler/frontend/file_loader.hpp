@@ -32,6 +32,10 @@ class FileLoader {
 
   // The file at `path` (already resolved), loading it on first use. An error if unreadable.
   Result<const LoadedFile*> load(const std::string& path);
+  // As load(), for a file named by an `include:`. Unless it parses as a choreography file (a map
+  // with a 'sequence' key), its lines are withheld from diagnostics (SourceManager): an include
+  // can name any readable file, and a secret's first line must not be quoted in a report.
+  Result<const LoadedFile*> load_included(const std::string& path);
 
  private:
   FileReader& reader_;
@@ -39,6 +43,9 @@ class FileLoader {
   Diagnostics& diags_;
   std::map<std::string, std::unique_ptr<LoadedFile>> files_;
 };
+
+// Whether the file parsed as a choreography file: a map with a 'sequence' key.
+bool is_choreography(const LoadedFile& f);
 
 // Lexically normalised path of `target` written in the file at `from` (relative to its folder).
 std::string resolve_include(const std::string& from, const std::string& target);

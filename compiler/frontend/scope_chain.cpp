@@ -202,7 +202,7 @@ const LoadedFile* ScopeChain::load_include(const YamlNode& value, std::string_vi
                                        " files deep; is there a runaway include chain?");
     return nullptr;
   }
-  auto loaded = loader.load(path);
+  auto loaded = loader.load_included(path);
   if (!loaded) {
     reporter.error(value.location, cannot_load(path, loaded.error().message));
     return nullptr;

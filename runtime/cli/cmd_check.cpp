@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/terminal_text.hpp"
 #include "base/units.hpp"
 #include "base/diagnostic_formats.hpp"
 #include "runtime/cli/clock_option.hpp"
@@ -60,13 +61,14 @@ std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
 // The summary line of a unit (text form).
 std::string summary(const Unit& u, bool strict) {
   const seqc::Diagnostics& d = u.compiled.output.diagnostics;
+  const std::string label = terminal_safe(u.label);
   const std::string warned =
       d.warning_count() ? ", " + plural(d.warning_count(), "warning") : std::string();
   if (u.show && u.compiled.code == ExitCode::Ok) {
-    return fmt::format("{}: show with {}{}\n", u.label, plural(u.performers, "performer"), warned);
+    return fmt::format("{}: show with {}{}\n", label, plural(u.performers, "performer"), warned);
   }
   if (const compiler::RaspblockProgram* car = u.compiled.output.raspblock_program()) {
-    return fmt::format("{}: ok ({}, {}){}\n", u.label, plural(car->packets.size(), "packet"),
+    return fmt::format("{}: ok ({}, {}){}\n", label, plural(car->packets.size(), "packet"),
                        seqc::format_seconds(car->duration_ms), warned);
   }
   if (const compiler::ServoProgram* p = u.compiled.output.servo_program()) {
@@ -78,7 +80,7 @@ std::string summary(const Unit& u, bool strict) {
     const std::string units =
         p->fit_error > 0
             ? fmt::format("{} units ({} at {:.3f} s)", seqc::format_units(p->fit_error),
-                          p->fit_error_servo, p->fit_error_at_ms / 1000.0)
+                          terminal_safe(p->fit_error_servo), p->fit_error_at_ms / 1000.0)
             : "0 units";
     std::string fit = units;
     if (p->tip_error_mm) {
@@ -87,13 +89,13 @@ std::string summary(const Unit& u, bool strict) {
                       p->tip_error_at_ms / 1000.0);
       fit = p->fit_error > 0 ? units + " and " + tip : tip;
     }
-    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {}{}\n", u.label,
-                       p->keyframes.size(), p->group_capacity,
-                       static_cast<double>(p->duration_ms()) / 1000.0, fit, warned);
+    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {}{}\n", label, p->keyframes.size(),
+                       p->group_capacity, static_cast<double>(p->duration_ms()) / 1000.0, fit,
+                       warned);
   }
   const std::size_t errors = d.error_count() + (strict ? d.warning_count() : 0);
   const std::size_t warnings = strict ? 0 : d.warning_count();
-  return fmt::format("{}: {}{}\n", u.label, plural(errors, "error"),
+  return fmt::format("{}: {}{}\n", label, plural(errors, "error"),
                      warnings ? ", " + plural(warnings, "warning") : "");
 }
 
@@ -145,7 +147,7 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
     for (const Unit& u : units) {
       const compiler::CompileOutput& out = u.compiled.output;
       if (out.read_error) {
-        ctx.err << "seqc: error: " << *out.read_error << "\n";
+        ctx.err << "seqc: error: " << terminal_safe(*out.read_error) << "\n";
         continue;
       }
       ctx.err << seqc::render_all(out.diagnostics, out.sources, opts->strict, ctx.color);

@@ -116,6 +116,7 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   std::atomic<bool> never{false};
   const std::atomic<bool>& stop = ctx.interrupted ? *ctx.interrupted : never;
   Events events(ctx);
+  stop_cleanly_from_now(ctx);
   const emu::ServeResult r = board->serve(options, ctx.clock, stop, events);
   ExitCode code = ExitCode::Ok;
   switch (r.status) {

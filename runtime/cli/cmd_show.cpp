@@ -20,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/terminal_text.hpp"
 #include "compiler/show.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/first_move.hpp"
@@ -50,7 +51,8 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
     case boards::StageProblem::None:
       return ExitCode::Ok;
     case boards::StageProblem::NoPort:
-      ctx.err << "seqc: error: performer '" << p.name << "' has no port in the show file\n";
+      ctx.err << "seqc: error: performer '" << terminal_safe(p.name)
+              << "' has no port in the show file\n";
       return ExitCode::Usage;
     case boards::StageProblem::TraceUnwritable:
       return trace_unwritable(ctx, o.trace_path);
@@ -58,21 +60,23 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
       break;
   }
   const BoardError e = port_failure(o.failure, o.request, p.file);
-  ctx.err << "seqc: error: " << p.name << ": " << e.message << "\n";
+  ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << e.message << "\n";
   return e.code;
 }
 
-// Stores a performer's group; false (with the reason said) if it did not complete.
-bool upload_stage(Context& ctx, Stage& stage) {
+// Stores a performer's group: Ok, or (with the reason said) Interrupted when a stop signal ended
+// it, as for `seqc upload`, else DeviceFailure.
+ExitCode upload_stage(Context& ctx, Stage& stage) {
   const compiler::Performer& p = *stage.performer;
   auto planned = boards::stage_plan(stage);
   if (!planned) {
-    ctx.err << "seqc: error: " << p.name << ": " << planned.error().message << "\n";
-    return false;
+    ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << planned.error().message << "\n";
+    return ExitCode::DeviceFailure;
   }
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: " << p.name << ": uploading " << plural(planned->actions, "action")
-            << " into group " << p.group << " on " << stage.port->transport->describe() << "\n";
+    ctx.err << "seqc: " << terminal_safe(p.name) << ": uploading "
+            << plural(planned->actions, "action") << " into group " << p.group << " on "
+            << stage.port->transport->describe() << "\n";
   }
   upload::ProgressPrinter progress(ctx.err, ctx.err_is_terminal, ctx.verbosity,
                                    ctx.terminal_columns);
@@ -80,18 +84,22 @@ bool upload_stage(Context& ctx, Stage& stage) {
   progress.finish();
   if (r.status == upload::UploadStatus::OtherDialect) {
     const compiler::ServoProgram* program = p.output.servo_program();
-    ctx.err << "seqc: error: " << p.name << ": "
+    ctx.err << "seqc: error: " << terminal_safe(p.name) << ": "
             << other_dialect_text(*stage.board, program != nullptr ? program->robot.profile : "")
-            << "\nseqc: " << p.name << ": " << r.message << "\n";
-    return false;
+            << "\nseqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
+    return ExitCode::DeviceFailure;
+  }
+  if (r.status == upload::UploadStatus::Interrupted) {
+    ctx.err << "seqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
+    return ExitCode::Interrupted;
   }
   if (!r.ok()) {
-    ctx.err << "seqc: error: " << p.name << ": " << r.message << "\n";
-    return false;
+    ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << r.message << "\n";
+    return ExitCode::DeviceFailure;
   }
-  summarize(ctx,
-            p.name + ": the controller acknowledged " + plural(r.actions_acknowledged, "action"));
-  return true;
+  summarize(ctx, terminal_safe(p.name) + ": the controller acknowledged " +
+                     plural(r.actions_acknowledged, "action"));
+  return ExitCode::Ok;
 }
 
 // "GroupRun 2 arrived 0.00 ms after the start (written 7.29 ms before it, 7.29 ms on the
@@ -128,7 +136,8 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       ctx.err << "seqc: interrupted: stopped every performer\n";
       return ExitCode::Interrupted;
     case player::PlayEnd::WriteFailed:
-      ctx.err << "seqc: error: " << stages[r.play.failed_track.value_or(0)].performer->name << ": "
+      ctx.err << "seqc: error: "
+              << terminal_safe(stages[r.play.failed_track.value_or(0)].performer->name) << ": "
               << r.play.error << "; stopped every performer\n";
       return ExitCode::DeviceFailure;
   }
@@ -139,12 +148,13 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       const Stage& s = stages[i];
       const BoardError e =
           outcome_text(*p.run, s.port->transport->describe(), kReplyTimeout, s.board->called);
-      ctx.err << "seqc: error: " << s.performer->name << ": " << e.message << "\n";
+      ctx.err << "seqc: error: " << terminal_safe(s.performer->name) << ": " << e.message << "\n";
       code = e.code;
       continue;
     }
     if (ctx.verbosity >= 0) {
-      ctx.err << "seqc: " << stages[i].performer->name << ": " << start_text(stages[i], p) << "\n";
+      ctx.err << "seqc: " << terminal_safe(stages[i].performer->name) << ": "
+              << start_text(stages[i], p) << "\n";
     }
   }
   summarize(ctx, "start skew between performers: " + io::ms_text(r.start_skew(), 2));
@@ -156,11 +166,12 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
 const compiler::Song* show_song(Context& ctx, const compiler::ShowOutput& show) {
   const boards::ShowSong found = boards::show_song(show);
   if (found.other != nullptr) {
-    ctx.err << "seqc: error: --music: performers '" << found.first->name << "' and '"
-            << found.other->name << "' dance to different songs or downbeats (" << found.song->file
-            << ", " << found.other_song->file << "); a show plays one song\n";
+    ctx.err << "seqc: error: --music: performers '" << terminal_safe(found.first->name) << "' and '"
+            << terminal_safe(found.other->name) << "' dance to different songs or downbeats ("
+            << terminal_safe(found.song->file) << ", " << terminal_safe(found.other_song->file)
+            << "); a show plays one song\n";
   } else if (found.song == nullptr) {
-    ctx.err << "seqc: error: --music: no performer of show " << show.name
+    ctx.err << "seqc: error: --music: no performer of show " << terminal_safe(show.name)
             << " has a `music:` block, so there is no song to play (docs/music.md)\n";
   }
   return found.other != nullptr ? nullptr : found.song;
@@ -181,6 +192,7 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
   ExitCode loaded = ExitCode::Ok;
   compiler::ShowOutput show = load_show_and_report(ctx, path, args.strict, loaded);
   if (loaded != ExitCode::Ok) return loaded;
+  stop_cleanly_from_now(ctx);
   MusicSession music;
   if (music_args.music) {
     const compiler::Song* song = show_song(ctx, show);
@@ -196,22 +208,23 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
     }
   }
   for (Stage& s : stages) {
-    if (s.board->plan != nullptr && !upload_stage(ctx, s)) {
+    if (s.board->plan == nullptr) continue;
+    if (const ExitCode e = upload_stage(ctx, s); e != ExitCode::Ok) {
       ctx.err << "seqc: nothing was started\n";
-      return ExitCode::DeviceFailure;
+      return e;
     }
   }
   // The robot may be anywhere: nothing starts if one performer's first move is too fast.
   if (const auto unsafe =
           args.force ? std::nullopt : boards::first_unsafe_stage(stages, ctx.interrupted)) {
-    ctx.err << "seqc: error: " << stages[unsafe->stage].performer->name << ": "
+    ctx.err << "seqc: error: " << terminal_safe(stages[unsafe->stage].performer->name) << ": "
             << first_move_text(unsafe->too_fast) << "\n";
     ctx.err << "seqc: nothing was started\n";
     return ExitCode::InvalidInput;
   }
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: show " << show.name << ": starting " << plural(stages.size(), "performer")
-            << " at one instant\n";
+    ctx.err << "seqc: show " << terminal_safe(show.name) << ": starting "
+            << plural(stages.size(), "performer") << " at one instant\n";
   }
   std::vector<boards::Performer> performers = boards::performers_of(stages);
   std::optional<io::TimePoint> start_at;

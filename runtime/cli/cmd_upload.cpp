@@ -258,6 +258,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     }
   }
 
+  stop_cleanly_from_now(ctx);
   boards::TraceFile trace;
   if (const ExitCode e = open_trace(ctx, trace, a.trace); e != ExitCode::Ok) return e;
 

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <ostream>
 
+#include "base/terminal_text.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
@@ -30,7 +31,7 @@ ExitCode show_code(const compiler::ShowOutput& show, bool strict) {
 // The file's read error, or its diagnostics and for a show every performer's.
 void report(Context& ctx, const compiler::Loaded& file, bool strict) {
   if (const std::optional<std::string>& error = file.read_error()) {
-    ctx.err << "seqc: error: " << *error << "\n";
+    ctx.err << "seqc: error: " << terminal_safe(*error) << "\n";
     return;
   }
   ctx.err << seqc::render_all(file.diagnostics(), file.sources(), strict, ctx.color);
@@ -66,7 +67,7 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
                             std::int32_t clock_ppm) {
   Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm);
   if (c.output.read_error) {
-    ctx.err << "seqc: error: " << *c.output.read_error << "\n";
+    ctx.err << "seqc: error: " << terminal_safe(*c.output.read_error) << "\n";
     return c;
   }
   ctx.err << seqc::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);

@@ -21,10 +21,15 @@ struct Context {
   io::Clock& clock;
   seqc::FileReader& files;
   bool err_is_terminal = false;  // progress bar vs plain lines
-  // Set on SIGINT, SIGTERM or SIGHUP; long-running commands poll it and stop cleanly.
+  // Set on SIGINT, SIGTERM or SIGHUP once a command has said it stops cleanly (below); it polls
+  // the flag and stops the robot, the song or the server before it returns Interrupted.
   const std::atomic<bool>* interrupted = nullptr;
   // Standard input, for commands that accept "-" as a file name (e.g. `seqc decode -`).
   std::istream* in = nullptr;
+  // Until a command sets this (stop_cleanly_from_now), a stop signal ends seqc at once with
+  // 128 + its number: a command with nothing to stop (check, compile, plot...) never makes the
+  // user wait for a slow input. Null when run in-process (tests), where no handler is set.
+  std::atomic<bool>* stops_cleanly = nullptr;
   // What `--port emu:NAME` reaches instead of a fresh emulator (runtime/boards/hooks.hpp): tests
   // prepare it (stored groups, faults) and read what it received afterwards, and several
   // commands can share it.
@@ -46,5 +51,11 @@ struct Context {
   // --realtime: what raises the thread that keeps time (null: the system's SCHED_FIFO).
   io::Scheduler* scheduler = nullptr;
 };
+
+// Called by a command before it opens a port, a trace, a song or a server: from then on a stop
+// signal sets `interrupted` and the command ends what it started before it returns.
+inline void stop_cleanly_from_now(Context& ctx) {
+  if (ctx.stops_cleanly != nullptr) ctx.stops_cleanly->store(true);
+}
 
 }  // namespace seqc::cli

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "base/terminal_text.hpp"
 #include "base/units.hpp"
 
 namespace seqc::cli {
@@ -29,7 +30,8 @@ Result<io::Duration> parse_timeout(std::string_view text) {
 std::string servo_label(std::uint8_t id, const std::optional<compiler::RobotInfo>& robot) {
   std::string out = "servo " + std::to_string(id);
   if (robot) {
-    if (const compiler::ServoInfo* s = robot->find_id(id)) out += " (" + s->name + ")";
+    if (const compiler::ServoInfo* s = robot->find_id(id))
+      out += " (" + terminal_safe(s->name) + ")";
   }
   return out;
 }

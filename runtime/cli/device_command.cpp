@@ -70,6 +70,7 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
                       const LineBody& body) {
   auto timeout = parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
+  stop_cleanly_from_now(ctx);
   boards::TraceFile trace;
   if (const ExitCode c = open_trace(ctx, trace, options.trace); c != ExitCode::Ok) return c;
   const boards::BoardLink link = boards::open_link({options.port, &board}, trace, ctx.clock,

@@ -16,11 +16,17 @@
 #include "runtime/io/disk.hpp"
 
 namespace {
-// The only process-wide state, as a signal handler can only reach a static: the flag commands
-// poll, and the first stop signal that arrived, which picks the exit status.
+// The only process-wide state, as a signal handler can only reach a static: whether the command
+// has said it stops cleanly (Context::stops_cleanly), the flag it then polls, and the first stop
+// signal that arrived, which picks the exit status.
+std::atomic<bool> g_stops_cleanly{false};
 std::atomic<bool> g_interrupted{false};
 std::atomic<int> g_signal{0};
 void on_stop_signal(int signal) {
+  // Nothing started that must be stopped: end now, as a shell reports a death by the signal.
+  // _exit is async-signal-safe; an output file is only ever a temporary until its rename, and
+  // io::write_file_safely holds these signals off while it writes one.
+  if (!g_stops_cleanly.load()) ::_exit(128 + signal);
   int none = 0;
   g_signal.compare_exchange_strong(none, signal);
   g_interrupted.store(true);
@@ -33,6 +39,7 @@ int run_seqc(int argc, char** argv) {
                          &g_interrupted, &std::cin};
   seqc::audio::SndfileAudioReader audio;
   seqc::boards::AudioSongReader songs(audio);
+  ctx.stops_cleanly = &g_stops_cleanly;
   ctx.songs = &songs;
   ctx.audio_files = &audio;
   seqc::audio::PulseAudioOutputFactory speakers(clock, "seqc");
@@ -49,8 +56,9 @@ int run_seqc(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // A closed terminal (SIGHUP) or a service manager (SIGTERM) stops seqc as Ctrl-C does: the
-  // robot is stopped, the song ends and the port is restored before it exits.
+  // A closed terminal (SIGHUP) or a service manager (SIGTERM) stops seqc as Ctrl-C does: at
+  // once, or, once a command has a robot, a song or a server running, after it has stopped the
+  // robot, ended the song and restored the port.
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);

@@ -212,6 +212,7 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
 ExitCode play_on_board(Context& ctx, const compiler::CompileOutput& compiled,
                        const PlayArgs& args) {
   const boards::Board& board = boards::board_for(compiled);
+  stop_cleanly_from_now(ctx);
   boards::TraceFile trace;
   if (const ExitCode c = open_trace(ctx, trace, args.trace); c != ExitCode::Ok) return c;
   MusicSession music;

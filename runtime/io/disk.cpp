@@ -3,16 +3,20 @@
 #include <fcntl.h>
 #include <linux/magic.h>
 #include <poll.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <sys/vfs.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <istream>
+#include <optional>
 #include <random>
+#include <utility>
 
 namespace seqc::io {
 namespace {
@@ -61,16 +65,6 @@ Status write_all(int fd, std::string_view data, const std::string& path) {
   return Ok{};
 }
 
-// A device, a FIFO or a file reached through a link that names no path (/proc/self/fd/1): it
-// is opened as it is and written; nothing is created and nothing renamed.
-Status write_in_place(const std::string& path, std::string_view data) {
-  Fd fd(::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOCTTY | O_CLOEXEC));
-  if (fd.get() < 0) return cannot_write(path, std::strerror(errno));
-  if (Status s = write_all(fd.get(), data, path); !s) return s;
-  if (fd.close() != 0) return cannot_write(path, std::strerror(errno));
-  return Ok{};
-}
-
 // The path a chain of symlinks ends at, as open() would follow it; the end may not exist. ""
 // when the chain goes through a link in /proc (/dev/stdout, /dev/fd/N): those name a file some
 // process holds open, which is written where it is, not replaced.
@@ -103,30 +97,42 @@ std::string random_suffix() {
   return s;
 }
 
-// `target` is absent or a regular file: a fresh temporary beside it, renamed over it.
-Status replace_file(const std::string& path, const std::string& target, std::string_view data) {
+// A fresh temporary beside `target` (absent or a regular file), created exclusively.
+Result<std::pair<int, std::string>> create_temporary(const std::string& path,
+                                                     const std::string& target) {
   namespace fs = std::filesystem;
   const fs::path folder = fs::path(target).parent_path();
   const std::string stem = "." + fs::path(target).filename().string() + ".seqc-";
-  std::string temp;
-  int raw = -1;
-  for (int attempt = 0; attempt < 100 && raw < 0; ++attempt) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
     // O_EXCL: the name is created here or not at all, so nothing planted at it (a link, a file
     // of someone else's) is opened; the mode is an ordinary new file's, 0666 less the umask.
-    temp = (folder / (stem + random_suffix())).string();
-    raw = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (raw < 0 && errno != EEXIST) return cannot_write(path, std::strerror(errno));
+    std::string temp = (folder / (stem + random_suffix())).string();
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) return std::make_pair(fd, std::move(temp));
+    if (errno != EEXIST) return cannot_write(path, std::strerror(errno));
   }
-  if (raw < 0) return cannot_write(path, "no unused temporary name beside it");
-  Fd fd(raw);
-  Status written = write_all(fd.get(), data, path);
-  if (written && fd.close() != 0) written = cannot_write(path, std::strerror(errno));
-  if (written && ::rename(temp.c_str(), target.c_str()) != 0) {
-    written = cannot_write(path, std::strerror(errno));
-  }
-  if (!written) ::unlink(temp.c_str());
-  return written;
+  return cannot_write(path, "no unused temporary name beside it");
 }
+
+// Holds SIGINT, SIGTERM and SIGHUP off while it lives, so a stop signal that ends seqc at once
+// waits until a temporary is renamed or removed and never leaves one behind.
+class HeldStopSignals {
+ public:
+  HeldStopSignals() {
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    sigaddset(&stop, SIGHUP);
+    ::pthread_sigmask(SIG_BLOCK, &stop, &old_);
+  }
+  HeldStopSignals(const HeldStopSignals&) = delete;
+  HeldStopSignals& operator=(const HeldStopSignals&) = delete;
+  ~HeldStopSignals() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+
+ private:
+  sigset_t old_;
+};
 
 }  // namespace
 
@@ -207,23 +213,70 @@ Result<std::string> read_input(const std::string& path, seqc::FileReader& files,
   return read_stream(*in, stdin_name);
 }
 
-Status write_file_safely(const std::string& path, std::string_view data) {
+Result<std::unique_ptr<OutputFile>> OutputFile::open(const std::string& path) {
+  // A device, a FIFO or a file reached through a link that names no path (/proc/self/fd/1):
+  // it is opened as it is and written; nothing is created and nothing renamed.
+  auto in_place = [&]() -> Result<std::unique_ptr<OutputFile>> {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return cannot_write(path, std::strerror(errno));
+    return std::unique_ptr<OutputFile>(new OutputFile(path, fd, "", ""));
+  };
   struct stat st {};
   const bool exists = ::stat(path.c_str(), &st) == 0;
   if (!exists && errno != ENOENT) return cannot_write(path, std::strerror(errno));
   if (exists && S_ISDIR(st.st_mode)) return cannot_write(path, "is a directory");
-  if (exists && !S_ISREG(st.st_mode)) return write_in_place(path, data);
+  if (exists && !S_ISREG(st.st_mode)) return in_place();
   auto target = resolve_links(path);
   if (!target) return target.error();
-  if (target->empty()) return write_in_place(path, data);
+  if (target->empty()) return in_place();
   if (exists) {
     // A chain that does not end at the file open() reaches (a folder renamed meanwhile).
     struct stat end {};
     if (::lstat(target->c_str(), &end) != 0 || end.st_dev != st.st_dev || end.st_ino != st.st_ino) {
-      return write_in_place(path, data);
+      return in_place();
     }
   }
-  return replace_file(path, *target, data);
+  auto temp = create_temporary(path, *target);
+  if (!temp) return temp.error();
+  return std::unique_ptr<OutputFile>(
+      new OutputFile(path, temp->first, std::move(temp->second), *target));
+}
+
+OutputFile::OutputFile(std::string path, int fd, std::string temp, std::string target)
+    : path_(std::move(path)), temp_(std::move(temp)), target_(std::move(target)), fd_(fd) {}
+
+OutputFile::~OutputFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!temp_.empty()) ::unlink(temp_.c_str());
+}
+
+Status OutputFile::write(std::string_view data) {
+  if (fd_ < 0) return cannot_write(path_, "already finished");
+  return write_all(fd_, data, path_);
+}
+
+Status OutputFile::finish() {
+  if (fd_ < 0) return cannot_write(path_, "already finished");
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0) return cannot_write(path_, std::strerror(errno));
+  if (temp_.empty()) return Ok{};
+  if (::rename(temp_.c_str(), target_.c_str()) != 0)
+    return cannot_write(path_, std::strerror(errno));
+  temp_.clear();
+  return Ok{};
+}
+
+Status write_file_safely(const std::string& path, std::string_view data) {
+  // Not around a device or FIFO's open, which may wait for a reader for ever: a signal must
+  // still end that wait. A regular file's temporary is written and renamed with them held.
+  std::optional<HeldStopSignals> held;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) held.emplace();
+  auto file = OutputFile::open(path);
+  if (!file) return file.error();
+  if (Status s = (*file)->write(data); !s) return s;
+  return (*file)->finish();
 }
 
 bool same_file(const std::string& a, const std::string& b) {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstddef>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,8 +61,31 @@ Result<std::string> read_input(const std::string& path, seqc::FileReader& files,
 //    through /proc (/dev/stdout, /dev/fd/N when they name a file): it is some process's open
 //    file, written where it is.
 //  - Anything else (a directory): refused.
-// Errors read "PATH: cannot write: WHY".
+// Errors read "PATH: cannot write: WHY". Stop signals are held off while a temporary exists, so
+// a signal that ends seqc at once leaves none behind.
 Status write_file_safely(const std::string& path, std::string_view data);
+
+// A file written as seqc runs (a --trace file), by the rules of write_file_safely: a regular or
+// absent file is written to the exclusive temporary beside it and renamed over it by finish(); a
+// device, a FIFO or a socket is written directly as the bytes come. Destroyed unfinished, the
+// temporary is removed and the old file stays as it was.
+class OutputFile {
+ public:
+  static Result<std::unique_ptr<OutputFile>> open(const std::string& path);
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile();
+  Status write(std::string_view data);
+  // Closes the file and renames the temporary over the target; nothing may be written after.
+  Status finish();
+
+ private:
+  OutputFile(std::string path, int fd, std::string temp, std::string target);
+  std::string path_;    // as given, for messages
+  std::string temp_;    // "" when written in place
+  std::string target_;  // what the temporary replaces
+  int fd_;
+};
 
 // Whether a and b are the same file: the same st_dev and st_ino, symlinks followed. False when
 // either does not exist.

@@ -1,9 +1,12 @@
 // seqc on files a stranger hands it, through the real binary: an output that is one of the
 // command's inputs is refused with nothing written (exit 2), a device given as the output stays
-// a device, a full disk or a full stdout is exit 5, and an include of an endless device is a
-// located error at once. In-process: running out of memory is exit 70 with a plain message,
-// and a stop signal maps to its exit status.
+// a device, a full disk or a full stdout is exit 5, an include of an endless device is a
+// located error at once, an include that is no choreography is located but never quoted, and a
+// stop signal ends a command with nothing to stop at once (128 + the signal). In-process: running
+// out of memory is exit 70 with a plain message, and a stop signal maps to its exit status.
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,6 +17,8 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -161,6 +166,71 @@ TEST_F(SafeFiles, EndlessStandardInputIsRefusedAtTheLimit) {
   EXPECT_EQ(slurp(err),
             "seqc: error: <stdin>: file is too large (more than 16777216 bytes)\n"
             "seqc: error: <stdin>: file is too large (more than 16777216 bytes)\n");
+}
+
+// An include that is no choreography file may be any file the user can read: its problem is
+// located, but none of its lines reaches the terminal or a SARIF log, nor does a key of it.
+TEST_F(SafeFiles, AnIncludeThatIsNoChoreographyIsLocatedButNotQuoted) {
+  {
+    std::ofstream(dir_ / "shadow") << "root:$6$secret-hash:19000:0:99999:7:::\n"
+                                      "daemon:*:19000:0:99999:7:::\n";
+    std::ofstream(dir_ / "broken") << "{[secret-flow: 1\n";
+    std::ofstream(dir_ / "main.yaml") << "name: main\nrobot: xarm\nsequence:\n"
+                                         "  - include: shadow\n  - include: broken\n";
+  }
+  SeqcRun text = seqc(dir_, "check main.yaml");
+  EXPECT_EQ(text.status, 1);
+  EXPECT_EQ(text.err.find("secret"), std::string::npos) << text.err;
+  EXPECT_NE(text.err.find("shadow:1:1: error: missing 'sequence': the list of steps to perform\n"
+                          "main.yaml:4:14: note: included from here\n"
+                          "    4 |   - include: shadow\n"),
+            std::string::npos)
+      << text.err;
+  EXPECT_NE(text.err.find("broken:2:1: error: invalid YAML"), std::string::npos) << text.err;
+  SeqcRun sarif = seqc(dir_, "check --format sarif main.yaml");
+  EXPECT_EQ(sarif.status, 1);
+  EXPECT_EQ(sarif.out.find("secret"), std::string::npos) << sarif.out;
+  EXPECT_NE(sarif.out.find("\"uri\": \"shadow\""), std::string::npos) << sarif.out;
+}
+
+// The stop signals end a command with nothing to stop at once, whatever it was doing: here
+// reading an input that never ends (a FIFO whose writer stays open).
+TEST_F(SafeFiles, AStopSignalEndsCheckOfASlowInputAtOnce) {
+  const fs::path fifo = dir_ / "slow.yaml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int writer = ::open(fifo.c_str(), O_RDWR);  // the input never ends while this is open
+  ASSERT_GE(writer, 0);
+  for (const auto& [signal, status] : {std::pair{SIGTERM, 143}, {SIGINT, 130}, {SIGHUP, 129}}) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
+      ::execl(SEQC_BIN, "seqc", "check", fifo.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // Long enough for seqc to be blocked reading the FIFO, its handlers in place.
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const auto sent = std::chrono::steady_clock::now();
+    ASSERT_EQ(::kill(pid, signal), 0);
+    int raw = 0;
+    pid_t done = 0;
+    while ((done = ::waitpid(pid, &raw, WNOHANG)) == 0 &&
+           std::chrono::steady_clock::now() - sent < std::chrono::seconds(5)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (done == 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &raw, 0);
+      ADD_FAILURE() << "signal " << signal << " did not end seqc check within 5 s";
+      continue;
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - sent, std::chrono::seconds(1));
+    ASSERT_TRUE(WIFEXITED(raw)) << "signal " << signal;
+    EXPECT_EQ(WEXITSTATUS(raw), status) << "signal " << signal;
+  }
+  ::close(writer);
 }
 
 // A reader that runs out of memory, as a huge file would on a small machine.

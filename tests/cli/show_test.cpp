@@ -109,6 +109,27 @@ TEST(Show, WithMusicEveryoneStartsOnTheDownbeatAsHeard) {
   EXPECT_TRUE(speakers.last()->stopped());
 }
 
+// A stop signal during the uploads is an interruption like any other (exit 130), not a failing
+// device: nothing was stored and nothing started.
+TEST(Show, InterruptedDuringItsUploadsExits130) {
+  DeviceHarness h;
+  const std::string dir = std::string(SEQC_SOURCE_DIR) + "/";
+  h.files.add("duet.yaml",
+              "show: duet\nperformers:\n  arm: {file: arm.yaml, port: emu:xarm, group: 2}\n"
+              "  car: {file: " +
+                  dir + "tests/golden/raspblock/small.yaml, port: emu:raspblock}\n");
+  h.files.add("arm.yaml", "robot: xarm\nsequence:\n  - move: home\n    time: 1s\n");
+  h.files.add(dir + "tests/golden/raspblock/small.yaml",
+              slurp_file(dir + "tests/golden/raspblock/small.yaml"));
+  h.interrupted = true;  // arrived before the first frame of the arm's download
+  const RunResult r = h.run({"show", "duet.yaml"});
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_NE(r.err.find("seqc: nothing was started\n"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+  EXPECT_FALSE(h.emu.stored_group(2).has_value());
+  EXPECT_EQ(h.emu.playing_group(), std::nullopt);
+}
+
 TEST(Show, NothingStartsWhenAPerformerIsBroken) {
   DeviceHarness h;
   h.files.add("bad.yaml",

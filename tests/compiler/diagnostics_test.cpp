@@ -1,5 +1,6 @@
 // Golden tests of what a person reads: the diagnostic layout is fixed here, byte for byte.
 #include "base/diagnostics.hpp"
+#include "base/terminal_text.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -138,6 +139,43 @@ TEST_F(RenderTest, NoFileRendersAsSeqc) {
 TEST_F(RenderTest, LineBeyondTheFileIsNotQuoted) {
   const Diagnostic d{Severity::Error, {walk_, 60, 1}, "bad"};
   EXPECT_EQ(render(d, sources_), "walk.yaml:60:1: error: bad\n");
+}
+
+// A value quoted from a file cannot drive the terminal or forge a diagnostic line: its control
+// characters arrive as escapes, in the message and in the path alike.
+TEST_F(RenderTest, ControlCharactersInTheMessageAndPathAreEscaped) {
+  const auto f = sources_.add("a\x1b]0;t\a.yaml", "name: x\n");
+  const Diagnostic d{Severity::Error,
+                     {f, 1, 7},
+                     "unknown pose 'p\x1b[2J\nwalk.yaml:1:1: error: forged\r\x7f\xc2\x9b'"};
+  EXPECT_EQ(render(d, sources_),
+            "a\\x1b]0;t\\x07.yaml:1:7: error: unknown pose 'p\\x1b[2J\\nwalk.yaml:1:1: error: "
+            "forged\\r\\x7f\\u009b'\n"
+            "    1 | name: x\n"
+            "      |       ^\n");
+}
+
+// An include that is no choreography file (it may be a secret) is located but never quoted.
+TEST_F(RenderTest, WithheldLinesAreNotQuoted) {
+  const auto f = sources_.add("/etc/shadow", "root:$6$hash:19000::::\n");
+  sources_.withhold_lines(f);
+  const Diagnostic d{Severity::Error, {f, 1, 1}, "missing 'sequence'"};
+  EXPECT_EQ(render(d, sources_), "/etc/shadow:1:1: error: missing 'sequence'\n");
+  EXPECT_TRUE(sources_.quotes_lines(walk_));
+  EXPECT_FALSE(sources_.quotes_lines(f));
+}
+
+TEST(TerminalSafe, ShowsEveryControlCharacterAsAnEscape) {
+  EXPECT_EQ(terminal_safe("plain\ttext, é and ✓ \\x41"), "plain\ttext, é and ✓ \\x41");
+  EXPECT_EQ(terminal_safe("\x1b[31mred\x1b[0m"), "\\x1b[31mred\\x1b[0m");
+  EXPECT_EQ(terminal_safe("a\nb\rc"), "a\\nb\\rc");
+  EXPECT_EQ(terminal_safe(std::string("\0\x01\x07\x08\x1f\x7f", 6)),
+            "\\x00\\x01\\x07\\x08\\x1f\\x7f");
+  // C1 controls as UTF-8 (U+009B is CSI), the first printable one after them, and stray bytes.
+  EXPECT_EQ(terminal_safe("\xc2\x80\xc2\x9b\xc2\x9f\xc2\xa0"), "\\u0080\\u009b\\u009f\xc2\xa0");
+  EXPECT_EQ(terminal_safe("\x9b"
+                          "2J \xff \xc3"),
+            "\\x9b2J \\xff \\xc3");
 }
 
 TEST(Diagnostics, CountsAndStrictness) {

@@ -76,8 +76,23 @@ TEST(PreviewPage, EmbedsTheActionsTheGeometryAndTheBars) {
 TEST(PreviewPage, ATitleCannotCloseTheScript) {
   const std::string html = page_of(kArm, "a</script><b>.yaml");
   EXPECT_EQ(count(html, "</script>"), 2u);
-  EXPECT_NE(html.find("a<\\/script><b>.yaml"), std::string::npos);
+  EXPECT_NE(html.find("a\\u003c/script\\u003e\\u003cb\\u003e.yaml"), std::string::npos);
   EXPECT_NE(html.find("<title>a&lt;/script&gt;&lt;b&gt;.yaml</title>"), std::string::npos);
+}
+
+// "<!--<script>" in the data would make HTML read the island's end as part of it: the JSON holds
+// no <, > or & at all, nor a raw U+2028 or U+2029, each written as its \u escape.
+TEST(PreviewPage, TheDataHoldsNoMarkup) {
+  const std::string html = page_of(kArm, "</script><!--<script>alert(1)// & \u2028\u2029.yaml");
+  EXPECT_EQ(count(html, "<script"), 2u);
+  EXPECT_EQ(count(html, "</script>"), 2u);
+  EXPECT_EQ(count(html, "<!--"), 0u);
+  EXPECT_NE(html.find("\"title\":\"\\u003c/script\\u003e\\u003c!--\\u003cscript\\u003ealert(1)// "
+                      "\\u0026 \\u2028\\u2029.yaml\""),
+            std::string::npos);
+  EXPECT_NE(html.find("<title>&lt;/script&gt;&lt;!--&lt;script&gt;alert(1)// &amp; "
+                      "\u2028\u2029.yaml</title>"),
+            std::string::npos);
 }
 
 // The skeleton's @name@ places are filled once: none is left, and a title that looks like one

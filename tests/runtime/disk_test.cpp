@@ -77,6 +77,30 @@ TEST_F(Disk, ReplacesARegularFileWhole) {
   EXPECT_EQ(listing(), "out.hex ");
 }
 
+// A file written as seqc runs (a trace): the old file stays whole until finish() renames the
+// temporary over it, and an OutputFile dropped unfinished leaves the old file and no temporary.
+TEST_F(Disk, AnOutputFileReplacesTheOldFileOnlyWhenFinished) {
+  std::ofstream(path("trace.txt")) << "old trace\n";
+  {
+    auto file = seqc::io::OutputFile::open(path("trace.txt"));
+    ASSERT_TRUE(file.ok());
+    ASSERT_TRUE((*file)->write("t=0.000000 > 55 55\n").ok());
+    ASSERT_TRUE((*file)->write("t=0.010000 < 55 55\n").ok());
+    EXPECT_EQ(slurp(path("trace.txt")), "old trace\n");
+    ASSERT_TRUE((*file)->finish().ok());
+  }
+  EXPECT_EQ(slurp(path("trace.txt")), "t=0.000000 > 55 55\nt=0.010000 < 55 55\n");
+  EXPECT_EQ(listing(), "trace.txt ");
+  {
+    auto file = seqc::io::OutputFile::open(path("trace.txt"));
+    ASSERT_TRUE(file.ok());
+    ASSERT_TRUE((*file)->write("half").ok());
+  }
+  EXPECT_EQ(slurp(path("trace.txt")), "t=0.000000 > 55 55\nt=0.010000 < 55 55\n");
+  EXPECT_EQ(listing(), "trace.txt ");
+  EXPECT_FALSE(seqc::io::OutputFile::open(dir_.string()).ok());  // a folder
+}
+
 TEST_F(Disk, ALinkPlantedAtTheOldTemporaryNameIsNotFollowed) {
   // Another user plants OUT.seqc-tmp (the name a former version wrote through) pointing at a
   // file of the victim's: the write must neither follow nor remove it.
