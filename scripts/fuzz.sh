@@ -12,7 +12,7 @@ seconds=${1:-60}
 shift || true
 targets=("$@")
 if ((${#targets[@]} == 0)); then
-  targets=(check yaml lsc_stream lsc_hid raspblock)
+  targets=(check yaml views lsc_stream lsc_hid raspblock)
 fi
 build=${SEQC_FUZZ_BUILD_DIR:-$root/build-fuzz}
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DSEQC_FUZZ=ON \
@@ -25,7 +25,7 @@ for t in "${targets[@]}"; do
   seeds=("$root/tests/fuzz/corpus/$t")
   args=()
   case $t in
-    check | yaml)
+    check | yaml | views)
       seeds+=("$root/examples" "$root/tests/golden" "$root/tests/compiler/hostile")
       # Fitting a waltz-sized file takes seconds under ASan + UBSan + coverage (0.05 s in a
       # release build): a 10 s limit reported valid examples as hangs.
