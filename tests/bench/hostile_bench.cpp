@@ -16,7 +16,8 @@
 // include; `-o /dev/null`); sections performing sections 40 wide and 14,000 deep, wrappers
 // 15,000 deep, includes 15 x 10 wide; moves of 1,000 s to 100 minutes through check and every
 // view; songs at 655 kHz and of 8 channels at 192 kHz, /dev/zero and an endless FIFO as songs;
-// .d6a files holding a recursive view, a trigger, a million rows.
+// .d6a files holding a recursive view, a trigger, a million rows; names with markup and control
+// characters through the preview, the plot and the terminal.
 //
 // Method: the files are written to --dir (default /tmp/seqc-hostile). Each case runs its
 // command in a separate seqc process (fork + exec, stdout and stderr to a file); wall time is
@@ -449,10 +450,11 @@ std::vector<Case> song_and_d6a_cases() {
   }
   {
     // A dance whose song is /dev/zero: the check says so where the file names it.
-    Case k = fixed("music_dev_zero",
-                   kHead +
-                       "music:\n  file: /dev/zero\n  tempo: 120\n  meter: 4/4\nsequence:\n  - move: home\n"
-                       "    time: 1b\n");
+    Case k = fixed(
+        "music_dev_zero",
+        kHead +
+            "music:\n  file: /dev/zero\n  tempo: 120\n  meter: 4/4\nsequence:\n  - move: home\n"
+            "    time: 1b\n");
     k.expect = R"(music_dev_zero\.yaml:[0-9]+:[0-9]+: (error|warning): )";
     k.exit = -1;  // any exit: what matters is the located word and the bounds
     c.push_back(k);
@@ -483,6 +485,72 @@ std::vector<Case> song_and_d6a_cases() {
                   "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < "
                   "1000000) INSERT INTO ActionGroup SELECT i, 100, 500 FROM n;",
                   "more than 65536 rows"));
+  return c;
+}
+
+// Names with markup and control characters, through every document and the terminal.
+std::vector<Case> name_cases() {
+  std::vector<Case> c;
+  const auto piece = [](const std::string& name, const std::string& target) {
+    return "robot: xarm\nname: " + name + "\nposes:\n  " + name + ": {claw: 300}\nsections:\n  " +
+           name + ":\n    steps:\n      - move: " + target +
+           "\n        time: 500ms\nsequence:\n  - section: " + name + "\n";
+  };
+  {
+    const std::string n = R"("</script><!--<script>alert(1)//")";
+    Case k = fixed("name_markup_preview", piece(n, n));
+    k.args = {"preview", "{file}", "-o", "{dir}/markup.html"};
+    k.exit = 0;
+    k.expect = "markup.html: [0-9]+ bytes";
+    k.verify = [](const std::string& dir) {
+      const std::string page = read(dir + "/markup.html");
+      std::size_t scripts = 0;
+      for (std::size_t at = page.find("<script"); at != std::string::npos;
+           at = page.find("<script", at + 1)) {
+        ++scripts;
+      }
+      if (scripts != 2) return "the page has " + std::to_string(scripts) + " <script";
+      return page.find("<!--") == std::string::npos ? std::string()
+                                                    : std::string("the page has <!--");
+    };
+    c.push_back(k);
+  }
+  {
+    const std::string n = R"("c\x01\e[31m\a\v<&>\"end")";
+    Case k = fixed("name_control_plot", piece(n, n));
+    k.args = {"plot", "{file}", "-o", "{dir}/control.svg"};
+    k.exit = 0;
+    k.expect = "control.svg: [0-9]+ bytes";
+    k.verify = [](const std::string& dir) {
+      // XML 1.0 allows no C0 control but tab, LF and CR, nor a raw '<' or '&' in text.
+      const std::string svg = read(dir + "/control.svg");
+      for (unsigned char ch : svg) {
+        if (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') {
+          return std::string("the SVG holds control byte ") + std::to_string(ch);
+        }
+      }
+      return svg.find("<&>") == std::string::npos ? std::string()
+                                                  : std::string("the SVG holds <&> raw");
+    };
+    c.push_back(k);
+  }
+  {
+    const std::string n = R"("p\e]0;owned\a\e[2J\nx.yaml:1:1: error: forged\r")";
+    std::string target = n;
+    target.insert(target.size() - 1, "x");
+    Case k =
+        fixed("name_escape_terminal", "robot: xarm\nname: " + n + "\nposes:\n  " + n +
+                                          ": {claw: 300}\nsequence:\n  - move: " + target +
+                                          "\n    time: 1s\n  - move: {nosuch: 1}\n    time: 1s\n");
+    k.expect =
+        R"(error: unknown pose 'p\\x1b\]0;owned\\x07\\x1b\[2J\\nx\.yaml:1:1: error: forged\\rx')";
+    k.verify = [](const std::string& dir) {
+      return read(dir + "/name_escape_terminal.out").find('\x1b') == std::string::npos
+                 ? std::string()
+                 : std::string("an ESC byte reached the terminal");
+    };
+    c.push_back(k);
+  }
   return c;
 }
 
@@ -638,6 +706,7 @@ int main(int argc, char** argv) {
   for (Case& c : walk_cases()) cases.push_back(std::move(c));
   for (Case& c : long_move_cases()) cases.push_back(std::move(c));
   for (Case& c : song_and_d6a_cases()) cases.push_back(std::move(c));
+  for (Case& c : name_cases()) cases.push_back(std::move(c));
   for (Case& c : file_cases()) cases.push_back(std::move(c));
   if (!only.empty()) {
     std::erase_if(cases, [&](const Case& c) { return c.name.find(only) == std::string::npos; });
