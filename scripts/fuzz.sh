@@ -12,7 +12,7 @@ seconds=${1:-60}
 shift || true
 targets=("$@")
 if ((${#targets[@]} == 0)); then
-  targets=(check yaml views lsc_stream lsc_hid raspblock)
+  targets=(check yaml views d6a lsc_stream lsc_hid raspblock)
 fi
 build=${SEQC_FUZZ_BUILD_DIR:-$root/build-fuzz}
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DSEQC_FUZZ=ON \
