@@ -48,6 +48,23 @@ bool check_position_limits(const PositionEntry& e, std::string_view name, long l
   return false;
 }
 
+bool check_curve_limits(const Segment& segment, std::string_view name, long long min, long long max,
+                        Location at, const std::optional<Reporter::Note>& note,
+                        Reporter& reporter) {
+  const ValueRange range = value_range(segment);
+  const long long low = std::llround(range.low), high = std::llround(range.high);
+  if (low >= min && high <= max) return true;
+  const std::string curve =
+      segment.kind == CurveKind::Eased ? "this " + segment.easing.name() + " curve" : "this curve";
+  reporter.error(
+      at,
+      fmt::format("'{}' would overshoot to {} on {}", name, high > max ? high : low, curve) +
+          (high > max ? ", above its max " + std::to_string(max)
+                      : ", below its min " + std::to_string(min)),
+      note);
+  return false;
+}
+
 std::optional<double> relative_units(const PositionEntry& e, std::string_view name,
                                      const std::optional<int>& base, double delta, std::string& how,
                                      const std::optional<Reporter::Note>& note,

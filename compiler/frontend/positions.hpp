@@ -8,9 +8,10 @@
 #include <string>
 #include <string_view>
 
-#include "compiler/frontend/reporter.hpp"
 #include "base/units.hpp"
+#include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
+#include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
 
@@ -27,6 +28,12 @@ struct PositionEntry {
 std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const YamlNode& value,
                                                   std::size_t output, std::string_view examples,
                                                   Reporter& reporter);
+
+// Reports a curve (a move's segment) that passes outside [min, max] on the output called
+// `name` at its true extreme (value_range), though both its ends are within: an overshooting
+// ease. Every robot kind checks every curve it will send with this. True when within.
+bool check_curve_limits(const Segment& segment, std::string_view name, long long min, long long max,
+                        Location at, const std::optional<Reporter::Note>& note, Reporter& reporter);
 
 // Reports `units` outside [min, max] on the output called `name`; `how` explains where the value
 // came from (empty: the written value when it was in degrees). True when within the limits.

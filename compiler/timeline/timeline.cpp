@@ -53,6 +53,51 @@ double Segment::velocity(double t_ms) const {
   return 0;
 }
 
+ValueRange value_range(const Segment& segment) {
+  ValueRange r{std::min(segment.from, segment.to), std::max(segment.from, segment.to)};
+  if (segment.is_straight()) return r;
+  const double t0 = segment.start.value(), t1 = segment.end.value();
+  if (t1 <= t0) return r;
+  // 256 samples find the hump or the ring an extreme belongs to (an elastic ease rings about
+  // ten times); golden-section search on the intervals beside the best sample then finds the
+  // extreme itself, every probe counting (a bounce's extreme is a corner).
+  constexpr int kSamples = 256;
+  const double h = (t1 - t0) / kSamples;
+  int lowest = 0, highest = 0;
+  double low = segment.value(t0), high = low;
+  for (int i = 1; i <= kSamples; ++i) {
+    const double v = segment.value(t0 + h * i);
+    if (v < low) low = v, lowest = i;
+    if (v > high) high = v, highest = i;
+  }
+  r.low = std::min(r.low, low);
+  r.high = std::max(r.high, high);
+  constexpr double g = 0.6180339887498949;
+  for (const int sign : {-1, 1}) {  // -1: the lowest point, as the highest of -value
+    const int best = sign < 0 ? lowest : highest;
+    for (const int side : {-1, 1}) {
+      double a = t0 + h * best, b = a + h * side;
+      if (b < t0 || b > t1) continue;
+      if (a > b) std::swap(a, b);
+      for (int k = 0; k < 60; ++k) {
+        const double m1 = b - g * (b - a), m2 = a + g * (b - a);
+        const double f1 = sign * segment.value(m1), f2 = sign * segment.value(m2);
+        if (sign < 0) {
+          r.low = std::min({r.low, -f1, -f2});
+        } else {
+          r.high = std::max({r.high, f1, f2});
+        }
+        if (f1 < f2) {
+          a = m1;
+        } else {
+          b = m2;
+        }
+      }
+    }
+  }
+  return r;
+}
+
 bool Timeline::Span::same(const Segment& s) const {
   return start == s.start && end == s.end && kind == s.kind && easing == s.easing &&
          tolerance == static_cast<float>(s.tolerance) && keep_boundaries == s.keep_boundaries &&

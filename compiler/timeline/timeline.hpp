@@ -51,6 +51,16 @@ struct Segment {
   double velocity(double t_ms) const;
 };
 
+// The lowest and highest position a segment passes through, its ends included: the true
+// extremes of an overshooting ease (back, elastic) or a Hermite piece, found between samples by
+// golden-section search, not the values at a few sampled instants. Cost: a fixed number of
+// evaluations whatever the segment's length.
+struct ValueRange {
+  double low = 0;
+  double high = 0;
+};
+ValueRange value_range(const Segment& segment);
+
 // A named moment for plots and listings: a section starting, an `at:` cue, a tempo change.
 struct TimelineMarker {
   ExactMs at;

@@ -53,6 +53,34 @@ TEST(RaspblockValidation, RangesKeysAndNamesInOneRun) {
       << diagnostics_of(out);
 }
 
+TEST(RaspblockValidation, AnEaseThatOvershootsTheRangeIsAnError) {
+  // pan 1500 -> 2450 on back-out peaks 10% past its target: 1500 + 950 x 1.1000 = 2545, past
+  // the gimbal's 2500 (see Timeline.ValueRangeFindsAnEaseTrueExtremeBetweenSamples); servo1
+  // 1000 -> 2400 on elastic-out rings past 2400 too. Both ends of each are in range.
+  auto out = compile_text(
+      "robot: raspblock\n"                                 // 1
+      "sequence:\n"                                        // 2
+      "  - move: {pan: 1500, tilt: 1500, servo1: 1000}\n"  // 3
+      "    time: 1s\n"                                     // 4
+      "  - move: {pan: 2450}\n"                            // 5
+      "    time: 1s\n"                                     // 6
+      "    ease: back-out\n"                               // 7
+      "  - move: {servo1: 2400}\n"                         // 8
+      "    time: 1s\n"                                     // 9
+      "    ease: elastic-out\n"                            // 10
+      "  - move: {pan: 2300}\n"  // 11: 1500 -> 2300 peaks at 2380, in range
+      "    time: 1s\n"
+      "    ease: back-out\n");
+  EXPECT_FALSE(out.program);
+  const auto m = messages(out);
+  ASSERT_EQ(m.size(), 2u) << diagnostics_of(out);
+  EXPECT_EQ(m[0],
+            "5:5 error: 'pan' would overshoot to 2545 on this back-out curve, above its "
+            "max 2500");
+  EXPECT_EQ(m[1].rfind("8:5 error: 'servo1' would overshoot to ", 0), 0u) << m[1];
+  EXPECT_NE(m[1].find(" on this elastic-out curve, above its max 2500"), std::string::npos) << m[1];
+}
+
 TEST(RaspblockValidation, DriveRangesAreSigned) {
   auto out = compile_text(
       "robot: raspblock\n"

@@ -118,6 +118,33 @@ TEST(Timeline, SegmentsAndHolds) {
   EXPECT_DOUBLE_EQ(h.value(25), 100 * (3 * 0.0625 - 2 * 0.015625));
 }
 
+TEST(Timeline, ValueRangeFindsAnEaseTrueExtremeBetweenSamples) {
+  // back-out is 1 + c3 (u-1)^3 + c1 (u-1)^2 with c1 = 1.70158, c3 = c1 + 1 (the CSS/Penner
+  // constants). Its derivative vanishes at u - 1 = -2 c1 / (3 c3), where it peaks at
+  // 1 + c3 x^3 + c1 x^2 = 1.1000 (a tenth past the target).
+  const double c1 = 1.70158, c3 = c1 + 1, x = -2 * c1 / (3 * c3);
+  const double peak = 1 + c3 * x * x * x + c1 * x * x;
+  Segment s;
+  s.start = ExactMs(1000);
+  s.end = ExactMs(2000);
+  s.from = 1500;
+  s.to = 2450;
+  s.kind = CurveKind::Eased;
+  s.easing = *parse_easing("back-out").easing;
+  const ValueRange r = value_range(s);
+  EXPECT_NEAR(r.high, 1500 + 950 * peak, 1e-6);  // 2545.006
+  EXPECT_DOUBLE_EQ(r.low, 1500);
+  // Reversed, the dip below the target is the low end.
+  std::swap(s.from, s.to);
+  const ValueRange down = value_range(s);
+  EXPECT_NEAR(down.low, 2450 - 950 * peak, 1e-6);
+  EXPECT_DOUBLE_EQ(down.high, 2450);
+  // A straight segment is its ends.
+  s.kind = CurveKind::Linear;
+  EXPECT_DOUBLE_EQ(value_range(s).low, 1500);
+  EXPECT_DOUBLE_EQ(value_range(s).high, 2450);
+}
+
 TEST(Timeline, ReplacePutsPiecesInPlaceOfSegments) {
   // Servo 0: 0..100 straight 0 -> 100, 100..300 eased 100 -> 300, 300..400 straight 300 -> 0;
   // servo 1 moves over the same times, so the spans are shared between them.

@@ -314,6 +314,12 @@ void RaspblockLowering::interpolate(Location at, ExactMs start, ExactMs t, std::
     seg.from = pos_[c] ? *pos_[c] : end;
     seg.to = end;
     seg.at = at;
+    // The packets sample the curve, but the servo follows it between them too, and simulate,
+    // plot and preview draw it whole: an ease past the range is a mistake in the file.
+    if (!check_curve_limits(seg, kChannels[c].name, kChannels[c].min, kChannels[c].max, at,
+                            std::nullopt, reporter_)) {
+      return;
+    }
     curve[c] = seg;
     timeline_.add(c, seg);
   }

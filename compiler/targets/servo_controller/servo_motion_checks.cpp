@@ -32,24 +32,7 @@ std::string number(double v, int decimals) {
 bool ServoLowering::check_overshoot(std::size_t servo, const Segment& segment, Location at,
                                     const std::optional<Reporter::Note>& note) {
   const ServoInfo& info = robot_.info.servos[servo];
-  double lo = std::min(segment.from, segment.to), hi = std::max(segment.from, segment.to);
-  const double t0 = segment.start.value(), t1 = segment.end.value();
-  for (int i = 1; i < kCurveSamples; ++i) {
-    const double v = segment.value(t0 + (t1 - t0) * i / kCurveSamples);
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  const long long low = std::llround(lo), high = std::llround(hi);
-  if (low >= info.min && high <= info.max) return true;
-  const std::string curve =
-      segment.kind == CurveKind::Eased ? "this " + segment.easing.name() + " curve" : "this curve";
-  reporter_.error(at,
-                  "'" + info.name + "' would overshoot to " +
-                      std::to_string(high > info.max ? high : low) + " on " + curve +
-                      (high > info.max ? ", above its max " + std::to_string(info.max)
-                                       : ", below its min " + std::to_string(info.min)),
-                  note);
-  return false;
+  return check_curve_limits(segment, info.name, info.min, info.max, at, note, reporter_);
 }
 
 namespace {
