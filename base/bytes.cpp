@@ -40,7 +40,11 @@ Result<Bytes> parse_hex(std::string_view text) {
       token.remove_prefix(2);
     }
     if (token.size() != 2 || hex_value(token[0]) < 0 || hex_value(token[1]) < 0) {
-      return make_error("not a hex byte: '" + std::string(text.substr(start, i - start)) + "'");
+      // A binary file has "tokens" of any length: quote the start of it.
+      const std::string_view bad = text.substr(start, i - start);
+      return make_error(
+          "not a hex byte: '" +
+          (bad.size() > 40 ? std::string(bad.substr(0, 40)) + "..." : std::string(bad)) + "'");
     }
     out.push_back(static_cast<std::uint8_t>(hex_value(token[0]) * 16 + hex_value(token[1])));
   }

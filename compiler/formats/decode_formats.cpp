@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "base/terminal_text.hpp"
 #include "protocol/dialects.hpp"
 #include "protocol/lsc/lsc_stream.hpp"
 #include "protocol/raspblock/raspblock.hpp"
@@ -46,12 +47,22 @@ std::string hex_part(std::string_view line) {
   return std::string(s);
 }
 
+// At most this much of a line that is not hex is quoted: a binary file is one long "line".
+constexpr std::size_t kQuotedLine = 60;
+
 Bytes hex_bytes(std::string_view text, std::vector<std::string>& errors) {
   Bytes out;
+  std::size_t number = 0;
   for (const std::string& line : split_lines(text)) {
+    ++number;
     auto bytes = parse_hex(hex_part(line));
     if (!bytes) {
-      errors.push_back(bytes.error().message + " in '" + line + "'");
+      const auto shorten = [](const std::string& t) {
+        return t.size() > kQuotedLine ? t.substr(0, kQuotedLine) + "..." : t;
+      };
+      errors.push_back("line " + std::to_string(number) + ": " +
+                       terminal_safe(bytes.error().message) + " in '" +
+                       terminal_safe(shorten(line)) + "'");
       continue;
     }
     out.insert(out.end(), bytes->begin(), bytes->end());
@@ -485,10 +496,22 @@ DecodeResult decode_text(std::string_view text, DecodeFormat format) {
   std::vector<std::string> errors;
   const Bytes bytes = hex_bytes(text, errors);
   DecodeResult r = format == DecodeFormat::Lsc6 ? decode_lsc6_frames(bytes) : decode_frames(bytes);
+  if (errors.empty()) return r;
+  // The lines that are not hex are issues like the frames': listed before the summary, which
+  // is the table's last line, and counted in it.
+  std::string lines;
   for (const std::string& e : errors) {
-    r.table += "! input: " + e + "\n";
+    lines += "! input: " + e + "\n";
     r.issues.push_back("input: " + e);
   }
+  const std::size_t last = r.table.rfind('\n', r.table.size() - 2);
+  const std::size_t summary = last == std::string::npos ? 0 : last + 1;
+  std::string tail = r.table.substr(summary);
+  const std::size_t count = tail.rfind(", ");
+  if (tail.starts_with("# ") && count != std::string::npos && tail.ends_with(" issue(s)\n")) {
+    tail = tail.substr(0, count + 2) + std::to_string(r.issues.size()) + " issue(s)\n";
+  }
+  r.table = r.table.substr(0, summary) + lines + tail;
   return r;
 }
 

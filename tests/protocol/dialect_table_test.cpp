@@ -148,5 +148,26 @@ TEST(DialectTable, DecodeFromChoicesAreTheRowsBetweenAutoAndTheFileFormats) {
             "unknown format 'xml'; expected auto, hex, lsc6, raspblock, trace or record");
 }
 
+TEST(DecodeHex, ALineThatIsNotHexIsAnIssueListedAndCountedBeforeTheSummary) {
+  // 55 55 02 0f is GetBatteryVoltage; line 2 is not hex and holds ESC [ 2 J (clear screen).
+  const std::string text = "55 55 02 0f\n\x1b[2Jzz\n";
+  const compiler::DecodeResult r = compiler::decode_text(text, compiler::DecodeFormat::Hex);
+  EXPECT_EQ(r.table,
+            "frame  group block index time_ms  servos\n"
+            "1      GetBatteryVoltage\n"
+            "! input: line 2: not a hex byte: '\\x1b[2Jzz' in '\\x1b[2Jzz'\n"
+            "# 1 frame(s), 0 action(s), 0 s total, 1 issue(s)\n");
+  EXPECT_EQ(r.issues.size(), 1u);
+  // A binary "line" is quoted in part.
+  const compiler::DecodeResult bin =
+      compiler::decode_text(std::string(500, 'q'), compiler::DecodeFormat::Hex);
+  EXPECT_EQ(bin.table,
+            "frame  group block index time_ms  servos\n"
+            "! input: line 1: not a hex byte: '" +
+                std::string(40, 'q') + "...' in '" + std::string(60, 'q') +
+                "...'\n"
+                "# 0 frame(s), 0 action(s), 0 s total, 1 issue(s)\n");
+}
+
 }  // namespace
 }  // namespace seqc
