@@ -67,7 +67,7 @@ def ref(name):
 # milliseconds first, so 19.5ms is the smallest time it accepts.
 MS_20 = r"0*(?:[2-9][0-9]|[1-9][0-9]{2,})(?:\.[0-9]+)?ms|0*19\.[5-9][0-9]*ms"
 S_20 = r"0*[1-9][0-9]*(?:\.[0-9]+)?s|0+\.(?:[1-9][0-9]*|0[2-9][0-9]*|019[5-9][0-9]*)s"
-BEATS = r"0*(?:[1-9][0-9]*(?:\.[0-9]+)?|0\.[0-9]*[1-9][0-9]*)(?:b|bar)"
+BEATS = r"0*(?:[1-9][0-9]*(?:\.[0-9]+)?|0\.[0-9]*[1-9][0-9]*)(?:b|bars?)"
 TIME_HELP = ("a time with its unit: `500ms`, `1.5s`, `2b` (beats; needs `tempo`) or `2bar` "
              "(bars; needs `meter`). A bare number is an error")
 
@@ -82,15 +82,15 @@ definitions = {
                         f"^(?:{MS_20}|{S_20}|{BEATS})$",
                         "a time of at least 20ms with its unit: 500ms, 1.5s, 2b or 1bar (a bare "
                         "number is an error)"),
-    "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bar)$",
+    "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bars?)$",
                    "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "carTime": string("Time", "`500ms`, `1.5s`, `2b` (beats at `tempo`) or `2bar` (bars; needs "
-                      "`meter`).", f"^{NUM}(ms|s|b|bar)$",
+                      "`meter`).", f"^{NUM}(ms|s|b|bars?)$",
                       "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "at": string("Start at", "Start this step exactly this long after the start of the list "
                  "that holds it (`at: 4bar`), or at a bar of the sequence counted from 1 "
                  "(`at: bar 9`, `at: bar 9 beat 2.5`); the gap before it is a hold.",
-                 rf"^(?:{NUM}(ms|s|b|bar)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
+                 rf"^(?:{NUM}(ms|s|b|bars?)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
                  "a time with its unit (500ms, 1.5s, 2b or 1bar) or a position (bar 9, "
                  "bar 9 beat 3)"),
     "position": doc("Position", "Device units (`500`), degrees (`90deg`), relative to where the "
