@@ -36,6 +36,11 @@ bool simulate_one(Context& ctx, const compiler::CompileOutput& output, const std
     ctx.err << "seqc: error: " << name << ": this robot kind cannot be simulated\n";
     return false;
   }
+  if (o.compare && output.raspblock_program() != nullptr) {
+    ctx.err << "seqc: note: " << name
+            << ": --compare measures a servo controller's fitted actions against their curves; "
+               "the car's packets are not compared, and the CSV has no intended curves\n";
+  }
   for (const compiler::Difference& d : sim.differences) {
     ctx.err << "seqc: " << d.servo << ": largest difference " << seqc::format_units(d.largest)
             << " units at " << seqc::format_seconds(d.at_ms) << "\n";

@@ -81,6 +81,19 @@ TEST(RaspblockCli, TheExampleDanceChecksCleanly) {
   EXPECT_EQ(r.out, "examples/car-dance.yaml: ok (393 packets, 16.5 s)\n");
 }
 
+TEST(RaspblockCli, SimulateCompareSaysTheCarIsNotCompared) {
+  SeqcRun r = seqc({"simulate", "tests/golden/raspblock/small.yaml", "--compare"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("seqc: note: tests/golden/raspblock/small.yaml: --compare measures a servo "
+                       "controller's fitted actions against their curves; the car's packets are "
+                       "not compared"),
+            std::string::npos)
+      << r.err;
+  // Without --compare, no such note.
+  EXPECT_EQ(seqc({"simulate", "tests/golden/raspblock/small.yaml"}).err.find("--compare"),
+            std::string::npos);
+}
+
 TEST(RaspblockCli, PlayToTheBuiltInEmulator) {
   SeqcRun r = seqc({"play", "tests/golden/raspblock/small.yaml", "--port", "emu:raspblock"});
   EXPECT_EQ(r.status, 0) << r.err;
