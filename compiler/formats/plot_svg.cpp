@@ -11,6 +11,7 @@
 #include "compiler/formats/plot_axes.hpp"
 #include "compiler/formats/simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
+#include "compiler/frontend/profiles.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -104,8 +105,7 @@ std::string plot_servo_program(const compiler::ServoProgram& program, const Plot
   const double lanes_height =
       kTop + static_cast<double>(lanes) * (kLane + kGap) + song_lane + kAxis + 12;
   const double height = lanes_height + (tip_views ? kPanelTop + kPanel + kPanelGap : 0);
-  const bool pwm = program.robot.profile.rfind("lsc", 0) == 0;
-  const std::string unit = pwm ? "us" : "units";
+  const std::string unit(position_unit(program.robot.profile));
   const double lanes_bottom = kTop + static_cast<double>(lanes) * (kLane + kGap) - kGap;
   const double bottom = lanes_bottom + song_lane;
 

@@ -8,12 +8,13 @@
 #include <string_view>
 #include <utility>
 
+#include "base/json_text.hpp"
 #include "compiler/formats/car_path.hpp"
 #include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/preview_page_text.hpp"
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
-#include "base/json_text.hpp"
+#include "compiler/frontend/profiles.hpp"
 #include "compiler/targets/servo_controller/servo_wire.hpp"
 
 namespace seqc::compiler {
@@ -157,9 +158,8 @@ PreviewPart preview_servo_part(const compiler::ServoProgram& program, const std:
                                double end_ms, const PlotSong* song) {
   const compiler::RobotInfo& robot = program.robot;
   std::string j = "{\"kind\":\"servo\",\"title\":" + json_string(title) +
-                  ",\"duration\":" + std::to_string(program.duration_ms()) +
-                  ",\"unit\":" + (robot.profile.rfind("lsc", 0) == 0 ? "\"us\"" : "\"units\"") +
-                  ",\"servos\":[";
+                  ",\"duration\":" + std::to_string(program.duration_ms()) + ",\"unit\":" + "\"" +
+                  std::string(position_unit(robot.profile)) + "\"" + ",\"servos\":[";
   for (std::size_t i = 0; i < robot.servos.size(); ++i) {
     const compiler::ServoInfo& s = robot.servos[i];
     j += std::string(i ? "," : "") + "{\"name\":" + json_string(s.name) +

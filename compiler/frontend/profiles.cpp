@@ -99,6 +99,13 @@ const std::vector<RobotProfile>& profiles() {
 
 }  // namespace
 
+std::string_view position_unit(std::string_view profile) {
+  for (std::string_view pwm : {"lsc-16", "lsc-32", "lsc-6", "learm"}) {
+    if (profile == pwm) return "us";
+  }
+  return "units";
+}
+
 const RobotProfile* find_profile(std::string_view name) {
   for (const RobotProfile& p : profiles()) {
     if (p.name == name) return &p;

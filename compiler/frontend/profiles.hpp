@@ -1,5 +1,5 @@
-// Built-in robot profiles: what `robot: xarm` (or bus, lsc-16, lsc-32, lsc-6, learm, raspblock) means before the file's
-// own servo definitions are applied.
+// Built-in robot profiles: what `robot: xarm` (or bus, lsc-16, lsc-32, lsc-6, learm, raspblock)
+// means before the file's own servo definitions are applied.
 //
 // This table is where a new robot kind plugs in: add a RobotKind (program/program.hpp), a profile
 // row here, and the lowering for that kind (compile.cpp dispatches on the profile's kind). A new
@@ -50,6 +50,11 @@ struct RobotProfile {
 };
 
 const RobotProfile* find_profile(std::string_view name);
+
+// What a position of the profile's servos counts, as plots and the preview label it: "us" (the
+// pulse width in microseconds) for the PWM boards, lsc-16, lsc-32, lsc-6 and learm; "units" for
+// the bus servos' 0-1000.
+std::string_view position_unit(std::string_view profile);
 std::vector<std::string> profile_names();
 // "xarm, lsc-16, lsc-32" style list for messages, so adding a profile updates them all.
 std::string profile_list();

@@ -88,6 +88,21 @@ TEST(ProgramViews, TheCarIsCountedInPackets) {
   EXPECT_NE(svg.find("car title"), std::string::npos);
 }
 
+TEST(ProgramViews, LanesNameTheUnitTheBoardCounts) {
+  // The LeArm's LSC-6 board takes pulse widths in microseconds, 500-2500; the xArm's bus servos
+  // count 0-1000 of their own units.
+  io::DiskFileReader disk;
+  const std::string examples = std::string(SEQC_SOURCE_DIR) + "/examples/";
+  const compiler::CompileOutput learm = compiler::compile_file(examples + "learm.yaml", disk);
+  const compiler::CompileOutput xarm = compiler::compile_file(examples + "walk.yaml", disk);
+  ASSERT_TRUE(learm.program && xarm.program);
+  const std::string pwm = plot_program(*learm.program, {});
+  const std::string bus = plot_program(*xarm.program, {});
+  EXPECT_NE(pwm.find("id 1, us<"), std::string::npos);
+  EXPECT_EQ(pwm.find(", units<"), std::string::npos);
+  EXPECT_NE(bus.find("id 1, units<"), std::string::npos);
+}
+
 // The state the preview reads where it changes, from the packets alone, is the state at every
 // millisecond: the last change at or before it.
 TEST(ProgramViews, TheCarsChangesAreItsStateAtEveryMillisecond) {
