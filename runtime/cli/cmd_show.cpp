@@ -87,7 +87,7 @@ ExitCode upload_stage(Context& ctx, Stage& stage) {
     ctx.err << "seqc: error: " << terminal_safe(p.name) << ": "
             << other_dialect_text(*stage.board, program != nullptr ? program->robot.profile : "")
             << "\nseqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
-    return ExitCode::DeviceFailure;
+    return exit_code_for(r.status);  // the wrong board for the file: 2, as `upload` says it
   }
   if (r.status == upload::UploadStatus::Interrupted) {
     ctx.err << "seqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
