@@ -7,30 +7,15 @@
 #include <cstdint>
 #include <string>
 
-#include "compiler/compile.hpp"
 #include "base/diagnostics.hpp"
+#include "compiler/compile.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
-
-namespace {
-
-class MemoryFiles final : public seqc::FileReader {
- public:
-  explicit MemoryFiles(std::string text) : text_(std::move(text)) {}
-  seqc::Result<std::string> read(const std::string& path) override {
-    if (path == "main.yaml" || path == "inc.yaml") return text_;
-    return seqc::make_error(path + ": No such file or directory");
-  }
-
- private:
-  std::string text_;
-};
-
-}  // namespace
+#include "tests/fuzz/memory_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   for (bool strict : {false, true}) {
-    MemoryFiles files(text);
+    seqc::fuzz::MemoryFiles files(text);
     const seqc::compiler::CompileOutput out =
         seqc::compiler::compile_file("main.yaml", files, {strict});
     // --strict only differs when there are warnings; compiling twice regardless halved the

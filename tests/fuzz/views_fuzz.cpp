@@ -12,20 +12,9 @@
 #include "compiler/compile.hpp"
 #include "compiler/formats/program_views.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
+#include "tests/fuzz/memory_files.hpp"
 
 namespace {
-
-class MemoryFiles final : public seqc::FileReader {
- public:
-  explicit MemoryFiles(std::string text) : text_(std::move(text)) {}
-  seqc::Result<std::string> read(const std::string& path) override {
-    if (path == "main.yaml" || path == "inc.yaml") return text_;
-    return seqc::make_error(path + ": No such file or directory");
-  }
-
- private:
-  std::string text_;
-};
 
 // XML 1.0's Char production, bytewise: C0 controls other than tab, LF and CR are not allowed.
 bool xml_chars_only(std::string_view text) {
@@ -62,7 +51,7 @@ void check_page(const std::string& page) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  MemoryFiles files(text);
+  seqc::fuzz::MemoryFiles files(text);
   const seqc::compiler::CompileOutput out = seqc::compiler::compile_file("main.yaml", files, {});
   if (!out.program) return 0;
   const std::string svg = seqc::compiler::plot_program(*out.program, {});
