@@ -41,13 +41,25 @@ struct Line {
 };
 
 // How an exchange ended. The CLI turns it into a sentence and an exit code.
-enum class Failure { None, SendFailed, NoReply, Unconfirmed, HangUp, ReadFailed, Interrupted };
+// OtherDialect: the board expected stayed silent and a board of the family's other dialect
+// answered its question instead (upload/dialect_questions.hpp); `answered` names that dialect.
+enum class Failure {
+  None,
+  SendFailed,
+  NoReply,
+  Unconfirmed,
+  HangUp,
+  ReadFailed,
+  Interrupted,
+  OtherDialect
+};
 struct Outcome {
   Failure failure = Failure::None;
   std::string request;   // what was sent, described ("GroupStop", "EraseAll")
   std::string awaiting;  // what was awaited ("the battery voltage", "the erase confirmation")
   std::string detail;    // the link's or transport's own words
   int attempts = 0;      // Unconfirmed: confirmations sent
+  const Dialect* answered = nullptr;  // OtherDialect: the dialect that answered
   bool ok() const { return failure == Failure::None; }
 };
 enum class Confirmation { Reported, NotReported, NeverAnswered };
@@ -113,7 +125,9 @@ struct Board {
   // live play
   Result<std::vector<player::ScheduledFrame>> (*live_frames)(const compiler::CompileOutput&) =
       nullptr;
-  Outcome (*probe)(const Line&) = nullptr;  // is a board there? null: nothing answers
+  // Is this board there, and not the family's other dialect (upload/dialect_questions.hpp)?
+  // null: nothing can be asked
+  Outcome (*probe)(const Line&) = nullptr;
   Bytes (*safe_stop)() = nullptr;           // after an early end; null: none
   bool measure_departure = false;           // drain each frame, report when it left
   bool check_schedule = false;              // refuse a schedule the link cannot keep

@@ -16,6 +16,7 @@
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "protocol/lsc6/lsc6_messages.hpp"
 #include "protocol/lsc/lsc_frame.hpp"
+#include "runtime/upload/dialect_questions.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/lsc6_uploader.hpp"
 
@@ -95,6 +96,19 @@ Result<std::vector<player::ScheduledFrame>> live_frames(const compiler::CompileO
     frames.push_back({std::chrono::milliseconds(m.send_ms), std::move(*bytes)});
   }
   return frames;
+}
+
+// The LSC-6 answers nothing that could show it is there, so silence passes; the xArm question
+// finds a board of the other dialect, which would take every move for another servo range.
+Outcome probe(const Line& line) {
+  Outcome out;
+  if (upload::xarm_answers(line.transport, line.clock, line.interrupted,
+                           upload::UploadOptions{}.reply_margin)) {
+    out.failure = Failure::OtherDialect;
+    out.request = "GetBatteryVoltage";
+    out.answered = &kXarmDialect;
+  }
+  return out;
 }
 
 Bytes run_frame(std::uint8_t group, std::uint16_t times) {
@@ -277,7 +291,7 @@ const Board kLsc6Board = {
         "it did not answer Run, as some copies of the LSC-6 firmware never do: started, "
         "unconfirmed",
     .live_frames = live_frames,
-    .probe = nullptr,
+    .probe = probe,
     .safe_stop = nullptr,
     .measure_departure = true,
     .check_schedule = true,

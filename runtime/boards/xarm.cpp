@@ -23,6 +23,7 @@
 #include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/transport/open_port.hpp"
 #include "runtime/upload/controller_link.hpp"
+#include "runtime/upload/dialect_questions.hpp"
 
 namespace seqc::boards {
 namespace {
@@ -137,11 +138,19 @@ Outcome outcome_of(const XarmSession& session) {
   return session.failure() ? *session.failure() : Outcome{};
 }
 
+// The battery question; when it goes unanswered, the LSC-6 question (of group 0's unplayed
+// slot 255), so an LSC-6 on the line is named rather than taken for a board switched off.
 Outcome probe(const Line& line) {
   upload::ControllerLink link(line.transport, line.clock, line.interrupted);
   XarmSession session(link, line.timeout);
   (void)session.ask<lsc::BatteryVoltage>(lsc::GetBatteryVoltage{}, "the battery voltage");
-  return outcome_of(session);
+  Outcome out = outcome_of(session);
+  if (out.failure == Failure::NoReply &&
+      upload::lsc6_answers(line.transport, line.clock, line.interrupted, 0, line.timeout)) {
+    out.failure = Failure::OtherDialect;
+    out.answered = &kLsc6Dialect;
+  }
+  return out;
 }
 
 Bytes run_frame(std::uint8_t group, std::uint16_t times) {

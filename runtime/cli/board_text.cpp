@@ -96,6 +96,10 @@ BoardError outcome_text(const boards::Outcome& o, const std::string& port, io::D
       return {ExitCode::DeviceFailure, called + " on " + port + " went away (" + o.detail + ")"};
     case boards::Failure::ReadFailed:
       return {ExitCode::DeviceFailure, "reading from " + port + " failed: " + o.detail};
+    case boards::Failure::OtherDialect:
+      return {ExitCode::Usage, "the board on " + port + " answers in the " +
+                                   std::string(o.answered != nullptr ? o.answered->name : "other") +
+                                   " dialect, not as " + called};
     case boards::Failure::Interrupted:
       // Before anything was sent, or while a reply was awaited.
       return {ExitCode::Interrupted, o.awaiting.empty()

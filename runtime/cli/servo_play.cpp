@@ -86,6 +86,13 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
               << "  hint: or play it late anyway with --allow-late\n";
       return ExitCode::InvalidInput;
     case boards::LiveStatus::NoBoard:
+      if (r.probe.failure == boards::Failure::OtherDialect) {
+        const compiler::ServoProgram* program = compiled.servo_program();
+        ctx.err << "seqc: error: "
+                << other_dialect_text(board, program != nullptr ? program->robot.profile : "")
+                << "\nseqc: no move was sent\n";
+        return ExitCode::Usage;
+      }
       return report_outcome(ctx, r.probe, line, t.describe(), board);
     case boards::LiveStatus::Played: {
       if (ctx.verbosity < 0) return ExitCode::Ok;

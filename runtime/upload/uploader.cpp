@@ -1,7 +1,7 @@
 #include "runtime/upload/uploader.hpp"
 
 #include "protocol/dialects.hpp"
-#include "runtime/upload/lsc6_link.hpp"
+#include "runtime/upload/dialect_questions.hpp"
 #include "runtime/upload/uploader_run.hpp"
 
 namespace seqc::upload {
@@ -247,20 +247,9 @@ auto Uploader::Run::probe() -> Flow {
 }
 
 bool Uploader::Run::answers_as_lsc6() {
-  // Over USB HID only the xArm family's controllers are reached.
-  if (link().interrupted() || link().transport().max_frame_bytes() != 0) return false;
-  // 55 55 LEN 19 G TOTAL IDX N tLo tHi: group G, total 1, index 255, no servos, 0 ms (the
-  // LSC-6 question in uploader.hpp). lsc6::encode refuses an index not below the total, which is
-  // the point here, so the frame is put together from its fields.
-  const lsc::Frame frame{static_cast<std::uint8_t>(lsc6::Command::DownloadAction),
-                         Bytes{opt().group, 1, 255, 0, 0, 0}};
-  const Bytes request = lsc::encode_serial(frame).value();
-  if (!link().send_bytes(request)) return false;
-  Lsc6Link lsc6(link().transport(), clock(), nullptr);
-  const Lsc6Wait w = lsc6.wait_for(
-      [](const lsc6::Reply& r) { return std::holds_alternative<lsc6::ActionStored>(r); },
-      clock().now() + up_.reply_timeout(request.size(), 4, false));
-  return w.ok();
+  if (link().interrupted()) return false;
+  return lsc6_answers(link().transport(), clock(), nullptr, opt().group,
+                      up_.reply_timeout(0, 0, false));
 }
 
 // GroupRun, then a barrier so a refusal to start or a notification can be seen.

@@ -75,7 +75,7 @@ TEST(BoardsPlayLive, AnXarmIsAskedForItsBatteryFirstAndPlayedToTheEnd) {
   }
 }
 
-TEST(BoardsPlayLive, TheLsc6GetsItsMovesWithoutAProbe) {
+TEST(BoardsPlayLive, TheLsc6GetsItsMovesAfterTheXarmQuestionGoesUnanswered) {
   const compiler::CompileOutput learm = compile_example("learm.yaml");
   const Board& board = board_for(learm);
   ASSERT_EQ(board.key, "lsc6");
@@ -86,11 +86,12 @@ TEST(BoardsPlayLive, TheLsc6GetsItsMovesWithoutAProbe) {
       play_live(board, learm, Line{*opened.port->transport, *opened.port->clock}, false);
   ASSERT_EQ(r.status, LiveStatus::Played);
   EXPECT_EQ(r.play.sent, learm.servo_program()->keyframes.size());
-  // The first frame is a Move (CMD 03).
+  // GetBatteryVoltage (55 55 02 0f), which the LSC-6 ignores, then the first Move (CMD 03).
   auto& lsc6 = static_cast<emu::Lsc6Emulator&>(*opened.port->controller);
   const Bytes received = lsc6.received_bytes();
-  ASSERT_GE(received.size(), 4u);
-  EXPECT_EQ(received[3], 0x03);
+  ASSERT_GE(received.size(), 8u);
+  EXPECT_EQ(to_hex(Bytes(received.begin(), received.begin() + 4)), "55 55 02 0f");
+  EXPECT_EQ(received[7], 0x03);
 }
 
 TEST(BoardsPlayLive, NoAnswerToTheProbeSendsNoMove) {
@@ -102,8 +103,11 @@ TEST(BoardsPlayLive, NoAnswerToTheProbeSendsNoMove) {
   EXPECT_EQ(r.status, LiveStatus::NoBoard);
   EXPECT_EQ(r.probe.failure, Failure::NoReply);
   EXPECT_EQ(r.probe.awaiting, "the battery voltage");
-  ASSERT_EQ(nobody.writes().size(), 1u);
+  // The battery question, then the LSC-6 question (DownloadAction 19 of group 0, total 1,
+  // index 255): both unanswered, so no board at all.
+  ASSERT_EQ(nobody.writes().size(), 2u);
   EXPECT_EQ(to_hex(nobody.writes()[0]), "55 55 02 0f");
+  EXPECT_EQ(to_hex(nobody.writes()[1]), "55 55 08 19 00 01 ff 00 00 00");
 }
 
 TEST(BoardsPlayLive, AnInterruptedPlayStopsTheCar) {

@@ -119,8 +119,10 @@ TEST(DevicePlay, NoControllerIsADeviceFailureBeforeAnyMove) {
   h.files.add("try.yaml", kProgram);
   RunResult r = h.run({"play", "try.yaml", "--port", "emu:xarm"});
   EXPECT_EQ(r.code, 4);
-  // The unanswered position read says nothing itself; the probe after it is the failure.
-  EXPECT_EQ(h.received(), hex(std::string(kReadPositions) + " 55 55 02 0f"));
+  // The unanswered position read says nothing itself; the probe after it is the failure, and
+  // the LSC-6 question (group 0, total 1, index 255) finds no LSC-6 either.
+  EXPECT_EQ(h.received(),
+            hex(std::string(kReadPositions) + " 55 55 02 0f  55 55 08 19 00 01 ff 00 00 00"));
   EXPECT_NE(r.err.find("seqc: error: no reply from the controller on emu:xarm"), std::string::npos)
       << r.err;
 }

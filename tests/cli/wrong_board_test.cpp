@@ -126,5 +126,51 @@ TEST(WrongBoard, AShowPerformerOnTheOtherBoardIsNamedAndNothingStarts) {
   EXPECT_EQ(b.lsc6.stored_count(0), 0);
 }
 
+// `seqc play` asks the same questions before its first move, so no move in the other
+// dialect's units reaches the servos.
+TEST(WrongBoard, XarmFilePlayedOnAnLsc6SaysItIsAnLsc6AndSendsNoMove) {
+  Bench b;
+  b.files.add("arm.yaml", kXarmFile);
+  RunResult r = b.run({"play", "arm.yaml", "--port", "emu:lsc6"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "seqc: error: this is an LSC-6 board; the file is for xarm: use a file with `robot: "
+            "lsc-6` (or learm) for this board, or give --port the port the xArm / LSC-16 / "
+            "LSC-32 is on\n"
+            "seqc: no move was sent\n");
+  // The first-move safety read of the claw (GetServoPositions, 15: one servo, id 1), the
+  // battery question, both unanswered by the LSC-6, then the LSC-6 question into group 0's
+  // slot 255; no MultiServoMove (55 55 LEN 03 ...) follows.
+  EXPECT_EQ(to_hex(b.lsc6.received_bytes()),
+            hex("55 55 04 15 01 01  55 55 02 0f  55 55 08 19 00 01 ff 00 00 00"));
+  EXPECT_EQ(b.lsc6.stored_count(0), 0);
+}
+
+TEST(WrongBoard, Lsc6FilePlayedOnAnXarmSaysItIsAnXarmAndSendsNoMove) {
+  Bench b;
+  b.files.add("learm.yaml", kLsc6File);
+  RunResult r = b.run({"play", "learm.yaml", "--port", "emu:xarm"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "seqc: error: this is an xArm / LSC-16 / LSC-32 board; the file is for lsc-6: use a "
+            "file with `robot: xarm` (or bus, lsc-16, lsc-32) for this board, or give --port "
+            "the port the LSC-6 is on\n"
+            "seqc: no move was sent\n");
+  // Only the battery question, which the xArm answers: the move (ch1 to 2000 us) never left.
+  EXPECT_EQ(to_hex(b.xarm.received_bytes()), hex("55 55 02 0f"));
+}
+
+// On its own board an LSC-6 file's play is asked the battery question once (ignored), then
+// gets its move: 55 55 08 03, one servo, 500 ms (f4 01), ch1 (01) to 2000 (d0 07).
+TEST(WrongBoard, AnLsc6FilePlaysOnItsOwnBoardAfterOneUnansweredQuestion) {
+  Bench b;
+  b.files.add("learm.yaml", kLsc6File);
+  RunResult r = b.run({"play", "learm.yaml", "--port", "emu:lsc6"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(to_hex(b.lsc6.received_bytes()), hex("55 55 02 0f  55 55 08 03 01 f4 01 01 d0 07"));
+}
+
 }  // namespace
 }  // namespace seqc::cli::test
