@@ -53,8 +53,8 @@ struct LiveReport {
 };
 
 // When the first frame is due instead of when the play begins (a song's downbeat as heard), and
-// how long before their times the frames are written (the first frame's wire time and the
-// board's start delay), so the first finishes arriving then.
+// how much earlier than their own wire time the frames are written (the board's start delay),
+// so each finishes arriving at its time.
 struct LiveStart {
   io::TimePoint at{0};
   io::Duration early{0};

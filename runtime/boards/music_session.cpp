@@ -71,7 +71,8 @@ LiveSongStart live_song_start(const Board& board, const MusicSession& music,
   LiveSongStart s;
   s.plan = audio::plan_start(music.started->clock, timing);
   s.wire = timing.wire;
-  s.start = LiveStart{s.plan.downbeat_heard, timing.wire + timing.board_delay};
+  // The player writes each frame its own wire time early; the board's delay is the rest.
+  s.start = LiveStart{s.plan.downbeat_heard, timing.board_delay};
   return s;
 }
 

@@ -70,7 +70,8 @@ MusicRunReport run_on_downbeat(const Board& board, const Line& line, std::uint8_
   player::Track track;
   track.transport = &line.transport;
   track.frames.push_back({io::Duration{0}, command});
-  track.early = timing.wire + timing.board_delay;
+  track.seconds_per_byte = line.transport.seconds_per_byte();
+  track.early = timing.board_delay;
   if (board.stop_frame != nullptr) track.safe_stop = board.stop_frame();
   player::PlayOptions options;
   options.interrupted = line.interrupted;

@@ -59,15 +59,14 @@ ShowReport perform(std::vector<Performer>& performers, io::Clock& clock,
           audio::wire_time(track.frames.front().bytes.size(), track.transport->seconds_per_byte());
     }
     mine.delay = p.board->start_delay;
-    track.early = mine.wire + mine.delay;
+    track.seconds_per_byte = track.transport->seconds_per_byte();
+    track.early = mine.delay;
     tracks.push_back(std::move(track));
   }
 
   player::PlayOptions options;
   options.interrupted = interrupted;
-  io::Duration earliest{0};
-  for (const player::Track& t : tracks) earliest = std::max(earliest, t.early);
-  options.lead = kLead + earliest;
+  options.lead = kLead;  // the player adds what the frames written earliest need
   options.start_at = start_at;
   report.play = player::play(tracks, clock, options);
 

@@ -43,9 +43,10 @@ void send_safe_stops(const std::vector<Track>& tracks, PlayReport& report) {
 // are rounding, not lateness.
 constexpr io::Duration kRounding = std::chrono::microseconds(1);
 
+// To the nearest nanosecond, as a song's start works it out (audio::wire_time), so a first frame
+// timed to a song and the same frame in a schedule are written at the same instant.
 io::Duration wire_time(const ScheduledFrame& f, double seconds_per_byte) {
-  return std::chrono::duration_cast<io::Duration>(
-      std::chrono::duration<double>(static_cast<double>(f.bytes.size()) * seconds_per_byte));
+  return io::Duration{std::llround(static_cast<double>(f.bytes.size()) * seconds_per_byte * 1e9)};
 }
 
 }  // namespace
@@ -56,17 +57,20 @@ ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double s
   io::Duration line_free{0};
   io::Duration previous{0};
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const io::Duration start = std::max(frames[i].at, line_free);
-    if (start > frames[i].at) {
+    // Written its own wire time early, so it finishes arriving at its time.
+    const io::Duration own = wire_time(frames[i], seconds_per_byte);
+    const io::Duration due = frames[i].at - own;
+    const io::Duration start = i == 0 ? due : std::max(due, line_free);
+    if (start > due) {
       ++c.late_frames;
-      c.worst = std::max(c.worst, start - frames[i].at);
+      c.worst = std::max(c.worst, start - due);
       if (!c.first_late) {
         c.first_late = i;
-        c.late_by = start - frames[i].at;
+        c.late_by = start - due;
         c.wire_time = previous;
       }
     }
-    previous = std::max(wire_time(frames[i], seconds_per_byte), frame_interval);
+    previous = std::max(own, frame_interval);
     line_free = start + previous;
   }
   return c;
@@ -74,7 +78,14 @@ ScheduleCheck check_schedule(const std::vector<ScheduledFrame>& frames, double s
 
 PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOptions& options) {
   PlayReport report;
-  report.started = options.start_at ? *options.start_at : clock.now() + options.lead;
+  // Without a given start, time enough for the frame due furthest ahead of its `at`.
+  io::Duration ahead{0};
+  for (const Track& t : tracks) {
+    for (const ScheduledFrame& f : t.frames) {
+      ahead = std::max(ahead, t.early + wire_time(f, t.seconds_per_byte) - f.at);
+    }
+  }
+  report.started = options.start_at ? *options.start_at : clock.now() + options.lead + ahead;
   report.tracks.resize(tracks.size());
   std::size_t total = 0;
   for (const Track& t : tracks) total += t.frames.size();
@@ -83,18 +94,21 @@ PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOp
   for (;;) {
     // The earliest frame due; ties go to the lower track.
     std::optional<std::size_t> pick;
-    auto due = [&](std::size_t t) { return tracks[t].frames[next[t]].at - tracks[t].early; };
+    auto due = [&](std::size_t t) {
+      const ScheduledFrame& f = tracks[t].frames[next[t]];
+      return f.at - tracks[t].early - wire_time(f, tracks[t].seconds_per_byte);
+    };
     for (std::size_t t = 0; t < tracks.size(); ++t) {
       if (next[t] >= tracks[t].frames.size()) continue;
       if (!pick || due(t) < due(*pick)) pick = t;
     }
     if (!pick) break;
     const std::size_t t = *pick;
+    const io::TimePoint deadline = report.started + due(t);
     const std::size_t i = next[t]++;
     const Track& track = tracks[t];
     TrackReport& mine = report.tracks[t];
     const ScheduledFrame& frame = track.frames[i];
-    const io::TimePoint deadline = report.started + frame.at - track.early;
     if (!wait_until(clock, deadline, options)) {
       report.end = PlayEnd::Interrupted;
       send_safe_stops(tracks, report);

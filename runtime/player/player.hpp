@@ -2,10 +2,13 @@
 // play them as they arrive (the Raspblock car's stream, live moves on a servo controller), to one
 // transport or to several at once (one Track each), all on one clock.
 //
-// Frame i is written when the injected clock reaches start + at_i - early, where start is the
-// clock's time when play() begins plus options.lead (or options.start_at), and early is its
-// track's: how long before its time a frame must be written to finish arriving at its time (its
-// wire time, and the board's start delay). Deadlines are absolute, so a late wake-up or a slow
+// One timing rule for every player: a frame finishes arriving at its time. Frame i is written
+// when the injected clock reaches start + at_i - early - wire_i, where wire_i is its own wire
+// time (its bytes x its track's seconds_per_byte), early is its track's constant (the board's
+// start delay), and start is options.start_at or, without it, the clock's time when play()
+// begins plus options.lead plus what the frame due furthest ahead of its `at` needs. So frames
+// of different sizes keep their times against each other and against a song, rather than each
+// arriving late by its own length. Deadlines are absolute, so a late wake-up or a slow
 // write delays only the frames already due, never the ones after them: lateness does not
 // accumulate. With several tracks the frames are merged by deadline; frames due at the same time
 // go in track order, then frame order, so a show's performers start in the order they are listed.
@@ -61,8 +64,9 @@ struct PlayOptions {
   // position within its own track.
   std::function<void(std::size_t index, const FrameTiming& timing)> on_sent;
   // Single-transport play(): wait for each frame to leave (Transport::drain) and measure
-  // left_lateness; the frame's own wire time is its size times `seconds_per_byte`.
+  // left_lateness.
   bool drain = false;
+  // Single-transport play(): as Track::seconds_per_byte.
   double seconds_per_byte = 0;
 };
 
@@ -72,8 +76,10 @@ struct Track {
   std::vector<ScheduledFrame> frames;  // `at` from the common start, never decreasing
   std::optional<Bytes> safe_stop;      // written to this transport after an early end
   bool drain = false;                  // as PlayOptions::drain, for this transport
+  // A frame's wire time is its size times this; each frame is written that long before its
+  // `at` (0: the link takes no time, e.g. reports on a fixed interval).
   double seconds_per_byte = 0;
-  // Each frame is written this long before its `at`, so it finishes arriving then.
+  // Every frame is written this much earlier still: the board's start delay.
   io::Duration early{0};
 };
 
@@ -111,9 +117,10 @@ PlayReport play(const std::vector<Track>& tracks, io::Clock& clock, const PlayOp
 PlayReport play(const std::vector<ScheduledFrame>& frames, io::Transport& transport,
                 io::Clock& clock, const PlayOptions& options = {});
 
-// The schedule checked against the link before playing: frame i cannot start leaving before
-// frame i-1 has left (its bytes x seconds_per_byte, at least frame_interval apart), so it
-// leaves late when the line is still busy at its deadline. The first late frame, if any.
+// The schedule checked against the link before playing: frame i is due to start leaving its own
+// wire time before its `at` (as play() writes it), and cannot before frame i-1 has left (its
+// bytes x seconds_per_byte, at least frame_interval apart), so it leaves late when the line is
+// still busy when it is due. The first late frame, if any.
 struct ScheduleCheck {
   std::optional<std::size_t> first_late;  // index
   io::Duration late_by{0};                // how late it would start leaving

@@ -86,6 +86,28 @@ TEST(DeviceMusic, PlayStartsTheFirstMoveOnTheDownbeatAsHeard) {
       << r.err;
 }
 
+// Every move, whatever its size, finishes arriving on its beat: the second move carries three
+// servos, 55 55 0e 03 03 f4 01 + 3 x (id, lo, hi) = 16 bytes, 16.666667 ms on the wire; the
+// first is 10 bytes. Beat 2 is heard 50 + 750 + 500 = 1300 ms after the song's start. (Timed by
+// its first byte, as the first move is, it would land 6.25 ms late.)
+TEST(DeviceMusic, PlayLandsEveryMoveOnItsBeatWhateverItsSize) {
+  MusicHarness h;
+  h.files.add("dance.yaml",
+              "robot: xarm\nmusic:\n  file: song.wav\n  downbeat: 0.750s\n  tempo: 120\n"
+              "  meter: 4/4\nsequence:\n  - move: {base: 400}\n    time: 1b\n"
+              "  - move: {base: 600, elbow: 300, shoulder: 700}\n    time: 1b\n");
+  const RunResult r = h.run({"play", "dance.yaml", "--port", "emu:xarm", "--music", "--force"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto first = h.arrival_ms("55 55 08 03 01 f4 01 06 90 01");
+  ASSERT_TRUE(first.has_value()) << r.err;
+  EXPECT_NEAR(*first, 800.0, 1e-5);
+  // elbow (4) to 300 = 2c 01, shoulder (5) to 700 = bc 02, base (6) to 600 = 58 02.
+  const auto second = h.arrival_ms("55 55 0e 03 03 f4 01 04 2c 01 05 bc 02 06 58 02");
+  ASSERT_TRUE(second.has_value()) << r.err;
+  EXPECT_NEAR(*second, 1300.0, 1e-4);  // the emulator times each byte to the nanosecond
+  EXPECT_NE(r.err.find("late by p50 0.0 ms, p99 0.0 ms, max 0.0 ms"), std::string::npos) << r.err;
+}
+
 TEST(DeviceMusic, UploadRunTakesTheRigFilesAudioOffset) {
   MusicHarness h;
   h.files.add("rig.yaml", "audio_offset: 20ms\n");

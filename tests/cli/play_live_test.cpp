@@ -11,11 +11,13 @@
 namespace seqc::testing {
 namespace {
 
-// too-dense.yaml's move 3 starts 20 ms after move 2, which changes all six servos: 3 + 3 x 6 + 2
-// = 23 data bytes, a 25-byte frame, 25 x 1.0417 ms = 26.04 ms at 9600 baud, so 6.0 ms late.
+// too-dense.yaml's moves 2 and 3 change all six servos: 3 + 3 x 6 + 2 = 23 data bytes, a 25-byte
+// frame, 25 x 1.0417 ms = 26.04 ms at 9600 baud. Each is written to finish arriving at its time:
+// move 2 holds the line until 1000 ms, move 3 should start leaving at 1020 - 26.04 = 993.96 ms,
+// so 6.0 ms late.
 constexpr const char* kDenseRefused =
     "seqc: error: emu:xarm cannot keep this schedule: move 3 of 3 at 1.02 s "
-    "(tests/cli/data/too-dense.yaml:10) would leave 6.0 ms late: at 9600 baud the move before it "
+    "(tests/cli/data/too-dense.yaml:12) would leave 6.0 ms late: at 9600 baud the move before it "
     "takes 26.0 ms on the wire (1 of 3 moves late, the worst by 6.0 ms)\n"
     "  hint: store it on the controller and run it there: seqc upload "
     "tests/cli/data/too-dense.yaml --run\n"

@@ -1,4 +1,5 @@
-// The deadline scheduler on a ManualClock: frames go out at start + at_i exactly, a slow write
+// The deadline scheduler on a ManualClock: frames go out at start + at_i exactly (less their own
+// wire time when the link has one), a slow write
 // or a late wake-up delays only the frames already due, and an interrupt or failed write sends
 // the safe stop before play() returns. No test here waits in real time.
 #include <gtest/gtest.h>
@@ -75,6 +76,62 @@ TEST(Player, SendsEachFrameAtStartPlusItsTime) {
     EXPECT_EQ(r.lateness[i], io::Duration{0});
   }
   EXPECT_FALSE(r.stop_sent);  // a completed play sends nothing extra
+}
+
+// The timing rule: a frame finishes arriving at its time. At 9600 baud (10 bits a byte) a byte
+// takes 1/960 s: a 10-byte frame 10.416667 ms, a 25-byte one 26.041667 ms. Frames of 10, 25 and
+// 10 bytes at 0, 500 and 1000 ms are written at -10.416667, 473.958333 and 989.583333 ms, so
+// each last byte lands at 0, 500 and 1000 ms; the start leaves room for the first one.
+TEST(Player, EachFrameFinishesArrivingAtItsTimeWhateverItsSize) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  const std::vector<ScheduledFrame> frames{{milliseconds(0), Bytes(10, 0x01)},
+                                           {milliseconds(500), Bytes(25, 0x02)},
+                                           {milliseconds(1000), Bytes(10, 0x03)}};
+  PlayOptions options;
+  options.seconds_per_byte = 10.0 / 9600;
+  PlayReport r = play(frames, link, clock, options);
+  ASSERT_EQ(link.writes.size(), 3u);
+  EXPECT_EQ(r.started, kStart + std::chrono::nanoseconds(10'416'667));
+  EXPECT_EQ(link.writes[0].at, r.started - std::chrono::nanoseconds(10'416'667));
+  EXPECT_EQ(link.writes[1].at, r.started + std::chrono::nanoseconds(473'958'333));
+  EXPECT_EQ(link.writes[2].at, r.started + std::chrono::nanoseconds(989'583'333));
+  for (io::Duration late : r.lateness) EXPECT_EQ(late, io::Duration{0});
+}
+
+// The board's start delay (Track::early) comes on top of each frame's own wire time.
+TEST(Player, TheStartDelayIsAddedToEachFramesOwnWireTime) {
+  io::ManualClock clock(kStart);
+  FakeLink link(clock);
+  std::vector<Track> tracks(1);
+  tracks[0].transport = &link;
+  tracks[0].frames = {{milliseconds(100), Bytes(10, 0x01)}, {milliseconds(200), Bytes(25, 0x02)}};
+  tracks[0].seconds_per_byte = 10.0 / 9600;
+  tracks[0].early = milliseconds(3);
+  PlayOptions options;
+  options.start_at = kStart + milliseconds(50);
+  PlayReport r = play(tracks, clock, options);
+  ASSERT_EQ(link.writes.size(), 2u);
+  // 50 + 100 - 3 - 10.416667 and 50 + 200 - 3 - 26.041667 ms after kStart.
+  EXPECT_EQ(link.writes[0].at, kStart + std::chrono::nanoseconds(136'583'333));
+  EXPECT_EQ(link.writes[1].at, kStart + std::chrono::nanoseconds(220'958'333));
+}
+
+// The schedule check uses the same rule: 25-byte frames at 1000 and 1020 ms at 9600 baud. The
+// second should start leaving at 1020 - 26.041667 = 993.958333 ms; the first holds the line
+// until 1000 ms, so it is 6.041667 ms late, blamed on the first's 26.041667 ms on the wire.
+TEST(Player, TheScheduleCheckTimesEachFrameToFinishArriving) {
+  const std::vector<ScheduledFrame> frames{{milliseconds(1000), Bytes(25, 0x01)},
+                                           {milliseconds(1020), Bytes(25, 0x02)}};
+  const ScheduleCheck c = check_schedule(frames, 10.0 / 9600, io::Duration{0});
+  ASSERT_TRUE(c.first_late.has_value());
+  EXPECT_EQ(*c.first_late, 1u);
+  EXPECT_EQ(c.late_by, std::chrono::nanoseconds(6'041'667));
+  EXPECT_EQ(c.wire_time, std::chrono::nanoseconds(26'041'667));
+  // A 10-byte frame there instead (10.416667 ms, due at 1009.583333 ms) is not late.
+  const std::vector<ScheduledFrame> small{{milliseconds(1000), Bytes(25, 0x01)},
+                                          {milliseconds(1020), Bytes(10, 0x02)}};
+  EXPECT_FALSE(check_schedule(small, 10.0 / 9600, io::Duration{0}).first_late.has_value());
 }
 
 TEST(Player, ASlowWriteDelaysOnlyWhatIsAlreadyDue) {
