@@ -145,6 +145,11 @@ class Fitter {
     return tl_.segment(s, *i);
   }
 
+  // A first move from an unknown position is named only by the action that ends with it.
+  static bool waits_for_its_end(const Segment& seg, std::int64_t action_end) {
+    return seg.from_unknown && action_end < seg.end.round();
+  }
+
   int target(std::size_t s, std::int64_t t) const {
     return static_cast<int>(std::lround(intended(s, static_cast<double>(t)).value_or(0)));
   }
@@ -636,6 +641,7 @@ class Fitter {
       const auto [first, last] = overlapping(servo, s, e);
       if (first == last) continue;
       const Segment seg = tl_.segment(servo, last - 1);
+      if (waits_for_its_end(seg, e)) continue;
       if (!newest || seg.start > *newest) {
         newest = seg.start;
         action.source = seg.at;
@@ -667,6 +673,8 @@ class Fitter {
     }
     if (action.targets.empty()) {
       for (std::size_t servo = 0; servo < tracks_.size(); ++servo) {
+        const std::optional<Segment> seg = segment_at(servo, static_cast<double>(s));
+        if (seg && waits_for_its_end(*seg, e)) continue;
         if (intended(servo, static_cast<double>(s))) {
           action.targets.push_back({servo, target(servo, e)});
           pos_[servo] = target(servo, e);

@@ -107,7 +107,8 @@ bool Timeline::Span::same(const Segment& s) const {
 void Timeline::add(std::size_t servo, const Segment& s) {
   const std::uint32_t index = span_for(s);
   servos_[servo].push_back({index, static_cast<float>(s.from), static_cast<float>(s.to),
-                            static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+                            static_cast<float>(s.slope_from), static_cast<float>(s.slope_to),
+                            s.from_unknown});
 }
 
 void Timeline::replace(std::size_t servo, std::size_t first, std::size_t count,
@@ -115,7 +116,8 @@ void Timeline::replace(std::size_t servo, std::size_t first, std::size_t count,
   std::vector<Piece> pieces;
   for (const Segment& s : with) {
     pieces.push_back({span_for(s), static_cast<float>(s.from), static_cast<float>(s.to),
-                      static_cast<float>(s.slope_from), static_cast<float>(s.slope_to)});
+                      static_cast<float>(s.slope_from), static_cast<float>(s.slope_to),
+                      s.from_unknown});
   }
   std::vector<Piece>& v = servos_[servo];
   const auto at = v.begin() + static_cast<std::ptrdiff_t>(first);
@@ -179,6 +181,7 @@ Segment Timeline::segment(std::size_t servo, std::size_t i) const {
   s.slope_to = p.slope_to;
   s.tolerance = span.tolerance;
   s.keep_boundaries = span.keep_boundaries;
+  s.from_unknown = p.from_unknown;
   s.at = span.at;
   return s;
 }

@@ -41,6 +41,11 @@ struct Segment {
   double slope_from = 0, slope_to = 0;  // Hermite: units per millisecond at start and end
   double tolerance = 1;                 // device units, at any instant of this segment
   bool keep_boundaries = false;         // `steps:` pieces: the boundaries are actions, never merged
+  // A servo's first move, from a position nobody knows: `from` is its target, and the
+  // controller can only be told that end, so the fitter names the servo only in the action that
+  // ends with the segment (it holds where it is until then) rather than sending the target in
+  // an earlier, shorter action.
+  bool from_unknown = false;
   Location at;                          // the step (or waypoint) it comes from
 
   bool is_straight() const { return kind == CurveKind::Hold || kind == CurveKind::Linear; }
@@ -136,6 +141,7 @@ class Timeline {
   struct Piece {  // one servo's own part
     std::uint32_t span = 0;
     float from = 0, to = 0, slope_from = 0, slope_to = 0;
+    bool from_unknown = false;
   };
   // The span `s` shares with the servos added just before it (a new one if none).
   std::uint32_t span_for(const Segment& s);

@@ -217,6 +217,71 @@ sequence:
                                      "move takes 0.1 s"});
 }
 
+// base's first move (no position before it) runs 0..1100 ms while the other track's move ends
+// at 200 ms, a boundary of every servo's actions. The controller can only be told base's end:
+// sending it in the 200 ms action would take base all the way in 200 ms (5000/s). So base is
+// left out of that action and named only in the one ending with its move, 200..1100 ms, where
+// it goes to 1000 in 900 ms, arriving at its written 1.1 s. From 0, 1000 units at 1000/s need
+// 1 s: within the written 1.1 s (no first-move warning for the move as written), more than the
+// 0.9 s it gets.
+TEST(MotionChecks, AFirstMoveCutByAnotherTrackArrivesAtItsWrittenTime) {
+  const auto out = compile_text(R"(robot:
+  profile: xarm
+  servos:
+    base: {max_speed: 1000/s}
+sequence:
+  - together:
+      a:
+        - move: {shoulder: 600}
+          time: 200ms
+        - move: {shoulder: 700}
+          time: 1s
+      b:
+        - move: {base: 1000}
+          time: 1.1s
+)");
+  const ServoProgram& p = program_of(out);
+  ASSERT_EQ(p.keyframes.size(), 3u);
+  // shoulder is id 5, base id 6.
+  EXPECT_EQ(p.keyframes[0].start_ms, 0u);
+  EXPECT_EQ(p.keyframes[0].time_ms, 200u);
+  ASSERT_EQ(p.keyframes[0].targets.size(), 1u);
+  EXPECT_EQ(p.keyframes[0].targets[0].id, 5);
+  EXPECT_EQ(p.keyframes[1].start_ms, 200u);
+  EXPECT_EQ(p.keyframes[1].time_ms, 900u);
+  ASSERT_EQ(p.keyframes[1].targets.size(), 2u);
+  EXPECT_EQ(p.keyframes[1].targets[1].id, 6);
+  EXPECT_EQ(p.keyframes[1].targets[1].position, 1000);
+  const std::vector<std::string> m = messages(out);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[1],
+            "13:11 warning: 'base' has no known position before this move, and other tracks' "
+            "actions cut it: it holds until 0.2 s and reaches 1000 in 0.9 s (the action that "
+            "ends the move), not in 1.1 s; from 0 it needs 1 s at max_speed 1000/s; give it a "
+            "position before this, or start its move with the others");
+}
+
+// A first move longer than one action (30 s) would be split, and its first part would carry
+// the end: base would arrive at 22.5 s of a 45 s move. It is an error, located.
+TEST(MotionChecks, AFirstMoveLongerThanOneActionIsAnError) {
+  const auto out = compile_text(
+      "robot: xarm\nsequence:\n  - move: {base: 1000}\n    time: 45s\n");
+  EXPECT_EQ(messages(out),
+            std::vector<std::string>{
+                "3:5 error: 'base' has no known position before this move, so it cannot be split "
+                "into actions (45000ms is longer than the controller's 30s per action); move it "
+                "to an absolute position first"});
+  // After a move that gives it a position, the same 45 s move is two actions of 22.5 s, the
+  // first to the midpoint: 500 + (1000 - 500) / 2 = 750.
+  const auto ok = compile_text(
+      "robot: xarm\nsequence:\n  - move: {base: 500}\n    time: 1s\n  - move: {base: 1000}\n"
+      "    time: 45s\n");
+  const ServoProgram& p = program_of(ok);
+  ASSERT_EQ(p.keyframes.size(), 3u);
+  EXPECT_EQ(p.keyframes[1].time_ms, 22500u);
+  EXPECT_EQ(p.keyframes[1].targets[0].position, 750);
+}
+
 TEST(MotionChecks, TheFirstMoveOfSeveralServosIsOneWarningNamingTheSlowest) {
   // The xArm's servos (0..1000) default to 375deg/s, 1562.5 units/s (printed 1562/s). elbow to
   // 900 may come from 0: 900 units, 0.576 s, named 0.58 s; claw and base to 500: 0.32 s;

@@ -141,6 +141,44 @@ void warn_shortfalls(const RobotInfo& robot, const ServoWalk& walk, const FitRes
   }
 }
 
+// A first move from an unknown position that other tracks' actions cut is sent only with the
+// action that ends it (Segment::from_unknown): the servo holds until then and covers the whole
+// way in that action's time. Said once per servo, with the far end of its limits checked
+// against max_speed over the time it really gets.
+void warn_late_first_moves(const RobotInfo& robot, const Timeline& timeline,
+                           const std::vector<FittedAction>& actions, Reporter& reporter) {
+  for (std::size_t servo = 0; servo < robot.servos.size(); ++servo) {
+    if (timeline.count(servo) == 0) continue;
+    const Segment seg = timeline.segment(servo, 0);
+    if (!seg.from_unknown) continue;
+    const auto named = std::find_if(actions.begin(), actions.end(), [&](const FittedAction& a) {
+      return std::any_of(a.targets.begin(), a.targets.end(),
+                         [&](const FittedTarget& t) { return t.servo == servo; });
+    });
+    if (named == actions.end() ||
+        static_cast<std::int64_t>(named->start_ms) <= seg.start.round()) {
+      continue;
+    }
+    const ServoInfo& info = robot.servos[servo];
+    const int target = static_cast<int>(std::lround(seg.to));
+    std::string message = fmt::format(
+        "'{}' has no known position before this move, and other tracks' actions cut it: it "
+        "holds until {} and reaches {} in {} (the action that ends the move), not in {}",
+        info.name, format_seconds(named->start_ms), target, format_seconds(named->time_ms),
+        format_seconds(static_cast<std::uint64_t>(seg.end.round() - seg.start.round())));
+    if (info.max_speed && *info.max_speed > 0) {
+      const int from = target - info.min >= info.max - target ? info.min : info.max;
+      const double needs = std::abs(target - from) * 1000.0 / *info.max_speed;
+      if (needs > named->time_ms + 1e-9) {
+        message += fmt::format("; from {} it needs {:g} s at max_speed {:.0f}/s", from,
+                               std::ceil(needs / 10 - 1e-9) / 100, *info.max_speed);
+      }
+    }
+    reporter.warning(seg.at, message + "; give it a position before this, or start its move "
+                                       "with the others");
+  }
+}
+
 }  // namespace
 
 ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& fit_result,
@@ -161,6 +199,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
     reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");
   }
   warn_shortfalls(robot.info, walk, fit_result, walk.timeline, reporter);
+  warn_late_first_moves(robot.info, walk.timeline, actions, reporter);
   for (const FittedAction& a : actions) {
     Keyframe k;
     k.start_ms = a.start_ms;

@@ -208,14 +208,22 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
                         std::to_string(t / lsc::kMinActionMs) + " steps");
     return;
   }
-  const bool shaped = n > 1 || (n == 0 && !ease.is_linear());
+  // A move longer than one action is split too: its first part would take the servo all the
+  // way, from wherever it is, in a fraction of the time.
+  const bool too_long = !line && n == 0 && t > lsc::kMaxActionMs;
+  const bool shaped = n > 1 || (n == 0 && !ease.is_linear()) || too_long;
   for (std::size_t servo = 0; servo < targets.size() && shaped; ++servo) {
     if (!targets[servo] || pos_[servo]) continue;
-    reporter_.error(step.location,
-                    "'" + robot_.info.servos[servo].name +
-                        "' has no known position before this move, so it cannot be " +
-                        (n > 1 ? "split into " + std::to_string(n) + " actions" : "eased") +
-                        "; move it to an absolute position first");
+    const std::string split =
+        n > 1 ? "split into " + std::to_string(n) + " actions"
+        : too_long
+            ? "split into actions (" + format_ms(static_cast<double>(t)) +
+                  " is longer than the controller's 30s per action)"
+            : "eased";
+    reporter_.error(step.location, "'" + robot_.info.servos[servo].name +
+                                       "' has no known position before this move, so it cannot "
+                                       "be " +
+                                       split + "; move it to an absolute position first");
     return;
   }
 
@@ -254,6 +262,7 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
     seg.to = to;
     seg.tolerance = tol;
     seg.at = step.location;
+    seg.from_unknown = !pos_[servo];
     if (n > 1) {  // `steps`: equal pieces, the servo reaching f(k/n) of the way after piece k
       double prev = from;
       Segment fastest;  // the controller moves in these straight pieces: check the fastest
