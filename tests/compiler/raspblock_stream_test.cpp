@@ -32,6 +32,28 @@ TEST(RaspblockStream, DriveThenStop) {
       (std::vector<std::string>{"0: ff fe 03 08 01 00 0a 00 00 00 00 05 1b", "500: " + kStop}));
 }
 
+// A drive followed by a `together` whose track drives at its start: the block itself does not
+// drive, so a stop was due at 500 ms, but the track's speeds replace it in the same millisecond.
+// The car follows the last speeds it gets, so only the new speeds go out: x=10 (0a; x > 0 sets
+// no X bit, z = 0 sets the Z bit) -> signs 01; 03+08+01+0a+01 = 0x17. The gimbal at 1500/1500
+// (05 dc 05 dc): 02+04+05+dc+05+dc = 0x1c8 -> c8.
+TEST(RaspblockStream, ANewDriveAtTheJoinReplacesTheStopDueThere) {
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "sequence:\n"
+                      "  - drive: {x: -10}\n"
+                      "    time: 500ms\n"
+                      "  - together:\n"
+                      "      wheels:\n"
+                      "        - drive: {x: 10}\n"
+                      "          time: 500ms\n"
+                      "      camera:\n"
+                      "        - move: {pan: 1500, tilt: 1500}\n"
+                      "          time: 500ms\n"),
+            (std::vector<std::string>{"0: ff fe 03 08 01 00 0a 00 00 00 00 05 1b",
+                                      "500: ff fe 03 08 01 00 0a 00 00 00 00 01 17",
+                                      "500: ff fe 02 04 05 dc 05 dc c8", "1000: " + kStop}));
+}
+
 TEST(RaspblockStream, PidGimbalDrivesAndAServo) {
   const std::vector<std::string> want = {
       // PID position mode, gains 10..17: 01+09+01+0a+...+11 = 0x77.

@@ -29,6 +29,7 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
   // (packets at one instant keep the order the steps wrote them in).
   std::stable_sort(packets_.begin(), packets_.end(),
                    [](const TimedPacket& a, const TimedPacket& b) { return a.at_ms < b.at_ms; });
+  drop_superseded_speeds();
   check_capacity();
   RaspblockProgram program;
   program.packets = std::move(packets_);
@@ -188,6 +189,24 @@ void RaspblockLowering::emit_at(ExactMs at_time, raspblock::Packet packet, Locat
   const std::int64_t at_ms = std::clamp<std::int64_t>(
       at_time.round(), 0, static_cast<std::int64_t>(kRaspblockMaxStreamMs));
   packets_.push_back(TimedPacket{static_cast<std::uint32_t>(at_ms), std::move(packet), at});
+}
+
+// The car follows the last speeds it was sent: of several Rocker packets in one millisecond
+// (a drive's stop where the next step's drive starts, at a section or block join), only the
+// last does anything, so the others are left out rather than sent a byte-time apart.
+void RaspblockLowering::drop_superseded_speeds() {
+  std::vector<TimedPacket> kept;
+  kept.reserve(packets_.size());
+  for (std::size_t i = 0; i < packets_.size(); ++i) {
+    const bool speeds = std::holds_alternative<raspblock::Rocker>(packets_[i].packet);
+    bool superseded = false;
+    for (std::size_t j = i + 1; speeds && j < packets_.size(); ++j) {
+      if (packets_[j].at_ms != packets_[i].at_ms) break;
+      if (std::holds_alternative<raspblock::Rocker>(packets_[j].packet)) superseded = true;
+    }
+    if (!superseded) kept.push_back(std::move(packets_[i]));
+  }
+  packets_ = std::move(kept);
 }
 
 void RaspblockLowering::check_capacity() {

@@ -130,6 +130,7 @@ class RaspblockLowering final : public StepWalker {
   void emit(raspblock::Packet packet, Location at) { emit_at(now_, std::move(packet), at); }
   // Sends at `at_time` rounded to the nearest millisecond of the stream's clock.
   void emit_at(ExactMs at_time, raspblock::Packet packet, Location at);
+  void drop_superseded_speeds();
   void check_capacity();
   const Robot& robot_;
   std::array<std::optional<int>, kChannels.size()> pos_;
