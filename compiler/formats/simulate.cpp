@@ -96,7 +96,7 @@ std::vector<Difference> compare_with_intent(const compiler::ServoProgram& progra
     d.servo = program.robot.servos[s].name;
     Motion motion(program);
     for (const std::uint64_t t : compare_instants(program, s)) {
-      const auto want = program.timeline.value(s, static_cast<double>(t));
+      const auto want = program.timeline.written_value(s, static_cast<double>(t));
       const double got = motion.at(s, t);
       if (!want) continue;
       const double diff = std::abs(got - *want);
@@ -167,7 +167,8 @@ Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms
     }
     if (with_intended) {
       for (std::uint8_t id : ids) {
-        const auto want = program.timeline.value(servo_index(program, id), static_cast<double>(t));
+        const auto want =
+            program.timeline.written_value(servo_index(program, id), static_cast<double>(t));
         sample.intended.push_back(want ? *want : std::nan(""));
       }
     }

@@ -164,6 +164,7 @@ Timeline Timeline::stretched(std::int64_t num, std::int64_t den) const {
   for (TimelineMarker& m : out.markers) m.at = m.at * ExactMs::ratio(num, den);
   for (TimelineWarning& w : out.warnings) w.at_ms = w.at_ms * n / d;
   out.end = end * ExactMs::ratio(num, den);
+  if (written) out.written = std::make_shared<const Timeline>(written->stretched(num, den));
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,6 +112,13 @@ class Timeline {
   std::optional<std::size_t> index_at(std::size_t servo, double t_ms) const;
   // The intended position of `servo` at t, or nullopt while it is still unknown.
   std::optional<double> value(std::size_t servo, double t_ms) const;
+  // The position as the file wrote it, for views that compare the motion with it: value(),
+  // except where a `path: line` took another servo's curve into its own straight pieces (the
+  // fitter works on those; `written` keeps the curve).
+  std::optional<double> written_value(std::size_t servo, double t_ms) const {
+    const bool taken = servo < taken_into_lines.size() && taken_into_lines[servo];
+    return written && taken ? written->value(servo, t_ms) : value(servo, t_ms);
+  }
   // The same motion on a clock running num/den as fast: every instant (segments, markers,
   // warnings, the end) multiplied by num/den, Hermite slopes divided by it. An instant of whole
   // milliseconds times whole num and den is computed exactly (the product is below 2^53), so
@@ -127,6 +135,10 @@ class Timeline {
   TempoMap tempo_map;
   // The song of the main file's `music:` block, which then owns the tempo map; nullopt without.
   std::optional<Song> song;
+  // The timeline before `path: line` fits replaced other servos' curves (see written_value);
+  // null when none did. taken_into_lines: by servo, whether a line took its curve.
+  std::shared_ptr<const Timeline> written;
+  std::vector<bool> taken_into_lines;
 
  private:
   struct Span {  // what the servos of one step share

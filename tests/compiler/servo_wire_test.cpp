@@ -2,6 +2,9 @@
 // the simulator.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "compiler/compile.hpp"
 #include "compiler/formats/decode.hpp"
 #include "compiler/formats/listing.hpp"
@@ -211,6 +214,63 @@ TEST(Backend, CompareMeasuresTheProgramsControllerModel) {
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{501});
   p.controller = compiler::ControllerModel::Truncates;
   EXPECT_EQ(simulate(p, 50).samples[5].positions, std::vector<int>{500});
+}
+
+// The claw eases sine-in-out 300 -> 700 over 2..3 s while a `path: line` runs, so the line takes
+// its curve into its own straight pieces. --compare measures the claw against the curve the file
+// wrote, 300 + 400 (1 - cos(pi u)) / 2 with u = (t - 2000) / 1000, not against those pieces (it
+// said 0). The largest difference, worked out here from the keyframes (each action a straight
+// line from the claw's last target to its own), is what compare_with_intent reports, and it is
+// not 0.
+TEST(Backend, CompareMeasuresACurveALineTookAgainstTheCurveAsWritten) {
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: {x: 200mm, y: 80mm, z: 100mm}, pitch: 135deg, claw: 300}
+    time: 1s
+  - together:
+      arm:
+        - move: {tip: {x: 200mm, y: 80mm, z: 40mm}}
+          time: 1s
+          path: line
+      grip:
+        - move: {claw: 700}
+          time: 1s
+          ease: sine-in-out
+)");
+  const compiler::ServoProgram& p = program_of(out);
+  // The claw (id 1) along the actions, from 300 at 2 s.
+  double largest = 0;
+  for (int t = 2000; t <= 3000; ++t) {
+    double from = 300, got = 300;
+    for (const compiler::Keyframe& k : p.keyframes) {
+      if (k.start_ms < 2000) continue;
+      const auto claw = std::find_if(k.targets.begin(), k.targets.end(),
+                                     [](const lsc::ServoTarget& x) { return x.id == 1; });
+      if (claw == k.targets.end()) continue;
+      const double to = claw->position;
+      if (t >= static_cast<int>(k.start_ms + k.time_ms)) {
+        from = to;
+        got = to;
+        continue;
+      }
+      if (t >= static_cast<int>(k.start_ms)) {
+        got = from + (to - from) * (t - static_cast<double>(k.start_ms)) / k.time_ms;
+      }
+      break;
+    }
+    const double u = (t - 2000) / 1000.0;
+    const double want = 300 + 400 * (1 - std::cos(3.14159265358979 * u)) / 2;
+    largest = std::max(largest, std::abs(got - want));
+  }
+  EXPECT_GT(largest, 0.3);
+  const std::vector<Difference> d = compare_with_intent(p);
+  const auto claw = std::find_if(d.begin(), d.end(), [](const Difference& x) {
+    return x.servo == "claw";
+  });
+  ASSERT_NE(claw, d.end());
+  EXPECT_NEAR(claw->largest, largest, 0.01);
 }
 
 // main.yaml of `files` loaded with its robot section read: what the driver hands the servo

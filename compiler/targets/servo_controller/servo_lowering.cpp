@@ -53,7 +53,13 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   timeline_.end = now_;
   // The lines are fitted again only once every track is walked, and only in a file without
   // mistakes (ready_to_fit() fits nothing else).
-  if (reporter_.errors_reported() == 0) refit_lines();
+  if (reporter_.errors_reported() == 0 && !lines_.empty()) {
+    // What the file wrote, kept for the views where a line takes other servos' curves.
+    auto written = std::make_shared<const Timeline>(timeline_);
+    const std::size_t replaced = replaced_curves_;
+    refit_lines();
+    if (replaced_curves_ > replaced) timeline_.written = std::move(written);
+  }
   ServoWalk walk;
   walk.min_actions = min_actions_;
   walk.truncated = truncated_;

@@ -145,6 +145,7 @@ class ServoLowering final : public StepWalker {
   // pieces where it fits them). Where no such actions keep the tolerance the line stays as it
   // was and servo_program() warns with the tip's true distance.
   void refit_lines();
+  std::size_t replaced_curves_ = 0;  // other servos' curves refit_lines() took into lines
   // A group's first move of a servo may start anywhere in its limits: warns when `time` is too
   // short from the far end at max_speed. `targets`: the move's positions, by servo.
   void check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time, Location at);

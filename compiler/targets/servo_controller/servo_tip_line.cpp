@@ -324,6 +324,9 @@ void ServoLowering::refit_lines() {
         piece.at = timeline_.segment(f.servo, i).at;
       }
       timeline_.replace(f.servo, f.first, f.count, pieces[line->servos.size() + k]);
+      ++replaced_curves_;
+      timeline_.taken_into_lines.resize(timeline_.servo_count(), false);
+      timeline_.taken_into_lines[f.servo] = true;
     }
   }
 }
