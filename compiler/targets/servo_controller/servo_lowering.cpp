@@ -54,6 +54,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   // The lines are fitted again only once every track is walked, and only in a file without
   // mistakes (ready_to_fit() fits nothing else).
   if (reporter_.errors_reported() == 0) refit_lines();
+  check_tip_depth();
   ServoWalk walk;
   walk.min_actions = min_actions_;
   walk.truncated = truncated_;
