@@ -36,4 +36,15 @@ ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 
   return out;
 }
 
+double tip_height(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints) {
+  auto radians = [&](const compiler::ArmJoint& j, double position) {
+    return j.sign * (position - j.zero) * arm.degrees_per_unit * std::numbers::pi / 180;
+  };
+  const double s = radians(arm.shoulder, joints[1]);
+  const double se = s + radians(arm.elbow, joints[2]);
+  const double sew = se + radians(arm.wrist, joints[3]);
+  return arm.base_height + arm.upper_arm * std::cos(s) + arm.forearm * std::cos(se) +
+         arm.hand * std::cos(sew);
+}
+
 }  // namespace seqc::compiler

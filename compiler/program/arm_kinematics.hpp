@@ -34,4 +34,8 @@ ArmPoints arm_points(const compiler::ArmGeometry& arm,
 // order: the form for callers that evaluate the tip at every millisecond of a move.
 ArmPoints arm_points(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints);
 
+// Only the tip's height above the table (mm), as arm_points(arm, joints).tip[2] gives it: the
+// form for checks that sample a move at every millisecond and need nothing else.
+double tip_height(const compiler::ArmGeometry& arm, const std::array<double, 4>& joints);
+
 }  // namespace seqc::compiler

@@ -45,6 +45,9 @@ std::map<int, int> final_positions(const ServoProgram& p) {
 struct Tip {
   std::array<double, 3> at;
   double pitch;  // degrees
+  // How far rounding each joint by half a unit can move the tip (first order: the angle times
+  // the joint's distance to the tip in this pose, summed over the joints).
+  double rounding_mm;
 };
 
 // r = U sin s + F sin(s+e) + H sin(s+e+w), z = base_height + U cos s + F cos(s+e) + H cos(s+e+w),
@@ -59,12 +62,19 @@ Tip forward(std::map<int, int> pos, const WrittenArm& a = kXarm) {
   const double r = a.upper * std::sin(s) + a.fore * std::sin(s + e) + a.hand * std::sin(s + e + w);
   const double z = a.base_height + a.upper * std::cos(s) + a.fore * std::cos(s + e) +
                    a.hand * std::cos(s + e + w);
-  return {{r * std::cos(base), r * std::sin(base), z}, (s + e + w) / rad};
+  // In the arm's plane, the shoulder at (0, base_height), the elbow and the wrist after it.
+  const double elbow_r = a.upper * std::sin(s), elbow_z = a.base_height + a.upper * std::cos(s);
+  const double half_unit = 0.5 * a.deg_per_unit * rad;
+  const double reach = std::abs(r) + std::hypot(r, z - a.base_height) +
+                       std::hypot(r - elbow_r, z - elbow_z) + a.hand;
+  // 0.01 mm covers the second-order terms (about the reach times the angle squared).
+  return {{r * std::cos(base), r * std::sin(base), z}, (s + e + w) / rad, half_unit * reach + 0.01};
 }
 
 // Rounding a joint to whole units moves it by at most half a unit, 0.12 degrees; the tip moves
-// by at most that angle times the joint's distance to the tip, which is at most the links
-// beyond it: base and shoulder 97+96+150, elbow 96+150, wrist 150 mm. The IK itself is exact.
+// by at most that angle times the joint's distance to the tip (Tip::rounding_mm), never more
+// than with each distance at its longest, the links beyond the joint: base and shoulder
+// 97+96+150, elbow 96+150, wrist 150 mm, about 2.3 mm. The IK itself is exact.
 const double kRoundingMm =
     0.5 * kDegPerUnit * std::numbers::pi / 180 * ((343 + 343) + (96 + 150) + 150);
 constexpr double kRoundingPitch = 3 * 0.5 * kDegPerUnit;  // shoulder, elbow and wrist
@@ -81,7 +91,8 @@ sequence:
 )");
   const std::map<int, int> pos = final_positions(compiled(out));
   const Tip tip = forward(pos);
-  EXPECT_LE(distance(tip.at, {200, 0, 50}), kRoundingMm);
+  EXPECT_LE(distance(tip.at, {200, 0, 50}), tip.rounding_mm);
+  EXPECT_LT(tip.rounding_mm, kRoundingMm);
   EXPECT_NEAR(tip.pitch, 135, kRoundingPitch);
   EXPECT_EQ(pos.at(6), 500);  // straight along +x: the base at its zero
   EXPECT_EQ(pos.at(1), 300);  // the claw moves in the same step
@@ -98,7 +109,7 @@ sequence:
 )");
   const std::map<int, int> pos = final_positions(compiled(out));
   EXPECT_EQ(pos.at(6), 875);
-  EXPECT_LE(distance(forward(pos).at, {0, 200, 50}), kRoundingMm);
+  EXPECT_LE(distance(forward(pos).at, {0, 200, 50}), forward(pos).rounding_mm);
 }
 
 TEST(ArmTip, ElbowDownIsTheOtherSolution) {
@@ -113,8 +124,8 @@ TEST(ArmTip, ElbowDownIsTheOtherSolution) {
   // bends it back; both put the tip at the same point.
   EXPECT_LT(up_pos.at(4), 500);
   EXPECT_GT(down_pos.at(4), 500);
-  EXPECT_LE(distance(forward(up_pos).at, {250, 0, 80}), kRoundingMm);
-  EXPECT_LE(distance(forward(down_pos).at, {250, 0, 80}), kRoundingMm);
+  EXPECT_LE(distance(forward(up_pos).at, {250, 0, 80}), forward(up_pos).rounding_mm);
+  EXPECT_LE(distance(forward(down_pos).at, {250, 0, 80}), forward(down_pos).rounding_mm);
   EXPECT_NEAR(forward(down_pos).pitch, 135, kRoundingPitch);
 }
 
@@ -181,7 +192,7 @@ sequence:
   const Tip from = forward(before);
   const Tip to = forward(final_positions(p));
   // Relative to where the rounded joints put the tip, so only the second rounding counts.
-  EXPECT_LE(distance(to.at, {from.at[0], from.at[1], from.at[2] + 60}), kRoundingMm);
+  EXPECT_LE(distance(to.at, {from.at[0], from.at[1], from.at[2] + 60}), to.rounding_mm);
   EXPECT_NEAR(to.pitch, from.pitch, kRoundingPitch);
 }
 
@@ -254,7 +265,7 @@ sequence:
   ASSERT_TRUE(messages(out).empty()) << ::testing::PrintToString(messages(out));
   const std::map<int, int> pos = final_positions(compiled(out));
   EXPECT_EQ(pos.at(6), 383);
-  EXPECT_LE(distance(forward(pos).at, {150, -80, 40}), kRoundingMm);
+  EXPECT_LE(distance(forward(pos).at, {150, -80, 40}), forward(pos).rounding_mm);
   // The same point in the list form is relative (a sign makes it so): from home's tip at
   // [0, 0, 415] it would be [150, -80, 455], out of reach, so the forms differ.
   EXPECT_FALSE(messages(compile_text(R"(robot: xarm
@@ -294,11 +305,42 @@ sequence:
   const double per = 0.09;
   const Tip tip = forward(pos, {per, 1500, 1, 1, -1, -1, 85, 104.3, 89, 177});
   // Half a unit is 0.045 degrees, at most (370.3 + 370.3 + 266 + 177) mm from the tip.
-  const double rounding = 0.5 * per * std::numbers::pi / 180 * (370.3 + 370.3 + 266 + 177);
-  EXPECT_LE(distance(tip.at, {120, 90, 60}), rounding);
+  EXPECT_LE(distance(tip.at, {120, 90, 60}), tip.rounding_mm);
+  EXPECT_LT(tip.rounding_mm, 0.5 * per * std::numbers::pi / 180 * (370.3 + 370.3 + 266 + 177));
   EXPECT_NEAR(tip.pitch, 150, 3 * 0.5 * per);
   // atan2(90, 120) = 36.87 degrees counter-clockwise: 1500 + 36.87 / 0.09 = 1909.7 us.
   EXPECT_NEAR(pos[6], 1910, 1);
+}
+
+// A point that whole units reach exactly leaves no rounding: the tip lands on it within the
+// thousandth of a millimetre it is written to, so every link length shows. Shoulder 400, elbow
+// 200 and wrist 300 (each angle -(position - 500) * 0.24 degrees) are s = 24, e = 72 and w = 48
+// degrees, pitch 144; r = 97 sin 24 + 96 sin 96 + 150 sin 144 = 39.453 + 95.474 + 88.168 = 223.095
+// and z = 72 + 97 cos 24 + 96 cos 96 + 150 cos 144 = 72 + 88.614 - 10.035 - 121.353 = 29.227 mm.
+// With the upper arm and the forearm swapped (96 and 97 mm) the same point needs shoulder 402
+// and wrist 298, which put the tip 1.3 mm from it: far beyond this test's 0.01 mm.
+TEST(ArmTip, EachLinkLengthMovesTheTip) {
+  const auto out = compile_text(R"(robot: xarm
+sequence:
+  - move: home
+    time: 1s
+  - move: {tip: [223.095mm, 0mm, 29.227mm], pitch: 144deg}
+    time: 1s
+)");
+  const std::map<int, int> pos = final_positions(compiled(out));
+  const double rad = std::numbers::pi / 180;
+  const double s = 24 * rad, e = 72 * rad, w = 48 * rad;
+  const std::array<double, 3> written = {
+      97 * std::sin(s) + 96 * std::sin(s + e) + 150 * std::sin(s + e + w), 0,
+      72 + 97 * std::cos(s) + 96 * std::cos(s + e) + 150 * std::cos(s + e + w)};
+  EXPECT_NEAR(written[0], 223.095, 0.0005);
+  EXPECT_NEAR(written[2], 29.227, 0.0005);
+  EXPECT_EQ(pos.at(5), 400);
+  EXPECT_EQ(pos.at(4), 200);
+  EXPECT_EQ(pos.at(3), 300);
+  EXPECT_LE(distance(forward(pos).at, written), 0.01);
+  // What the swap would compile to is 1.3 mm off by the true lengths.
+  EXPECT_GT(distance(forward({{6, 500}, {5, 402}, {4, 200}, {3, 298}}).at, written), 1.0);
 }
 
 }  // namespace

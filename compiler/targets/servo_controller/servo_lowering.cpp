@@ -60,6 +60,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
     refit_lines();
     if (replaced_curves_ > replaced) timeline_.written = std::move(written);
   }
+  check_tip_depth();
   ServoWalk walk;
   walk.min_actions = min_actions_;
   walk.truncated = truncated_;

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,6 +29,7 @@
 #include "compiler/frontend/step_walk.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
+#include "compiler/targets/servo_controller/tip_depth.hpp"
 #include "compiler/targets/servo_controller/tip_line.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/timeline.hpp"
@@ -152,6 +154,14 @@ class ServoLowering final : public StepWalker {
   // Limits along a curve that may overshoot its ends.
   bool check_overshoot(std::size_t servo, const Segment& segment, Location at,
                        const std::optional<Reporter::Note>& note);
+  // A step from `start` to `end` that moved servos for which `moves` is true: kept when any is
+  // one of the arm's joints, for check_tip_depth() (servo_tip.cpp). `tip_end`: its end was placed
+  // by a `tip:`; `line_tolerance_mm`: a `path: line`'s tolerance.
+  void record_arm_move(const std::function<bool(std::size_t)>& moves, ExactMs start, ExactMs end,
+                       Location at, bool tip_end, double line_tolerance_mm);
+  // Once every track is walked: the claw's tip against the table at every millisecond of every
+  // move kept by record_arm_move() (tip_depth.hpp), one error per step that takes it below.
+  void check_tip_depth();
   // Marks `servo` as moved by the running track; false after reporting a servo in two tracks.
   bool claim(std::size_t servo, Location at);
   void count_actions(std::uint64_t n, Location at);
@@ -170,7 +180,8 @@ class ServoLowering final : public StepWalker {
   std::optional<Location> over_budget_at_;
   std::vector<Reporter::Note> over_budget_notes_;
   std::optional<Location> sequence_at_;
-  std::vector<LineRecord> lines_;  // every `path: line` move, in the order walked
+  std::vector<LineRecord> lines_;   // every `path: line` move, in the order walked
+  std::vector<ArmMove> arm_moves_;  // every step that moved an arm's joint, in the order walked
 };
 
 }  // namespace seqc::compiler

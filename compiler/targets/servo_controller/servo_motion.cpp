@@ -295,6 +295,8 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
     }
     pos_[servo] = *targets[servo];
   }
+  record_arm_move([&](std::size_t servo) { return targets[servo].has_value(); }, start, end,
+                  step.location, has_tip, 0);
   report_kinematics(findings);
   count_actions(n > 0 ? n : (t + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs, step.location);
   now_ = end;

@@ -115,6 +115,8 @@ void ServoLowering::through_step(const YamlNode& step, const YamlNode& waypoints
     }
     pos_[s] = points[n][s];
   }
+  record_arm_move([&](std::size_t servo) { return static_cast<bool>(named[servo]); }, times.front(),
+                  times.back(), step.location, false, 0);
   report_kinematics(findings);
   count_actions(n, step.location);
   now_ = times.back();

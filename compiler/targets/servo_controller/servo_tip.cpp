@@ -1,6 +1,7 @@
 // A move's `tip:` in millimetres: the joint positions inverse kinematics gives for the claw's tip
 // (targets/servo_controller/arm_ik.hpp), rounded to whole units and checked against the servos'
-// limits, so that the move goes on as an ordinary move of the joint servos.
+// limits, so that the move goes on as an ordinary move of the joint servos; and the tip of every
+// move of the joints checked against the table at every millisecond (tip_depth.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -10,6 +11,7 @@
 #include "compiler/program/arm_kinematics.hpp"
 #include "compiler/targets/servo_controller/arm_ik.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
+#include "compiler/targets/servo_controller/tip_depth.hpp"
 #include "compiler/targets/servo_controller/tip_line.hpp"
 #include "compiler/targets/servo_controller/tip_text.hpp"
 #include "protocol/lsc/group_download.hpp"
@@ -245,6 +247,45 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
   placed.elbow_up = elbow_up;
   for (std::size_t j = 0; j < 4; ++j) placed.joints[j] = joint_servo[j];
   return ok;
+}
+
+namespace {
+
+// The servos of the arm's base, shoulder, elbow and wrist; nullopt without a geometry or when
+// one is not a servo of the robot (tip_entries() reports that where a tip is asked for).
+std::optional<std::array<std::size_t, 4>> arm_joint_servos(const Robot& robot) {
+  if (!robot.info.arm) return std::nullopt;
+  const ArmGeometry& arm = *robot.info.arm;
+  std::array<std::size_t, 4> out{};
+  const ArmJoint* joints[] = {&arm.base, &arm.shoulder, &arm.elbow, &arm.wrist};
+  for (std::size_t j = 0; j < 4; ++j) {
+    auto it = robot.names.find(joints[j]->servo);
+    if (it == robot.names.end()) return std::nullopt;
+    out[j] = it->second;
+  }
+  return out;
+}
+
+}  // namespace
+
+void ServoLowering::record_arm_move(const std::function<bool(std::size_t)>& moves, ExactMs start,
+                                    ExactMs end, Location at, bool tip_end,
+                                    double line_tolerance_mm) {
+  const auto joints = arm_joint_servos(robot_);
+  if (!joints || std::none_of(joints->begin(), joints->end(), moves)) return;
+  arm_moves_.push_back({start, end, at, tip_end, line_tolerance_mm});
+}
+
+void ServoLowering::check_tip_depth() {
+  const auto joints = arm_joint_servos(robot_);
+  if (!joints) return;
+  for (const TipDip& d : find_tip_dips(*robot_.info.arm, *joints, timeline_, arm_moves_)) {
+    // A warning (an error with --strict): the end points a file names are errors below the
+    // table, but between them the dip is the joints' path, which the file may well mean.
+    reporter_.warning(d.at, fmt::format("the tip goes {:.1f} mm below the table at {:.3f} s "
+                                      "(deepest, {}), for {:.0f} ms",
+                                      d.depth_mm, d.at_ms / 1000, point_text(d.point), d.below_ms));
+  }
 }
 
 }  // namespace seqc::compiler

@@ -171,6 +171,8 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
   for (const compiler::TipLineAction& a : fit.actions) record.ends.push_back(a.end_ms);
   record.request = std::move(request);
   lines_.push_back(std::move(record));
+  record_arm_move([](std::size_t) { return true; }, start, end, step.location, true,
+                  tolerance_mm);
   count_actions(fit.actions.size(), step.location);
   timeline_.tip_moves.push_back(
       {start.value(), end.value(), fit.from, placed.point, /*line=*/true});
