@@ -47,10 +47,35 @@ Result<std::string> described(Result<Message> message) {
 
 // ---- xArm / LSC-16 / LSC-32 ------------------------------------------------------------------
 
+// The questions that tell the two servo-controller dialects apart (docs/protocol/lsc-6.md):
+// each dialect's trace may hold the other's question and, from a board of the other dialect,
+// its answer. They are named, not flagged.
+Result<std::string> lsc6_question(const Unit& u) {
+  auto a = lsc6::decode_request(lsc::Frame{u.command, u.data});
+  if (!a) return a.error();
+  return describe(*a) + " (the LSC-6 question: no command of this dialect)";
+}
+Result<std::string> xarm_question(const Unit& u) {
+  auto q = lsc::decode_request(lsc::Frame{u.command, u.data});
+  if (!q) return q.error();
+  return describe(*q) + " (the xArm question: the LSC-6 ignores it)";
+}
+
 Result<std::string> xarm_request(const Unit& u) {
+  // Only the question itself (total 1, index 255, no servos, time 0): a real LSC-6 download
+  // frame in an xArm trace is still no request of this dialect.
+  if (u.command == kLsc6Download && u.data.size() == 6 && u.data[1] == 1 && u.data[2] == 255 &&
+      u.data[3] == 0) {
+    return lsc6_question(u);
+  }
   return described(lsc::decode_request(lsc::Frame{u.command, u.data}));
 }
 Result<std::string> xarm_reply(const Unit& u) {
+  if (u.command == kLsc6Download && u.data.empty()) {
+    auto a = lsc6::decode_reply(lsc::Frame{u.command, u.data});
+    if (!a) return a.error();
+    return describe(*a) + " (an LSC-6 answering the LSC-6 question)";
+  }
   return described(lsc::decode_reply(lsc::Frame{u.command, u.data}));
 }
 // Frames, none of them the LSC-6's download.
@@ -62,9 +87,17 @@ bool xarm_sniff(ByteView bytes) {
 // ---- LSC-6 / LeArm -----------------------------------------------------------------------------
 
 Result<std::string> lsc6_request(const Unit& u) {
+  const auto battery = static_cast<std::uint8_t>(lsc::Command::GetBatteryVoltage);
+  if (u.command == battery && u.data.empty()) return xarm_question(u);
   return described(lsc6::decode_request(lsc::Frame{u.command, u.data}));
 }
 Result<std::string> lsc6_reply(const Unit& u) {
+  const auto battery = static_cast<std::uint8_t>(lsc::Command::GetBatteryVoltage);
+  if (u.command == battery && u.data.size() == 2) {
+    auto v = lsc::decode_reply(lsc::Frame{u.command, u.data});
+    if (!v) return v.error();
+    return describe(*v) + " (a board of the xArm dialect answering the xArm question)";
+  }
   return described(lsc6::decode_reply(lsc::Frame{u.command, u.data}));
 }
 // A frame of its download. A session without one (moves, runs, the erase) is frames the xArm

@@ -2,6 +2,8 @@
 // --from: the inputs in tests/cli/data are written by hand (see the comments in them); the
 // tables are goldens in tests/cli/golden (SEQC_UPDATE_GOLDEN=1 rewrites them; review by eye).
 #include <gtest/gtest.h>
+
+#include <fstream>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -67,6 +69,44 @@ TEST(Decode, ADryRunReadsBackThroughAPipe) {
   EXPECT_NE(arm.find("# LSC-6: 37 frame(s), 36 action(s), 7.5 s total, 0 issue(s)"),
             std::string::npos)
       << arm;
+}
+
+// The questions that tell the dialects apart are named in each dialect's trace, not flagged:
+// in an xArm trace the LSC-6 question (55 55 08 19: group 0, total 1, index 255, no servos,
+// time 0) and an LSC-6's answer (55 55 02 19); in an LSC-6 trace the xArm question (55 55 02
+// 0f) and a voltage answer (55 55 04 0f, 0x1d4c = 7500 mV).
+TEST(Decode, TheDialectQuestionsAreNamedNotFlagged) {
+  const fs::path dir = fs::path(SEQC_BINARY_DIR) / "tests/cli/tmp";
+  fs::create_directories(dir);
+  {
+    std::ofstream(dir / "xarm-asks.trace")
+        << "# seqc trace of emu:lsc6; t in seconds, > to the device, < from it\n"
+           "# dialect: xArm / LSC-16 / LSC-32\n"
+           "t=0.000000 > 55 55 02 0f\nt=0.510000 > 55 55 08 19 00 01 ff 00 00 00\n"
+           "t=0.520000 < 55 55 02 19\n";
+    std::ofstream(dir / "lsc6-asks.trace")
+        << "# seqc trace of emu:xarm; t in seconds, > to the device, < from it\n"
+           "# dialect: LSC-6\n"
+           "t=0.000000 > 55 55 02 0f\nt=0.010000 < 55 55 04 0f 4c 1d\n";
+  }
+  SeqcRun x = seqc(dir, "decode xarm-asks.trace");
+  EXPECT_EQ(x.status, 0) << x.out << x.err;
+  EXPECT_NE(x.out.find("> DownloadAction group=0 total=1 index=255 time=0 servos=[] (the LSC-6 "
+                       "question: no command of this dialect)"),
+            std::string::npos)
+      << x.out;
+  EXPECT_NE(x.out.find("< ActionStored (an LSC-6 answering the LSC-6 question)"),
+            std::string::npos)
+      << x.out;
+  SeqcRun l = seqc(dir, "decode lsc6-asks.trace");
+  EXPECT_EQ(l.status, 0) << l.out << l.err;
+  EXPECT_NE(l.out.find("> GetBatteryVoltage (the xArm question: the LSC-6 ignores it)"),
+            std::string::npos)
+      << l.out;
+  EXPECT_NE(l.out.find("< BatteryVoltage millivolts=7500 (a board of the xArm dialect answering "
+                       "the xArm question)"),
+            std::string::npos)
+      << l.out;
 }
 
 TEST(Decode, FromForcesAFormat) {

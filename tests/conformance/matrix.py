@@ -610,17 +610,24 @@ class Runner:
             frames = lsc_frames(sent)
             moves = moves_of(frames)
             if SERVO_KINDS[kind]["dialect"] == "lsc6":
-                # docs/commands.md, Live play: the LSC-6 answers nothing, so no check precedes
-                # its moves.
-                expect(all(cmd == 3 for _, cmd, _ in frames), "frames other than moves")
+                # docs/commands.md, "A file for the other board": one GetBatteryVoltage (55 55
+                # 02 0f), which the LSC-6 ignores, precedes its moves; nothing else does.
+                expect([cmd for _, cmd, _ in frames if cmd != 3] == [0x0F]
+                       and frames[0][1] == 0x0F, "frames other than the question and moves")
             got = [(ms, targets) for _, ms, targets in moves]
             # docs/commands.md, Live play: one move per step, the first with every servo it
             # names, then only the servos whose target changes.
             expect(got == servo_actions(kind), f"moves {got}")
-            # The in-process emulators keep emulated time, exact to the nanosecond: the second
-            # move leaves exactly one step after the first.
-            t0, t1 = (time_at(starts, off) for off, _, _ in moves)
-            expect(abs((t1 - t0) * 1000 - MOVE_MS) < 0.01, f"moves {(t1 - t0) * 1000:.3f} ms apart")
+            # The in-process emulators keep emulated time, exact to the nanosecond. Each move is
+            # timed to finish arriving at its step (docs/commands.md, Live play): its write time
+            # plus its own bytes (55 55 LEN CMD + data) x 10 bits / 9600 baud, one step apart.
+            # Over USB HID a report goes out whole on the polling interval: no wire time.
+            per_byte = 0 if "hid" in SERVO_KINDS[kind]["port"] else 10 / 9600
+            arrive = [time_at(starts, off) + (4 + 3 + 3 * len(targets)) * per_byte
+                      for off, _, targets in moves]
+            t0, t1 = arrive
+            expect(abs((t1 - t0) * 1000 - MOVE_MS) < 0.01,
+                   f"moves arrive {(t1 - t0) * 1000:.3f} ms apart")
             self.check_times(starts, song)
         self.check_run_decode(trace)
 
