@@ -45,6 +45,12 @@ bool parse_decimal(std::string_view text, double& out) {
   return true;
 }
 
+std::optional<double> parse_clock_ms(std::string_view text) {
+  auto time = parse_time(text);
+  if (!time || time->unit == TimeUnit::Beats || time->unit == TimeUnit::Bars) return std::nullopt;
+  return time->unit == TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+}
+
 Result<TimeValue> parse_time(std::string_view text) {
   const std::size_t n = number_length(text);
   double amount = 0;
@@ -113,6 +119,16 @@ Result<SpeedValue> parse_speed(std::string_view text) {
     return make_error(not_a_speed(text));
   }
   return v;
+}
+
+std::string format_grouped(long long n) {
+  const std::string digits = std::to_string(n < 0 ? -n : n);
+  std::string out = n < 0 ? "-" : "";
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
 }
 
 std::string format_seconds(std::uint64_t ms) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -20,6 +21,10 @@ struct TimeValue {
 
 // "500ms", "1.5s", "2b", "2bar". A bare number is an error whose message suggests the unit.
 Result<TimeValue> parse_time(std::string_view text);
+
+// A time on the clock, "500ms" or "1.5s", in milliseconds; nullopt for anything else, beats
+// and bars included (they need a tempo). For options and settings that wait or measure in time.
+std::optional<double> parse_clock_ms(std::string_view text);
 
 struct PositionValue {
   bool relative = false;  // written with a sign: +50, -10deg
@@ -43,6 +48,9 @@ bool parse_decimal(std::string_view text, double& out);
 
 // A distance in device units for messages: "1", "0.5", "12.25" (at most two decimals).
 std::string format_units(double units);
+
+// A count with thousands separated, as messages write large numbers: "7,985", "-10,000".
+std::string format_grouped(long long n);
 
 // "1.5 s", "750 ms", "12.5 s" style for summaries: seconds with up to 3 decimals, no trailing 0.
 std::string format_seconds(std::uint64_t ms);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -287,6 +288,11 @@ Result<D6aTable> d6a_from_program(const compiler::ServoProgram& program) {
     table.rows.push_back({static_cast<std::int64_t>(table.rows.size() + 1), k.time_ms, now});
   }
   return table;
+}
+
+std::string d6a_output_name(const std::string& path, int group) {
+  if (path == "-") return "group" + std::to_string(group) + ".d6a";
+  return std::filesystem::path(path).stem().string() + ".d6a";
 }
 
 }  // namespace seqc::compiler

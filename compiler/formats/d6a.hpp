@@ -11,8 +11,8 @@
 #include <string_view>
 #include <vector>
 
-#include "compiler/program/program.hpp"
 #include "base/result.hpp"
+#include "compiler/program/program.hpp"
 
 namespace seqc::compiler {
 
@@ -50,5 +50,9 @@ Result<std::string> write_d6a(const D6aTable& table);
 // columns: the highest id the file's robot section names, else the profile's highest id, and
 // at least 6. A servo with id 0 (an LSC channel 0) has no column: that is an error.
 Result<D6aTable> d6a_from_program(const compiler::ServoProgram& program);
+
+// Where a choreography at `path` is exported when no output is named: its stem with .d6a, in
+// the current folder; for "-" (standard input), which has no name, groupN.d6a.
+std::string d6a_output_name(const std::string& path, int group);
 
 }  // namespace seqc::compiler

@@ -1,11 +1,20 @@
 #include "compiler/formats/d6a_import.hpp"
 
+#include <filesystem>
+
 #include <fmt/format.h>
 
 #include "compiler/frontend/profiles.hpp"
 #include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
+
+ImportOptions import_options_for(const std::string& path, const std::string& stdin_name,
+                                 const std::string& profile) {
+  if (path == "-") return {"imported", stdin_name, profile};
+  const std::filesystem::path file(path);
+  return {file.stem().string(), file.filename().string(), profile};
+}
 
 Result<std::string> choreography_from_d6a(const compiler::D6aTable& table,
                                           const ImportOptions& options) {

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "compiler/formats/d6a.hpp"
 #include "base/result.hpp"
+#include "compiler/formats/d6a.hpp"
 
 namespace seqc::compiler {
 
@@ -17,6 +17,11 @@ struct ImportOptions {
   std::string source;   // shown in the header comment
   std::string profile;  // "" chooses by the number of servo columns
 };
+
+// The options for importing the file at `path` with `profile`: its file name shown as the
+// source and its stem as the name; for "-" (standard input) `stdin_name` and "imported".
+ImportOptions import_options_for(const std::string& path, const std::string& stdin_name,
+                                 const std::string& profile);
 
 // The YAML text, or an error naming the row and column that cannot become an action (a time
 // outside 20-30,000 ms, a position outside the profile's range, an id the profile lacks).

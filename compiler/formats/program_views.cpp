@@ -46,6 +46,14 @@ std::string plot_program(const compiler::Program& program, const PlotOptions& op
   return "";
 }
 
+std::string plot_program(const compiler::Program& program, PlotOptions options,
+                         seqc::SongReader* songs) {
+  std::optional<PlotSong> song;
+  if (songs != nullptr) song = plot_song(program, *songs);
+  options.song = song ? &*song : nullptr;
+  return plot_program(program, options);
+}
+
 std::string plot_show(const std::vector<ShowPart>& parts, const std::string& title,
                       const std::string& show, PlotOptions options) {
   double end = 0;
@@ -104,8 +112,7 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
       names, drawn, end);
 }
 
-std::optional<PreviewSong> preview_song(const compiler::Program& program,
-                                        seqc::FileReader& files) {
+std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files) {
   const auto* servo = std::get_if<compiler::ServoProgram>(&program);
   if (servo == nullptr || !servo->timeline.song) return std::nullopt;
   const compiler::Song& song = *servo->timeline.song;
@@ -114,6 +121,17 @@ std::optional<PreviewSong> preview_song(const compiler::Program& program,
   Result<std::string> bytes = files.read(song.file);
   if (!bytes) return std::nullopt;
   return PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
+}
+
+std::string preview_program(const compiler::Program& program, const std::string& title,
+                            seqc::SongReader* songs, seqc::FileReader& files) {
+  const double end = static_cast<double>(length_ms(program));
+  std::optional<PlotSong> picture;
+  if (songs != nullptr) picture = plot_song(program, *songs);
+  const std::optional<PreviewSong> song = preview_song(program, files);
+  auto part = preview_part(program, title, end, picture ? &*picture : nullptr);
+  if (!part) return "";
+  return preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
 }
 
 std::uint32_t default_simulate_step_ms(const compiler::Program& program) {

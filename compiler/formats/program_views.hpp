@@ -31,6 +31,10 @@ std::uint64_t length_ms(const compiler::Program& program);
 
 // The program as a picture (plot_svg); "" for a kind it cannot draw.
 std::string plot_program(const compiler::Program& program, const PlotOptions& options);
+// A single file's picture: the same with its song under the lanes (plot_song through `songs`,
+// when given) in place of options.song.
+std::string plot_program(const compiler::Program& program, PlotOptions options,
+                         seqc::SongReader* songs);
 
 // One performer of a show's picture or page: its program, the title its part is drawn under and
 // (for the page's `seqc-state`) its name.
@@ -65,8 +69,13 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; nullopt without a song, when it cannot be read or is of another type.
-std::optional<PreviewSong> preview_song(const compiler::Program& program,
-                                        seqc::FileReader& files);
+std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files);
+
+// A single file's page (preview_page): its one part on its own time axis, titled `title`, with
+// its song drawn under the lanes (plot_song through `songs`, when given) and embedded to play
+// (preview_song through `files`); "" for a kind it cannot show.
+std::string preview_program(const compiler::Program& program, const std::string& title,
+                            seqc::SongReader* songs, seqc::FileReader& files);
 
 struct Simulated {
   bool ok = false;  // false: a kind of program that cannot be simulated

@@ -1,5 +1,6 @@
 #include "compiler/frontend/profiles.hpp"
 
+#include "base/units.hpp"
 #include "protocol/lsc6/lsc6_messages.hpp"
 
 namespace seqc::compiler {
@@ -156,15 +157,7 @@ std::size_t group_capacity(const RobotProfile* profile) {
 
 std::string group_capacity_text(const RobotProfile* profile) {
   // Counts in messages carry thousands separators: "action 1,021".
-  auto count = [](std::size_t n) {
-    const std::string digits = std::to_string(n);
-    std::string out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-      if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-      out += digits[i];
-    }
-    return out;
-  };
+  auto count = [](std::size_t n) { return format_grouped(static_cast<long long>(n)); };
   const std::size_t cap = group_capacity(profile);
   const std::string holds =
       cap == lsc::kMaxActions

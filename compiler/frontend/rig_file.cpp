@@ -19,12 +19,9 @@ Result<std::chrono::nanoseconds> parse_offset(std::string_view text) {
     negative = digits.front() == '-';
     digits.remove_prefix(1);
   }
-  auto time = seqc::parse_time(digits);
-  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
-    return make_error("audio_offset is a time in ms or s, e.g. 40ms or -0.02s");
-  }
-  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
-  const auto ns = static_cast<std::int64_t>(std::llround(ms * 1e6));
+  const std::optional<double> ms = seqc::parse_clock_ms(digits);
+  if (!ms) return make_error("audio_offset is a time in ms or s, e.g. 40ms or -0.02s");
+  const auto ns = static_cast<std::int64_t>(std::llround(*ms * 1e6));
   return std::chrono::nanoseconds{negative ? -ns : ns};
 }
 

@@ -88,4 +88,13 @@ std::vector<MapBeat> map_beats(const TempoMap& map, double from_s, double to_s) 
   return beats;
 }
 
+std::optional<Meter> parse_meter(const std::string& text) {
+  int beats = 0, unit = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &beats, &unit, &tail) != 2) return std::nullopt;
+  if (beats < 1 || beats > 16) return std::nullopt;
+  if (unit != 1 && unit != 2 && unit != 4 && unit != 8 && unit != 16) return std::nullopt;
+  return Meter{beats, unit};
+}
+
 }  // namespace seqc::music

@@ -1,9 +1,11 @@
 // A song's tempo map as `seqc beats` prints it (docs/music.md): where bar 1 beat 1 falls in the
 // audio, the meter, and stretches of steady tempo that each start on a bar line. Each stretch's
 // beats are exactly evenly spaced (a least-squares line through the detected beats), so beat k
-// of a stretch is at start_s + k * 60 / tempo. Pure data and text; no analysis here.
+// of a stretch is at start_s + k * 60 / tempo. Pure data and text (also the meter as `--meter 3/4`
+// writes it); no analysis here.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,10 @@ struct Meter {
   int unit = 4;   // the note value of a beat, only printed
   friend bool operator==(const Meter&, const Meter&) = default;
 };
+
+// "3/4" -> {3, 4}: 1-16 beats of a whole, half, quarter, eighth or sixteenth note; nullopt for
+// anything else.
+std::optional<Meter> parse_meter(const std::string& text);
 
 struct TempoStretch {
   int bar = 1;         // the bar it starts on (bar 1 starts at the downbeat)

@@ -186,6 +186,14 @@ const Board& board_for_device(std::string_view profile, std::string_view port);
 bool same_family(const Board& a, const Board& b);
 // The emulator that serves each board of `board`'s family, in table order ("xarm", "lsc6").
 std::vector<std::string_view> family_emulators(const Board& board);
+// When a file for `board` meets a board of its family that stores in the other dialect
+// (UploadStatus::OtherDialect): the family's other storing board (null when it has none), and
+// the profiles whose files that board runs, in the profiles' order.
+struct OtherDialect {
+  const Board* answered = nullptr;
+  std::vector<std::string> profiles;
+};
+OtherDialect other_dialect(const Board& board);
 // What `seqc emulate` serves: each board's own emulator, in table order.
 std::vector<std::string_view> served_emulators();
 // The board a device command (group, servo, battery, offset, bus-info, teach) talks to: the one

@@ -71,6 +71,18 @@ std::vector<std::string_view> family_emulators(const Board& board) {
   return names;
 }
 
+OtherDialect other_dialect(const Board& board) {
+  OtherDialect out;
+  for (const Board* b : kBoards) {
+    if (b != &board && b->plan != nullptr && same_family(*b, board)) out.answered = b;
+  }
+  if (out.answered == nullptr) return out;
+  for (const std::string& name : compiler::profile_names()) {
+    if (compiler::find_profile(name)->board == out.answered->key) out.profiles.push_back(name);
+  }
+  return out;
+}
+
 std::vector<std::string_view> served_emulators() {
   std::vector<std::string_view> names;
   for (const Board* b : kBoards) {

@@ -105,11 +105,9 @@ ClockMeasurement measure_clock(const Board& board, const Line& line,
 }
 
 Result<std::uint32_t> parse_run_length(const std::string& text) {
-  auto time = seqc::parse_time(text);
-  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
-    return make_error("--length: give ms or s, e.g. 20s");
-  }
-  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  const std::optional<double> clock_ms = seqc::parse_clock_ms(text);
+  if (!clock_ms) return make_error("--length: give ms or s, e.g. 20s");
+  const double ms = *clock_ms;
   if (ms < 1000 || ms > 600000 || ms != std::floor(ms)) {
     return make_error("--length must be whole milliseconds from 1s to 10 minutes, got '" + text +
                       "'");

@@ -210,6 +210,32 @@ Result<GroupTarget> parse_group_target(std::string_view text) {
   return GroupTarget{*g, false};
 }
 
+Result<GroupTarget> erase_target(std::string_view group, bool all) {
+  if (all && !group.empty()) return make_error("give GROUP or --all, not both");
+  if (!all && group.empty()) return make_error("give a GROUP to erase, or --all");
+  return all ? Result<GroupTarget>(GroupTarget{lsc::kAllGroups, true}) : parse_group_target(group);
+}
+
+Result<std::uint16_t> run_times(long long times, bool times_given, bool forever) {
+  if (forever && times_given) return make_error("give --times or --forever, not both");
+  if (forever) return std::uint16_t{0};
+  if (times < 1 || times > 65535) {
+    return make_error("--times must be 1..65535, got " + std::to_string(times) +
+                      " (--forever loops until `seqc group stop`)");
+  }
+  return static_cast<std::uint16_t>(times);
+}
+
+Result<std::uint16_t> parse_speed_percent(std::string_view text) {
+  long long value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value < 1 || value > 65535) {
+    return make_error("percent must be a whole number 1..65535 (100 = as stored), got " +
+                      quoted(text));
+  }
+  return static_cast<std::uint16_t>(value);
+}
+
 Result<std::int16_t> parse_offset(std::string_view text) {
   constexpr long long kOffsetMin = -128;
   constexpr long long kOffsetMax = 127;
@@ -223,6 +249,26 @@ Result<std::int16_t> parse_offset(std::string_view text) {
                       " (ServoOffsetRead reports offsets as a signed byte)");
   }
   return *offset;
+}
+
+Result<io::Duration> parse_timeout(std::string_view text) {
+  // A reply is waited for in clock time: the language's beats and bars mean nothing here, so
+  // the parse's own message, which offers them, is not passed on (but its hint for a number
+  // without a unit is).
+  auto time = seqc::parse_time(text);
+  if (!time && time.error().message.find("has no unit") != std::string::npos) {
+    return make_error("--timeout: " + time.error().message);
+  }
+  if (!time || time->unit == seqc::TimeUnit::Beats || time->unit == seqc::TimeUnit::Bars) {
+    return make_error("--timeout: '" + std::string(text) +
+                      "' is not a time in ms or s; write it like '500ms' or '2s'");
+  }
+  const double ms = time->unit == seqc::TimeUnit::Seconds ? time->amount * 1000 : time->amount;
+  if (ms <= 0 || ms > 3600.0 * 1000) {
+    return make_error("--timeout must be more than 0 and at most 1 hour, got '" +
+                      std::string(text) + "'");
+  }
+  return std::chrono::duration_cast<io::Duration>(std::chrono::duration<double, std::milli>(ms));
 }
 
 }  // namespace seqc::boards

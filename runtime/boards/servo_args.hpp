@@ -6,7 +6,8 @@
 // as ServoOffsetRead can report them (a signed byte). Every parser returns the value or an error
 // message that names the field and its range, ready for "seqc: error: "; nothing is clamped or
 // wrapped. The CLI adds the exit status: usage for text that does not parse, invalid input for a
-// position outside the range (checked_targets).
+// position outside the range (checked_targets). A device command's --timeout, how long it waits
+// for each reply, is parsed here too, in clock time (beats and bars mean nothing to a port).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "base/result.hpp"
 #include "compiler/compile.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
+#include "runtime/io/clock.hpp"
 
 namespace seqc::boards {
 
@@ -95,9 +97,24 @@ struct GroupTarget {
 };
 Result<GroupTarget> parse_group_target(std::string_view text);
 
+// The groups `seqc group erase GROUP|--all` names: GROUP as parse_group_target, or every group
+// with `all` set; exactly one of the two must be given.
+Result<GroupTarget> erase_target(std::string_view group, bool all);
+
+// GroupRun's play count: `times` (1..65535) unless `forever`, which is the wire's 0; not both
+// (`times_given`: --times was on the command line).
+Result<std::uint16_t> run_times(long long times, bool times_given, bool forever);
+
+// GroupSpeed's percent: a whole number 1..65535 (100 = as stored); one message for every value
+// out of range or not a number.
+Result<std::uint16_t> parse_speed_percent(std::string_view text);
+
 // A servo offset for ServoOffsetAdjust: -128..127. The request carries a short, but
 // ServoOffsetRead reports a signed byte, so only that range can be set and read back; larger
 // values are refused rather than sent and silently ignored or misreported.
 Result<std::int16_t> parse_offset(std::string_view text);
+
+// A --timeout: "500ms", "2s"; more than 0 and at most one hour.
+Result<io::Duration> parse_timeout(std::string_view text);
 
 }  // namespace seqc::boards

@@ -83,6 +83,15 @@ LimitConflict conflict_in(const lsc::BusServoLimits& l) {
   return LimitConflict::None;
 }
 
+std::string conflict_text(const lsc::BusServoLimits& l) {
+  if (conflict_in(l) == LimitConflict::Position) {
+    return "position-min " + std::to_string(l.position_min) + " is above position-max " +
+           std::to_string(l.position_max);
+  }
+  return "millivolts-min " + std::to_string(l.millivolts_min) + " is above millivolts-max " +
+         std::to_string(l.millivolts_max);
+}
+
 BusServoWrite write_bus_servo_info(XarmSession& session, const BusServoChanges& changes) {
   BusServoWrite out;
   out.write = changes.applied_to(0, {});
@@ -125,6 +134,9 @@ Result<BusServoChanges> checked_changes(const BusServoFields& o) {
     auto w = parse_led_warnings(*o.led_warning);
     if (!w) return make_error("--led-warning: " + w.error().message);
     c.led_warning = *w;
+  }
+  if (c.complete() && conflict_in(c.applied_to(0, {}).limits) != LimitConflict::None) {
+    return make_error(conflict_text(c.applied_to(0, {}).limits));
   }
   return c;
 }

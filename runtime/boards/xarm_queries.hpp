@@ -56,13 +56,16 @@ struct BusServoFields {
       temp_max;
   std::optional<std::string> led, led_warning;
 };
-// The changes the fields make, each checked against its wire width; the error names the first
-// field out of range as its option (--position-min), ready for "seqc: error: ".
-Result<BusServoChanges> checked_changes(const BusServoFields& fields);
-
 // Limits no servo can hold: a lowest value above the highest.
 enum class LimitConflict { None, Position, Voltage };
 LimitConflict conflict_in(const lsc::BusServoLimits& limits);
+// The first conflict of `limits` in words: "position-min 600 is above position-max 400".
+std::string conflict_text(const lsc::BusServoLimits& limits);
+
+// The changes the fields make, each checked against its wire width; the error names the first
+// field out of range as its option (--position-min), ready for "seqc: error: ". When every field
+// is given, limits that conflict are refused too (conflict_text), before any servo is read.
+Result<BusServoChanges> checked_changes(const BusServoFields& fields);
 
 struct BusServoWrite {
   bool written = false;  // sent and confirmed

@@ -30,8 +30,7 @@ void add_help_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::string unknown;
     const CLI::App* target = find_subcommand(app, *topic, unknown);
     if (target == nullptr) {
-      ctx.err << "seqc: error: " << unknown << "\n";
-      result.code = ExitCode::Usage;
+      result.code = usage_error(ctx, unknown);
       return;
     }
     // make_help, not help(): help() would describe the selected subcommand, `help` itself.

@@ -25,7 +25,4 @@ struct BeatsRequest {
 ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
                    audio::AudioWriter& writer);
 
-// "3/4" -> {3, 4}: 1-16 beats of a whole, half, quarter, eighth or sixteenth note.
-std::optional<music::Meter> parse_meter(const std::string& text);
-
 }  // namespace seqc::cli

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "base/units.hpp"
-#include "compiler/frontend/profiles.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -111,8 +111,7 @@ BoardError outcome_text(const boards::Outcome& o, const std::string& port, io::D
 
 ExitCode say_port_failure(Context& ctx, const boards::BoardLink& link, const std::string& subject) {
   const BoardError e = port_failure(link.failure, link.request, subject);
-  ctx.err << "seqc: error: " << e.message << "\n";
-  return e.code;
+  return fail(ctx, e.code, e.message);
 }
 
 ExitCode refuse_command(Context& ctx, const boards::Board& board, const std::string& command) {
@@ -141,16 +140,10 @@ ExitCode exit_code_for(upload::UploadStatus s) {
   }
 }
 
-std::string other_dialect_text(const boards::Board& board, const std::string& profile) {
-  const boards::Board* answered = nullptr;
-  for (const boards::Board* b : boards::all_boards()) {
-    if (b != &board && b->plan != nullptr && boards::same_family(*b, board)) answered = b;
-  }
-  if (answered == nullptr) return "the board on the port is not " + std::string(board.name);
-  std::vector<std::string> profiles;  // the profiles whose files that board runs
-  for (const std::string& name : compiler::profile_names()) {
-    if (compiler::find_profile(name)->board == answered->key) profiles.push_back(name);
-  }
+std::string other_dialect_text(const boards::Board& board, const compiler::CompileOutput& output) {
+  const boards::OtherDialect other = boards::other_dialect(board);
+  if (other.answered == nullptr) return "the board on the port is not " + std::string(board.name);
+  const std::vector<std::string>& profiles = other.profiles;
   std::string fix = profiles.empty() ? std::string("another profile")
                                      : "a file with `robot: " + profiles.front() + "`";
   if (profiles.size() > 1) {
@@ -158,9 +151,16 @@ std::string other_dialect_text(const boards::Board& board, const std::string& pr
     for (std::size_t i = 1; i < profiles.size(); ++i) rest += (i > 1 ? ", " : "") + profiles[i];
     fix += " (or " + rest + ")";
   }
-  return "this is an " + std::string(answered->name) + " board; the file is for " + profile +
-         ": use " + fix + " for this board, or give --port the port the " +
-         std::string(board.name) + " is on";
+  const compiler::ServoProgram* program = output.servo_program();
+  return "this is an " + std::string(other.answered->name) + " board; the file is for " +
+         (program != nullptr ? program->robot.profile : "") + ": use " + fix +
+         " for this board, or give --port the port the " + std::string(board.name) + " is on";
+}
+
+std::string run_said(const boards::Board& board, const std::optional<boards::RunOutcome>& run) {
+  return run && run->started == boards::Confirmation::Reported
+             ? std::string(board.called) + " reported it started"
+             : std::string(board.unconfirmed_run);
 }
 
 std::string first_move_text(const boards::FirstMoveTooFast& fast) {

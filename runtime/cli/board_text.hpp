@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -40,6 +41,10 @@ ExitCode say_port_failure(Context& ctx, const boards::BoardLink& link, const std
 BoardError outcome_text(const boards::Outcome& outcome, const std::string& port,
                         io::Duration timeout, std::string_view called);
 
+// What `board` said of a run it was sent: "the controller reported it started", else its words
+// for a start it did not report (Board::unconfirmed_run).
+std::string run_said(const boards::Board& board, const std::optional<boards::RunOutcome>& run);
+
 // Why a start was refused (boards/first_move.hpp): "'base' is at 120; reaching 880 in 0.5 s is
 // 1520 units/s, above its max_speed 800/s; slow the first move or pass --force".
 std::string first_move_text(const boards::FirstMoveTooFast& fast);
@@ -55,11 +60,10 @@ std::string times_text(std::uint16_t times);
 // port speaks the family's other dialect: the file is for another board) or DeviceFailure.
 ExitCode exit_code_for(upload::UploadStatus status);
 
-// UploadStatus::OtherDialect, for a file of `profile` meant for `board`: "this is an LSC-6
-// board; the file is for xarm: use a file with `robot: lsc-6` for this board, or give --port
-// the port the xArm / LSC-16 / LSC-32 is on". The board that answered is the other storing
-// board of `board`'s family.
-std::string other_dialect_text(const boards::Board& board, const std::string& profile);
+// UploadStatus::OtherDialect, for `output` (a file of a profile) meant for `board`: "this is an
+// LSC-6 board; the file is for xarm: use a file with `robot: lsc-6` for this board, or give
+// --port the port the xArm / LSC-16 / LSC-32 is on" (boards::other_dialect).
+std::string other_dialect_text(const boards::Board& board, const compiler::CompileOutput& output);
 
 // How `seqc plot` and `seqc preview` title a program's picture: the group a stored program is
 // for ("walk.yaml, group 2"), else the board that plays it ("car.yaml (Raspblock)").

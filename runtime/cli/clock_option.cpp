@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "base/diagnostics.hpp"
+#include "runtime/cli/commands.hpp"
 
 namespace seqc::cli {
 
@@ -16,10 +17,7 @@ void add_clock_options(CLI::App& cmd, ClockScaleOptions& options) {
 
 ExitCode read_rig(Context& ctx, const std::string& path, std::optional<compiler::Rig>& rig) {
   auto text = ctx.files.read(path);
-  if (!text) {
-    ctx.err << "seqc: error: --rig: " << text.error().message << "\n";
-    return ExitCode::FileError;
-  }
+  if (!text) return fail(ctx, ExitCode::FileError, "--rig: " + text.error().message);
   seqc::SourceManager sources;
   seqc::Diagnostics diags;
   const std::uint32_t file = sources.add(path, *text);
@@ -37,10 +35,7 @@ ExitCode resolve_clock_ppm(Context& ctx, const ClockScaleOptions& options, std::
   }
   if (!options.clock_ppm.empty()) {
     auto given = compiler::parse_clock_ppm(options.clock_ppm);
-    if (!given) {
-      ctx.err << "seqc: error: --clock-ppm: " << given.error().message << "\n";
-      return ExitCode::Usage;
-    }
+    if (!given) return usage_error(ctx, "--clock-ppm: " + given.error().message);
     ppm = *given;
   }
   return ExitCode::Ok;

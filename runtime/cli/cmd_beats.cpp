@@ -14,32 +14,19 @@
 
 namespace seqc::cli {
 
-std::optional<music::Meter> parse_meter(const std::string& text) {
-  int beats = 0, unit = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%d/%d%c", &beats, &unit, &tail) != 2) return std::nullopt;
-  if (beats < 1 || beats > 16) return std::nullopt;
-  if (unit != 1 && unit != 2 && unit != 4 && unit != 8 && unit != 16) return std::nullopt;
-  return music::Meter{beats, unit};
-}
-
 ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
                    audio::AudioWriter& writer) {
   if (request.click && refuse_input_as_output(ctx, "--click", *request.click, {request.song})) {
     return ExitCode::Usage;
   }
   auto song = reader.read(request.song);
-  if (!song) {
-    ctx.err << "seqc: error: " << song.error().message << "\n";
-    return ExitCode::FileError;
-  }
+  if (!song) return fail(ctx, ExitCode::FileError, song.error().message);
   music::BeatOptions options;
   options.meter = request.meter;
   options.tempo_hint = request.tempo_hint;
   auto analysis = music::analyze_beats(song->samples, song->sample_rate, options);
   if (!analysis) {
-    ctx.err << "seqc: error: " << request.song << ": " << analysis.error().message << "\n";
-    return ExitCode::InvalidInput;
+    return fail(ctx, ExitCode::InvalidInput, request.song + ": " + analysis.error().message);
   }
   ctx.out << music::music_block(request.song, analysis->map);
   char line[160];
@@ -52,8 +39,7 @@ ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader
     audio::MonoAudio mixed{music::mix_click_track(song->samples, song->sample_rate, analysis->map),
                            song->sample_rate};
     if (Status written = writer.write_wav(*request.click, mixed); !written) {
-      ctx.err << "seqc: error: " << written.error().message << "\n";
-      return ExitCode::FileError;
+      return fail(ctx, ExitCode::FileError, written.error().message);
     }
     summarize(ctx, "wrote " + *request.click +
                        " (the song with a click on every beat, higher on "
@@ -81,11 +67,11 @@ void add_beats_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->callback([&ctx, &result, request, meter, hint, click] {
     BeatsRequest r = *request;
     if (!meter->empty()) {
-      r.meter = parse_meter(*meter);
+      r.meter = music::parse_meter(*meter);
       if (!r.meter) {
-        ctx.err << "seqc: error: --meter " << *meter
-                << ": give beats per bar and a beat unit, e.g. 4/4, 3/4 or 6/8\n";
-        result.code = ExitCode::Usage;
+        result.code =
+            usage_error(ctx, "--meter " + *meter +
+                                 ": give beats per bar and a beat unit, e.g. 4/4, 3/4 or 6/8");
         return;
       }
     }

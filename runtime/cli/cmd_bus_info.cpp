@@ -13,31 +13,16 @@
 
 #include <CLI/CLI.hpp>
 
+#include "runtime/boards/reading_table.hpp"
 #include "runtime/boards/xarm_queries.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "runtime/cli/device_table.hpp"
 
 namespace seqc::cli {
 namespace {
 
 constexpr const char* kConfirmFlag = "--i-have-one-servo-attached";
-
-std::string limits_table(const lsc::BusServoLimits& l, std::vector<std::vector<std::string>> rows) {
-  Table table({"field", "value"});
-  for (auto& r : rows) table.add(std::move(r));
-  table.add({"position-min", std::to_string(l.position_min)});
-  table.add({"position-max", std::to_string(l.position_max)});
-  table.add({"millivolts-min", std::to_string(l.millivolts_min)});
-  table.add({"millivolts-max", std::to_string(l.millivolts_max)});
-  table.add({"temp-max", std::to_string(l.temp_max)});
-  table.add({"led", l.led_status == 0   ? "on"
-                    : l.led_status == 1 ? "off"
-                                        : std::to_string(l.led_status)});
-  table.add({"led-warning", boards::led_warning_names(l.led_warning)});
-  return table.render();
-}
 
 // ---- read ----------------------------------------------------------------------------------
 
@@ -45,13 +30,8 @@ ExitCode read_info(Context& ctx, const DeviceOptions& device) {
   return run_on_controller(ctx, device, [&](boards::XarmSession& s) {
     auto info = s.ask<lsc::BusServoInfo>(lsc::BusServoInfoRead{}, "the bus servo info");
     if (!info) return ExitCode::DeviceFailure;
-    ctx.out << limits_table(info->limits, {{"id", std::to_string(info->id)}});
-    Table now({"state", "value"});
-    now.add({"offset", std::to_string(info->offset)});
-    now.add({"position", std::to_string(info->position)});
-    now.add({"temp", std::to_string(info->temp)});
-    now.add({"millivolts", std::to_string(info->millivolts)});
-    ctx.out << "\n" << now.render();
+    ctx.out << boards::bus_servo_limits_table(info->id, info->limits) << "\n"
+            << boards::bus_servo_state_table(*info);
     return ExitCode::Ok;
   });
 }
@@ -64,16 +44,6 @@ struct WriteOptions {
   boards::BusServoFields fields;
 };
 
-// "position-min 600 is above position-max 400".
-std::string conflict_text(const lsc::BusServoLimits& l) {
-  if (boards::conflict_in(l) == boards::LimitConflict::Position) {
-    return "position-min " + std::to_string(l.position_min) + " is above position-max " +
-           std::to_string(l.position_max);
-  }
-  return "millivolts-min " + std::to_string(l.millivolts_min) + " is above millivolts-max " +
-         std::to_string(l.millivolts_max);
-}
-
 ExitCode write_info(Context& ctx, const WriteOptions& o) {
   if (!o.one_servo) {
     return usage_error(ctx,
@@ -84,22 +54,16 @@ ExitCode write_info(Context& ctx, const WriteOptions& o) {
   }
   auto changes = boards::checked_changes(o.fields);
   if (!changes) return usage_error(ctx, changes.error().message);
-  if (changes->complete()) {
-    const lsc::BusServoLimits whole = changes->applied_to(0, {}).limits;
-    if (boards::conflict_in(whole) != boards::LimitConflict::None) {
-      return usage_error(ctx, conflict_text(whole));
-    }
-  }
   return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
     const boards::BusServoWrite w = boards::write_bus_servo_info(s, *changes);
     if (w.conflict != boards::LimitConflict::None) {
-      ctx.err << "seqc: error: " << conflict_text(w.write.limits) << " (after merging with the "
-              << "servo's current settings); nothing written\n";
-      return ExitCode::Usage;
+      return usage_error(ctx, boards::conflict_text(w.write.limits) +
+                                  " (after merging with the servo's current settings); nothing "
+                                  "written");
     }
     if (!w.written) return ExitCode::DeviceFailure;
     summarize(ctx, "written to every servo on the bus (kept over power-off):");
-    ctx.out << limits_table(w.write.limits, {{"id", std::to_string(w.write.servo)}});
+    ctx.out << boards::bus_servo_limits_table(w.write.servo, w.write.limits);
     return ExitCode::Ok;
   });
 }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "base/units.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/clock_calibration.hpp"
 #include "runtime/cli/board_text.hpp"
@@ -29,19 +30,8 @@ struct ClockArgs {
   std::string length = "20s";
 };
 
-// "7,985": thousands separated.
-std::string grouped(long long n) {
-  const std::string digits = std::to_string(n < 0 ? -n : n);
-  std::string out = n < 0 ? "-" : "";
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 // "+7,985", "-10,000", "0".
-std::string signed_ppm(long long ppm) { return (ppm > 0 ? "+" : "") + grouped(ppm); }
+std::string signed_ppm(long long ppm) { return (ppm > 0 ? "+" : "") + seqc::format_grouped(ppm); }
 
 ExitCode run_clock(Context& ctx, const ClockArgs& a) {
   auto length = boards::parse_run_length(a.length);
@@ -87,7 +77,7 @@ ExitCode run_clock(Context& ctx, const ClockArgs& a) {
     }
     const long long ppm = std::llround(m.mean_ppm);
     ctx.out << "clock: " << signed_ppm(ppm) << " ppm \u00b1 "
-            << grouped(std::llround(std::ceil(m.spread_ppm))) << " (" << m.ppm.size()
+            << seqc::format_grouped(std::llround(std::ceil(m.spread_ppm))) << " (" << m.ppm.size()
             << (m.ppm.size() == 1 ? " run" : " runs") << " of "
             << io::seconds_text(std::chrono::milliseconds(*length)) << ")\n";
     ctx.out << "rig file (--rig): clock_ppm: " << (ppm > 0 ? "+" : "") << ppm << "\n";

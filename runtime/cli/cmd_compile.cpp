@@ -52,28 +52,17 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
                 "commented hex; `seqc decode -` reads it back");
   cmd->callback([&ctx, &result, opts] {
-    std::int32_t ppm = 0;
-    if (const ExitCode e = resolve_clock_ppm(ctx, opts->clock, ppm); e != ExitCode::Ok) {
-      result.code = e;
-      return;
-    }
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, ppm);
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, &opts->clock);
     result.code = c.code;
     if (!c.output.program) return;
     boards::CompiledText text = boards::compiled_text(
         c.output, static_cast<std::uint8_t>(opts->group), opts->dry_run, emit_of(opts->emit));
     if (text.internal) {
-      ctx.err << "seqc: error: internal: " << text.error << "\n";
-      result.code = ExitCode::Internal;
-      return;
-    }
-    if (!text.error.empty()) {
-      ctx.err << "seqc: error: " << opts->file << ": " << text.error << "\n";
-      result.code = ExitCode::InvalidInput;
-      return;
-    }
-    if (const ExitCode w = write_output(ctx, opts->output, text.text, c.output.inputs());
-        w != ExitCode::Ok) {
+      result.code = fail(ctx, ExitCode::Internal, "internal: " + text.error);
+    } else if (!text.error.empty()) {
+      result.code = fail(ctx, ExitCode::InvalidInput, opts->file + ": " + text.error);
+    } else if (const ExitCode w = write_output(ctx, opts->output, text.text, c.output.inputs());
+               w != ExitCode::Ok) {
       result.code = w;
     }
   });

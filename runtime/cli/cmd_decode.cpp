@@ -8,10 +8,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/bytes.hpp"
 #include "compiler/formats/decode_formats.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/io/disk.hpp"
-#include "base/bytes.hpp"
 
 namespace seqc::cli {
 void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
@@ -27,14 +27,12 @@ void add_decode_command(CLI::App& app, Context& ctx, Outcome& result) {
       ->check(CLI::IsMember(compiler::decode_format_names()));
   cmd->callback([&ctx, &result, file, from] {
     if (*file == "-" && ctx.in == nullptr) {
-      ctx.err << "seqc: error: no standard input\n";
-      result.code = ExitCode::FileError;
+      result.code = fail(ctx, ExitCode::FileError, "no standard input");
       return;
     }
     auto text = io::read_input(*file, ctx.files, ctx.in, "<stdin>");
     if (!text) {
-      ctx.err << "seqc: error: " << text.error().message << "\n";
-      result.code = ExitCode::FileError;
+      result.code = fail(ctx, ExitCode::FileError, text.error().message);
       return;
     }
     compiler::DecodeResult decoded =

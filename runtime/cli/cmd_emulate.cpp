@@ -28,12 +28,9 @@ struct EmulateOptions {
   std::string record;
   std::string dump_groups;
   std::string positions;
-  CLI::Option* baud_opt = nullptr;
-  CLI::Option* faults_opt = nullptr;
-  CLI::Option* seed_opt = nullptr;
-  CLI::Option* link_opt = nullptr;
-  CLI::Option* record_opt = nullptr;
-  CLI::Option* dump_groups_opt = nullptr;
+  const CLI::App* cmd = nullptr;  // the subcommand, which knows the options given
+
+  bool given(const char* option) const { return cmd->count(option) > 0; }
 };
 
 // What the server reports while it runs, said on the command's streams.
@@ -66,9 +63,9 @@ class Events final : public emu::ServeEvents {
 // an empty string when it takes them all.
 std::string refused_option(const EmulateOptions& o, const boards::Board& board) {
   unsigned given = 0;
-  if (o.faults_opt->count() > 0) given |= boards::kFaults;
-  if (o.seed_opt->count() > 0) given |= boards::kSeed;
-  if (o.dump_groups_opt->count() > 0) given |= boards::kDumpGroups;
+  if (o.given("--faults")) given |= boards::kFaults;
+  if (o.given("--seed")) given |= boards::kSeed;
+  if (o.given("--dump-groups")) given |= boards::kDumpGroups;
   if (!o.positions.empty()) given |= boards::kPositions;
   const boards::RefusedOption r = boards::refused_emulator_option(board, given);
   const std::string why = r.reason.empty() ? "" : " (" + std::string(r.reason) + ")";
@@ -88,8 +85,7 @@ std::string refused_option(const EmulateOptions& o, const boards::Board& board) 
 ExitCode write_output(Context& ctx, const char* option, const std::string& path,
                       const std::string& text) {
   if (auto ok = io::write_file_safely(path, text); !ok) {
-    ctx.err << "seqc: error: " << option << " " << ok.error().message << "\n";
-    return ExitCode::FileError;
+    return fail(ctx, ExitCode::FileError, std::string(option) + " " + ok.error().message);
   }
   return ExitCode::Ok;
 }
@@ -97,21 +93,17 @@ ExitCode write_output(Context& ctx, const char* option, const std::string& path,
 ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
   const boards::Board* board = boards::board_for_emulator(o.device);
   if (board == nullptr || board->serve == nullptr) {
-    ctx.err << "seqc: error: internal: no emulator " << o.device << "\n";
-    return ExitCode::Internal;
+    return fail(ctx, ExitCode::Internal, "internal: no emulator " + o.device);
   }
-  if (const std::string why = refused_option(o, *board); !why.empty()) {
-    ctx.err << "seqc: error: " << why << "\n";
-    return ExitCode::Usage;
-  }
+  if (const std::string why = refused_option(o, *board); !why.empty()) return usage_error(ctx, why);
   emu::ServeOptions options;
-  if (o.baud_opt->count() > 0) options.baud = o.baud;
+  if (o.given("--baud")) options.baud = o.baud;
   options.faults = o.faults;
-  if (o.seed_opt->count() > 0) options.seed = o.seed;
+  if (o.given("--seed")) options.seed = o.seed;
   options.positions = o.positions;
-  if (o.link_opt->count() > 0) options.link = o.link;
-  options.record = o.record_opt->count() > 0;
-  options.dump_groups = o.dump_groups_opt->count() > 0;
+  if (o.given("--link")) options.link = o.link;
+  options.record = o.given("--record");
+  options.dump_groups = o.given("--dump-groups");
 
   std::atomic<bool> never{false};
   const std::atomic<bool>& stop = ctx.interrupted ? *ctx.interrupted : never;
@@ -123,21 +115,16 @@ ExitCode run_emulate(const EmulateOptions& o, Context& ctx) {
     case emu::ServeStatus::Stopped:
       break;
     case emu::ServeStatus::BadFaults:
-      ctx.err << "seqc: error: --faults: " << r.detail << "\n";
-      return ExitCode::Usage;
+      return usage_error(ctx, "--faults: " + r.detail);
     case emu::ServeStatus::BadPositions:
-      ctx.err << "seqc: error: --positions: " << r.detail << "\n";
-      return ExitCode::Usage;
+      return usage_error(ctx, "--positions: " + r.detail);
     case emu::ServeStatus::NoTerminal:
-      ctx.err << "seqc: error: cannot create a pseudo-terminal: " << r.detail << "\n";
-      return ExitCode::PortUnavailable;
+      return fail(ctx, ExitCode::PortUnavailable, "cannot create a pseudo-terminal: " + r.detail);
     case emu::ServeStatus::NotBack:
-      ctx.err << "seqc: error: cannot serve the device again"
-              << (r.detail.empty() ? std::string() : ": " + r.detail) << "\n";
-      return ExitCode::PortUnavailable;
+      return fail(ctx, ExitCode::PortUnavailable,
+                  "cannot serve the device again" + (r.detail.empty() ? "" : ": " + r.detail));
     case emu::ServeStatus::Failed:
-      ctx.err << "seqc: error: " << r.detail << "\n";
-      code = ExitCode::DeviceFailure;
+      code = fail(ctx, ExitCode::DeviceFailure, r.detail);
       break;
     case emu::ServeStatus::HungUp:
       ctx.err << "seqc: emulated hang-up at frame " << r.hung_up_at_frame
@@ -175,21 +162,19 @@ void add_emulate_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "xarm (servo controller), lsc6 (LSC-6 / LeArm board) or raspblock (car board)")
       ->required()
       ->check(CLI::IsMember(served_devices()));
-  opts->baud_opt =
-      cmd->add_option("--baud", opts->baud,
-                      "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "
-                      "9600)");
-  opts->faults_opt = cmd->add_option("--faults", opts->faults, emu::faults_help());
-  opts->seed_opt = cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
-  opts->link_opt =
-      cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");
-  opts->record_opt = cmd->add_option(
+  opts->cmd = cmd;
+  cmd->add_option("--baud", opts->baud,
+                  "xarm, lsc6: line rate both ways (10 bits per byte), 0 = unpaced\n(default "
+                  "9600)");
+  cmd->add_option("--faults", opts->faults, emu::faults_help());
+  cmd->add_option("--seed", opts->seed, "Seed for the faults (default 1)");
+  cmd->add_option("--link", opts->link, "Also create this symlink to the terminal");
+  cmd->add_option(
       "--record", opts->record,
       "On exit, write what was received as CSV\n(xarm: every frame; raspblock: state timeline)");
-  opts->dump_groups_opt =
-      cmd->add_option("--dump-groups", opts->dump_groups,
-                      "xarm, lsc6: on exit, write every valid stored group, one action\n"
-                      "per line: GROUP INDEX TIME_MS ID=POSITION ...");
+  cmd->add_option("--dump-groups", opts->dump_groups,
+                  "xarm, lsc6: on exit, write every valid stored group, one action\n"
+                  "per line: GROUP INDEX TIME_MS ID=POSITION ...");
   cmd->add_option("--positions", opts->positions,
                   "xarm: servo positions at power-on, ID=POSITION,... e.g. 1=300,2=650\n"
                   "(as if posed by hand; for seqc teach and servo read)");

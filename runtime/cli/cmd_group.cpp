@@ -1,6 +1,5 @@
 // `seqc group run|stop|erase|speed`: the stored action groups on the servo controller
 // (GroupRun, GroupStop, GroupErase, GroupSpeed).
-#include <charconv>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -35,16 +34,9 @@ struct RunOptions {
 ExitCode run_group(Context& ctx, const RunOptions& o) {
   auto group = boards::parse_group(o.group);
   if (!group) return usage_error(ctx, group.error().message);
-  if (o.forever && o.times_opt->count() > 0)
-    return usage_error(ctx, "give --times or --forever, not both");
-  std::uint16_t times = 0;
-  if (!o.forever) {
-    if (o.times < 1 || o.times > 65535) {
-      return usage_error(ctx, "--times must be 1..65535, got " + std::to_string(o.times) +
-                                  " (--forever loops until `seqc group stop`)");
-    }
-    times = static_cast<std::uint16_t>(o.times);
-  }
+  const auto counted = boards::run_times(o.times, o.times_opt->count() > 0, o.forever);
+  if (!counted) return usage_error(ctx, counted.error().message);
+  const std::uint16_t times = *counted;
   const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.run_frame == nullptr) return refuse_command(ctx, board, o.device.command);
   return run_on_board(ctx, o.device, board, [&](const boards::Line& line, const std::string& port) {
@@ -102,10 +94,7 @@ struct EraseOptions {
 };
 
 ExitCode erase_group(Context& ctx, const EraseOptions& o) {
-  if (o.all && !o.group.empty()) return usage_error(ctx, "give GROUP or --all, not both");
-  if (!o.all && o.group.empty()) return usage_error(ctx, "give a GROUP to erase, or --all");
-  auto target = o.all ? Result<boards::GroupTarget>(boards::GroupTarget{lsc::kAllGroups, true})
-                      : boards::parse_group_target(o.group);
+  auto target = boards::erase_target(o.group, o.all);
   if (!target) return usage_error(ctx, target.error().message);
   const boards::Board& board = boards::board_for_command(o.device.profile(), o.device.port);
   if (board.erase == nullptr) return refuse_command(ctx, board, o.device.command);
@@ -133,16 +122,8 @@ struct SpeedOptions {
 ExitCode speed_group(Context& ctx, const SpeedOptions& o) {
   auto target = boards::parse_group_target(o.group);
   if (!target) return usage_error(ctx, target.error().message);
-  // One message for every value out of range or not a number, with the same range as --help.
-  long long value = 0;
-  const auto [end, ec] =
-      std::from_chars(o.percent.data(), o.percent.data() + o.percent.size(), value);
-  if (ec != std::errc() || end != o.percent.data() + o.percent.size() || value < 1 ||
-      value > 65535) {
-    return usage_error(
-        ctx, "percent must be a whole number 1..65535 (100 = as stored), got '" + o.percent + "'");
-  }
-  const auto percent = std::optional<std::uint16_t>(static_cast<std::uint16_t>(value));
+  auto percent = boards::parse_speed_percent(o.percent);
+  if (!percent) return usage_error(ctx, percent.error().message);
   return tell_on_controller(ctx, o.device, lsc::GroupSpeed{target->group, *percent},
                             target_text(*target) + " speed " + std::to_string(*percent) +
                                 "% (volatile: back to 100% at power-off)\n");

@@ -12,7 +12,6 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -30,8 +29,11 @@ ExitCode read_offsets(Context& ctx, const ServoListOptions& o) {
   return run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
     auto reply = s.ask<lsc::ServoOffsets>(lsc::ServoOffsetRead{sel->ids}, "the offsets");
     if (!reply) return ExitCode::DeviceFailure;
-    return print_servo_readings(ctx, sel->ids, sel->robot, "offset", reply->servos,
-                                &lsc::ServoOffsets::Entry::offset);
+    return print_servo_readings(
+        ctx,
+        boards::servo_readings(sel->ids, sel->robot, "offset", reply->servos,
+                               &lsc::ServoOffsets::Entry::offset),
+        sel->robot);
   });
 }
 

@@ -17,13 +17,9 @@ namespace {
 
 // "1.5s" or "500ms" (beats need the file's tempo: not here).
 std::optional<double> window_ms(Context& ctx, const std::string& option, const std::string& text) {
-  auto t = seqc::parse_time(text);
-  if (!t ||
-      (t->unit != seqc::TimeUnit::Milliseconds && t->unit != seqc::TimeUnit::Seconds)) {
-    ctx.err << "seqc: error: " << option << " " << text << ": give a time in ms or s, e.g. 1.5s\n";
-    return std::nullopt;
-  }
-  return t->unit == seqc::TimeUnit::Seconds ? t->amount * 1000.0 : t->amount;
+  const std::optional<double> ms = seqc::parse_clock_ms(text);
+  if (!ms) usage_error(ctx, option + " " + text + ": give a time in ms or s, e.g. 1.5s");
+  return ms;
 }
 
 // A show: every performer's picture, titled with its name and file, on one time axis.
@@ -69,8 +65,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
       return;
     }
     if (options.from_ms && options.to_ms && *options.to_ms <= *options.from_ms) {
-      ctx.err << "seqc: error: --to must be after --from\n";
-      result.code = ExitCode::Usage;
+      result.code = usage_error(ctx, "--to must be after --from");
       return;
     }
     const std::string name = o->file == "-" ? std::string(kStdinName)
@@ -84,11 +79,8 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` gets its song drawn under the lanes.
-      std::optional<compiler::PlotSong> song;
-      if (ctx.songs != nullptr) song = compiler::plot_song(*output.program, *ctx.songs);
-      options.song = song ? &*song : nullptr;
       options.title = part_title(output, name, o->group);
-      svg = compiler::plot_program(*output.program, options);
+      svg = compiler::plot_program(*output.program, options, ctx.songs);
     }
     result.code = write_output(ctx, o->output, svg, loaded.file.inputs());
     if (result.code == ExitCode::Ok && o->output != "-") {

@@ -2,7 +2,6 @@
 // performers, on one clock) as one self-contained, animated HTML page
 // (compiler/formats/preview_html.hpp). Without -o the page goes to stdout.
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,17 +54,9 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
       html = preview_performers(loaded.file.show(), name);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
-      const double end = static_cast<double>(compiler::length_ms(*output.program));
-      const std::string title = part_title(output, name, o->group);
       // A file with `music:` brings its song: drawn under the lanes and played with the page.
-      std::optional<compiler::PlotSong> picture;
-      if (ctx.songs != nullptr) picture = compiler::plot_song(*output.program, *ctx.songs);
-      const std::optional<compiler::PreviewSong> song =
-          compiler::preview_song(*output.program, ctx.files);
-      if (auto part =
-              compiler::preview_part(*output.program, title, end, picture ? &*picture : nullptr)) {
-        html = compiler::preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);
-      }
+      html = compiler::preview_program(*output.program, part_title(output, name, o->group),
+                                       ctx.songs, ctx.files);
     }
     result.code = write_output(ctx, o->output, html, loaded.file.inputs());
     if (result.code == ExitCode::Ok && o->output != "-") {

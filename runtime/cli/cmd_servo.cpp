@@ -18,7 +18,6 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
 #include "runtime/cli/device_command.hpp"
-#include "runtime/cli/servo_readings.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -47,14 +46,16 @@ ExitCode read_positions(Context& ctx, const ReadOptions& o) {
       for (const lsc::ServoTarget& t : *answered) positions.emplace_back(t.id, t.position);
       ctx.out << "  " << compiler::pose_line(o.name, positions, **robot) << "\n";
       if (positions.size() != ids->size()) {
-        ctx.err << "seqc: error: " << ids->size() - positions.size()
-                << " servo(s) did not answer; the pose lacks them\n";
-        return ExitCode::DeviceFailure;
+        return fail(ctx, ExitCode::DeviceFailure,
+                    std::to_string(ids->size() - positions.size()) +
+                        " servo(s) did not answer; the pose lacks them");
       }
       return ExitCode::Ok;
     }
-    return print_servo_readings(ctx, *ids, *robot, "position", *answered,
-                                &lsc::ServoTarget::position);
+    return print_servo_readings(
+        ctx,
+        boards::servo_readings(*ids, *robot, "position", *answered, &lsc::ServoTarget::position),
+        *robot);
   });
 }
 
@@ -86,8 +87,7 @@ ExitCode move_servos(Context& ctx, const MoveOptions& o) {
   // A position no servo there can reach is a bad value, not a bad command line.
   auto targets = boards::checked_targets(*requested, *robot);
   if (!targets) {
-    ctx.err << "seqc: error: " << targets.error().message << "; nothing was sent\n";
-    return ExitCode::InvalidInput;
+    return fail(ctx, ExitCode::InvalidInput, targets.error().message + "; nothing was sent");
   }
   std::string summary;
   for (const lsc::ServoTarget& t : *targets) {

@@ -51,17 +51,15 @@ ExitCode open_stage(Context& ctx, const compiler::Performer& p, Stage& stage,
     case boards::StageProblem::None:
       return ExitCode::Ok;
     case boards::StageProblem::NoPort:
-      ctx.err << "seqc: error: performer '" << terminal_safe(p.name)
-              << "' has no port in the show file\n";
-      return ExitCode::Usage;
+      return usage_error(ctx,
+                         "performer '" + terminal_safe(p.name) + "' has no port in the show file");
     case boards::StageProblem::TraceUnwritable:
       return trace_unwritable(ctx, o.trace_path);
     case boards::StageProblem::PortFailed:
       break;
   }
   const BoardError e = port_failure(o.failure, o.request, p.file);
-  ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << e.message << "\n";
-  return e.code;
+  return fail(ctx, e.code, terminal_safe(p.name) + ": " + e.message);
 }
 
 // Stores a performer's group: Ok, or (with the reason said) Interrupted when a stop signal ended
@@ -70,8 +68,8 @@ ExitCode upload_stage(Context& ctx, Stage& stage) {
   const compiler::Performer& p = *stage.performer;
   auto planned = boards::stage_plan(stage);
   if (!planned) {
-    ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << planned.error().message << "\n";
-    return ExitCode::DeviceFailure;
+    return fail(ctx, ExitCode::DeviceFailure,
+                terminal_safe(p.name) + ": " + planned.error().message);
   }
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: " << terminal_safe(p.name) << ": uploading "
@@ -83,20 +81,16 @@ ExitCode upload_stage(Context& ctx, Stage& stage) {
   const upload::UploadResult r = boards::upload_stage(stage, *planned, ctx.interrupted, &progress);
   progress.finish();
   if (r.status == upload::UploadStatus::OtherDialect) {
-    const compiler::ServoProgram* program = p.output.servo_program();
     ctx.err << "seqc: error: " << terminal_safe(p.name) << ": "
-            << other_dialect_text(*stage.board, program != nullptr ? program->robot.profile : "")
-            << "\nseqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
+            << other_dialect_text(*stage.board, p.output) << "\nseqc: " << terminal_safe(p.name)
+            << ": " << r.message << "\n";
     return exit_code_for(r.status);  // the wrong board for the file: 2, as `upload` says it
   }
   if (r.status == upload::UploadStatus::Interrupted) {
     ctx.err << "seqc: " << terminal_safe(p.name) << ": " << r.message << "\n";
     return ExitCode::Interrupted;
   }
-  if (!r.ok()) {
-    ctx.err << "seqc: error: " << terminal_safe(p.name) << ": " << r.message << "\n";
-    return ExitCode::DeviceFailure;
-  }
+  if (!r.ok()) return fail(ctx, ExitCode::DeviceFailure, terminal_safe(p.name) + ": " + r.message);
   summarize(ctx, terminal_safe(p.name) + ": the controller acknowledged " +
                      plural(r.actions_acknowledged, "action"));
   return ExitCode::Ok;
@@ -116,19 +110,13 @@ std::string start_text(const Stage& s, const boards::PerformerReport& p) {
            " after the start; lateness p50 " + io::ms_text(late.p50, 2) + ", p99 " +
            io::ms_text(late.p99, 2) + ", max " + io::ms_text(late.max, 2);
   }
-  const std::string said = p.run->started == boards::Confirmation::Reported
-                               ? std::string(s.board->called) + " reported it started"
-                               : std::string(s.board->unconfirmed_run);
   return std::string(s.board->run_name) + " " + std::to_string(s.performer->group) + " arrived " +
          started + " after the start (written " + first + ", " + io::ms_text(p.wire, 2) +
-         " on the wire); " + said;
+         " on the wire); " + run_said(*s.board, p.run);
 }
 
 ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const boards::ShowReport& r) {
-  if (!r.error.empty()) {
-    ctx.err << "seqc: error: " << r.error << "\n";
-    return ExitCode::Internal;
-  }
+  if (!r.error.empty()) return fail(ctx, ExitCode::Internal, r.error);
   switch (r.play.end) {
     case player::PlayEnd::Completed:
       break;
@@ -136,10 +124,9 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       ctx.err << "seqc: interrupted: stopped every performer\n";
       return ExitCode::Interrupted;
     case player::PlayEnd::WriteFailed:
-      ctx.err << "seqc: error: "
-              << terminal_safe(stages[r.play.failed_track.value_or(0)].performer->name) << ": "
-              << r.play.error << "; stopped every performer\n";
-      return ExitCode::DeviceFailure;
+      return fail(ctx, ExitCode::DeviceFailure,
+                  terminal_safe(stages[r.play.failed_track.value_or(0)].performer->name) + ": " +
+                      r.play.error + "; stopped every performer");
   }
   ExitCode code = ExitCode::Ok;
   for (std::size_t i = 0; i < stages.size(); ++i) {
@@ -148,8 +135,7 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
       const Stage& s = stages[i];
       const BoardError e =
           outcome_text(*p.run, s.port->transport->describe(), kReplyTimeout, s.board->called);
-      ctx.err << "seqc: error: " << terminal_safe(s.performer->name) << ": " << e.message << "\n";
-      code = e.code;
+      code = fail(ctx, e.code, terminal_safe(s.performer->name) + ": " + e.message);
       continue;
     }
     if (ctx.verbosity >= 0) {

@@ -12,6 +12,7 @@
 #include "compiler/formats/program_views.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
 namespace {
@@ -51,23 +52,13 @@ bool simulate_one(Context& ctx, const compiler::CompileOutput& output, const std
   return true;
 }
 
-// "out.csv" and "arm" -> "out-arm.csv"; "out" -> "out-arm".
-std::string performer_path(const std::string& output, const std::string& name) {
-  const std::size_t slash = output.find_last_of('/');
-  const std::size_t dot = output.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
-    return output + "-" + name;
-  }
-  return output.substr(0, dot) + "-" + name + output.substr(dot);
-}
-
 ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const SimulateOptions& o) {
   const bool to_stdout = o.output.empty() || o.output == "-";
   const std::vector<std::string> inputs = show.inputs();
   if (!to_stdout) {
     // Every output is checked before the first is written, so a refusal writes nothing.
     for (const compiler::Performer& p : show.performers) {
-      if (refuse_input_as_output(ctx, "-o", performer_path(o.output, p.name), inputs)) {
+      if (refuse_input_as_output(ctx, "-o", io::tagged_path(o.output, p.name), inputs)) {
         return ExitCode::Usage;
       }
     }
@@ -79,7 +70,7 @@ ExitCode simulate_show(Context& ctx, const compiler::ShowOutput& show, const Sim
     }
     if (to_stdout) {
       ctx.out << "# performer " << p.name << " (" << p.file << ")\n" << csv;
-    } else if (const ExitCode c = write_output(ctx, performer_path(o.output, p.name), csv, inputs);
+    } else if (const ExitCode c = write_output(ctx, io::tagged_path(o.output, p.name), csv, inputs);
                c != ExitCode::Ok) {
       return c;
     }

@@ -30,9 +30,9 @@ bool read_line(Context& ctx, std::string& line) {
 ExitCode teach(Context& ctx, const TeachOptions& o) {
   auto read = ctx.files.read(o.file);
   if (!read) {
-    ctx.err << "seqc: error: " << read.error().message
-            << " (teach adds poses to an existing file; start one with a `robot:` line)\n";
-    return ExitCode::FileError;
+    return fail(ctx, ExitCode::FileError,
+                read.error().message +
+                    " (teach adds poses to an existing file; start one with a `robot:` line)");
   }
   std::string text = std::move(*read);
   seqc::SourceManager sources;
@@ -45,10 +45,10 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
   }
   const std::vector<std::uint8_t> ids = boards::readable_servos(*robot);
   if (ids.empty()) {
-    ctx.err << "seqc: error: " << o.file << ": robot '" << robot->profile
-            << "' has PWM servos, which cannot report where they are; teach needs bus servos "
-               "(xarm, bus)\n";
-    return ExitCode::InvalidInput;
+    return fail(ctx, ExitCode::InvalidInput,
+                o.file + ": robot '" + robot->profile +
+                    "' has PWM servos, which cannot report where they are; teach needs bus "
+                    "servos (xarm, bus)");
   }
   int added = 0;
   const ExitCode code = run_on_controller(ctx, o.device, [&](boards::XarmSession& s) {
@@ -81,8 +81,7 @@ ExitCode teach(Context& ctx, const TeachOptions& o) {
         continue;
       }
       if (auto ok = io::write_file_safely(o.file, *edited); !ok) {
-        ctx.err << "seqc: error: " << ok.error().message << "\n";
-        return ExitCode::FileError;
+        return fail(ctx, ExitCode::FileError, ok.error().message);
       }
       text = std::move(*edited);
       ++added;

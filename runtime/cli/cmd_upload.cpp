@@ -64,10 +64,8 @@ std::uint16_t times_of(const UploadArgs& a) {
 void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResult& r,
                     const boards::Board& board, const compiler::CompileOutput& output) {
   if (r.status == upload::UploadStatus::OtherDialect) {
-    const compiler::ServoProgram* program = output.servo_program();
-    ctx.err << "seqc: error: "
-            << other_dialect_text(board, program != nullptr ? program->robot.profile : "")
-            << "\nseqc: " << r.message << "\n";
+    ctx.err << "seqc: error: " << other_dialect_text(board, output) << "\nseqc: " << r.message
+            << "\n";
   } else {
     ctx.err << "seqc: error: " << r.message << "\n";
   }
@@ -134,8 +132,7 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
     return ExitCode::Interrupted;
   }
   if (r.play.end == player::PlayEnd::WriteFailed) {
-    ctx.err << "seqc: error: " << r.play.error << "\n";
-    return ExitCode::DeviceFailure;
+    return fail(ctx, ExitCode::DeviceFailure, r.play.error);
   }
   if (ctx.verbosity < 0) return ExitCode::Ok;
   ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
@@ -175,8 +172,7 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
       return ExitCode::Interrupted;
     case player::PlayEnd::WriteFailed:
       music.output->stop();
-      ctx.err << "seqc: error: " << r.play.error << "; stopped the song\n";
-      return ExitCode::DeviceFailure;
+      return fail(ctx, ExitCode::DeviceFailure, r.play.error + "; stopped the song");
   }
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: " << sync_text(music, r.start, std::string(board.run_name)) << "\n";
@@ -189,13 +185,10 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
     return e.code;
   }
   if (ctx.verbosity >= 0) {
-    const std::string said = r.run && r.run->started == boards::Confirmation::Reported
-                                 ? std::string(board.called) + " reported it started"
-                                 : std::string(board.unconfirmed_run);
     ctx.err << "seqc: group " << a.group
             << (music.robot_in_emulated_time ? " started in emulated time; "
                                              : " started on the downbeat; ")
-            << said << "; playing the song to its end (Ctrl-C stops both)\n";
+            << run_said(board, r.run) << "; playing the song to its end (Ctrl-C stops both)\n";
   }
   if (!boards::play_song_out(music, ctx.clock, ctx.interrupted)) {
     // The same stop the player sends after an early end.
@@ -208,26 +201,21 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
 
 ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (a.resync > 0 && (!a.run || a.dry_run || a.music.music)) {
-    ctx.err << "seqc: error: --resync needs --run (the computer starts each piece), and no "
-               "--dry-run or --music\n";
-    return ExitCode::Usage;
+    return usage_error(ctx,
+                       "--resync needs --run (the computer starts each piece), and no --dry-run "
+                       "or --music");
   }
-  std::int32_t ppm = 0;
-  if (const ExitCode e = resolve_clock_ppm(ctx, a.clock, ppm); e != ExitCode::Ok) return e;
-  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, ppm);
+  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock);
   if (c.code != ExitCode::Ok) return c.code;
   if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
   const boards::Board& board = boards::board_for(c.output);
   const auto group = static_cast<std::uint8_t>(a.group);
   auto planned = boards::plan_for(board, c.output, group);
-  if (!planned) {
-    ctx.err << "seqc: error: " << a.file << ": " << planned.error().message << "\n";
-    return ExitCode::InvalidInput;
-  }
+  if (!planned) return fail(ctx, ExitCode::InvalidInput, a.file + ": " + planned.error().message);
   const boards::Plan& plan = *planned;
   std::optional<std::vector<compiler::ResyncPiece>> pieces;
   if (a.resync > 0) {
-    pieces = resync_pieces(ctx, a, c.output, ppm);
+    pieces = resync_pieces(ctx, a, c.output, c.clock_ppm);
     if (!pieces) return ExitCode::InvalidInput;
   }
   std::optional<boards::FirstMoveTooFast> too_fast;  // why may_run refused the run
@@ -237,10 +225,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
 
   if (a.dry_run) {
     const boards::DryRun dry = boards::dry_run(board, plan, options);
-    if (!dry.result.ok()) {
-      ctx.err << "seqc: error: internal: " << dry.result.message << "\n";
-      return ExitCode::Internal;
-    }
+    if (!dry.result.ok()) return fail(ctx, ExitCode::Internal, "internal: " + dry.result.message);
     ctx.out << dry.text;
     if (ctx.verbosity >= 0)
       ctx.err << "seqc: dry run: " << plural(plan.actions, "action") << " for group " << a.group

@@ -1,4 +1,5 @@
-// One function per subcommand: it adds the subcommand to `app` and sets `result` when it runs.
+// One function per subcommand: it adds the subcommand to `app` and sets `result` when it runs;
+// and the two ways every command speaks to a person: a summary, and the error that ends it.
 #pragma once
 
 #include <ostream>
@@ -21,6 +22,17 @@ namespace seqc::cli {
 // message for people, and not at all with --quiet. Data (readings, listings) go to ctx.out.
 inline void summarize(Context& ctx, const std::string& line) {
   if (ctx.verbosity >= 0) ctx.err << "seqc: " << line << "\n";
+}
+
+// An error that ends a command: "seqc: error: MESSAGE" on stderr, at every verbosity. Returns
+// `code`, the command's exit status.
+inline ExitCode fail(Context& ctx, ExitCode code, const std::string& message) {
+  ctx.err << "seqc: error: " << message << "\n";
+  return code;
+}
+// fail() for a command line that cannot run: ExitCode::Usage.
+inline ExitCode usage_error(Context& ctx, const std::string& message) {
+  return fail(ctx, ExitCode::Usage, message);
 }
 
 // Where a subcommand's callback stores its exit status.

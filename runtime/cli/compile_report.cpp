@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "base/terminal_text.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/io/disk.hpp"
 
 namespace seqc::cli {
@@ -64,8 +65,13 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
 }
 
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                            std::int32_t clock_ppm) {
-  Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm);
+                            const ClockScaleOptions* clock) {
+  std::int32_t ppm = 0;
+  if (clock != nullptr) {
+    if (const ExitCode e = resolve_clock_ppm(ctx, *clock, ppm); e != ExitCode::Ok) return {{}, e};
+  }
+  Compiled c = compile_quietly(ctx, path, strict, song, ppm);
+  c.clock_ppm = ppm;
   if (c.output.read_error) {
     ctx.err << "seqc: error: " << terminal_safe(*c.output.read_error) << "\n";
     return c;
@@ -124,8 +130,7 @@ ExitCode write_output(Context& ctx, const std::string& path, const std::string& 
   if (path.empty() || path == "-") return write_stdout(ctx, data);
   if (refuse_input_as_output(ctx, option, path, inputs)) return ExitCode::Usage;
   if (auto written = io::write_file_safely(path, data); !written) {
-    ctx.err << "seqc: error: " << written.error().message << "\n";
-    return ExitCode::FileError;
+    return fail(ctx, ExitCode::FileError, written.error().message);
   }
   return ExitCode::Ok;
 }

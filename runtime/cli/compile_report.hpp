@@ -14,6 +14,7 @@
 #include "compiler/compile.hpp"
 #include "compiler/load.hpp"
 #include "compiler/show.hpp"
+#include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 
@@ -22,6 +23,7 @@ namespace seqc::cli {
 struct Compiled {
   compiler::CompileOutput output;
   ExitCode code = ExitCode::Ok;
+  std::int32_t clock_ppm = 0;  // what the stored group was pre-scaled for
 };
 
 inline constexpr const char* kStdinName = "<stdin>";
@@ -59,9 +61,12 @@ enum class SongCheck { Skip, Decode };
 // error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
                          SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
-// Compiles and prints the diagnostics (or the file error) on ctx.err.
+// Compiles and prints the diagnostics (or the file error) on ctx.err. With `clock`, the ppm to
+// pre-scale for is resolved from --clock-ppm and --rig first (resolve_clock_ppm); when it cannot
+// be, nothing is compiled and code is its status.
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
-                            SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+                            SongCheck song = SongCheck::Skip,
+                            const ClockScaleOptions* clock = nullptr);
 
 // A file given to a command that takes a choreography or a show (check, plot, simulate,
 // preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)

@@ -5,6 +5,7 @@
 
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/board_link.hpp"
+#include "runtime/boards/servo_args.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/device_args.hpp"
@@ -48,11 +49,6 @@ void add_servo_list_options(CLI::App& cmd, ServoListOptions& options) {
   add_device_options(cmd, options.device);
 }
 
-ExitCode usage_error(Context& ctx, const std::string& message) {
-  ctx.err << "seqc: error: " << message << "\n";
-  return ExitCode::Usage;
-}
-
 ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const SessionBody& body) {
   // Everything that reaches here asks something only a board with queries answers.
   const boards::Board& board = boards::board_for_command(options.profile(), options.port);
@@ -68,7 +64,7 @@ ExitCode run_on_controller(Context& ctx, const DeviceOptions& options, const Ses
 
 ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::Board& board,
                       const LineBody& body) {
-  auto timeout = parse_timeout(options.timeout);
+  auto timeout = boards::parse_timeout(options.timeout);
   if (!timeout) return usage_error(ctx, timeout.error().message);
   stop_cleanly_from_now(ctx);
   boards::TraceFile trace;
@@ -82,8 +78,16 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
 ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,
                         const std::string& port, const boards::Board& board) {
   const BoardError e = outcome_text(outcome, port, line.timeout, board.called);
-  ctx.err << "seqc: error: " << e.message << "\n";
-  return e.code;
+  return fail(ctx, e.code, e.message);
+}
+
+ExitCode print_servo_readings(Context& ctx, const boards::ServoReadings& readings,
+                              const std::optional<compiler::RobotInfo>& robot) {
+  ctx.out << readings.table;
+  if (readings.missing.empty()) return ExitCode::Ok;
+  ctx.err << "seqc: error: the controller reported no " << readings.column << " for "
+          << servo_labels(readings.missing, robot) << " (not on the bus, or not answering)\n";
+  return ExitCode::DeviceFailure;
 }
 
 ExitCode tell_on_controller(Context& ctx, const DeviceOptions& options, const lsc::Request& request,

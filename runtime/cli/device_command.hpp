@@ -17,11 +17,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "protocol/lsc/lsc_messages.hpp"
+#include "runtime/boards/reading_table.hpp"
 #include "runtime/boards/xarm_session.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/cli/exit_codes.hpp"
 #include "runtime/io/clock.hpp"
-#include "protocol/lsc/lsc_messages.hpp"
 #include "runtime/upload/controller_link.hpp"
 
 namespace seqc::cli {
@@ -50,8 +51,6 @@ struct ServoListOptions {
 };
 // Adds them in that order, SERVO required.
 void add_servo_list_options(CLI::App& cmd, ServoListOptions& options);
-// Prints "seqc: error: MESSAGE" and returns ExitCode::Usage.
-ExitCode usage_error(Context& ctx, const std::string& message);
 
 // Opens the controller `options` names, runs `body` on a session with it, and prints the
 // session's first failure as "seqc: error: ..." on ctx.err. Returns body's status, or the
@@ -69,6 +68,11 @@ ExitCode run_on_board(Context& ctx, const DeviceOptions& options, const boards::
 // Says `outcome`'s failure on ctx.err, naming the far end as `board` calls it; returns its status.
 ExitCode report_outcome(Context& ctx, const boards::Outcome& outcome, const boards::Line& line,
                         const std::string& port, const boards::Board& board);
+
+// Prints `readings`' table on ctx.out; servos without a reading give "seqc: error: the controller
+// reported no COLUMN for ..." and DeviceFailure.
+ExitCode print_servo_readings(Context& ctx, const boards::ServoReadings& readings,
+                              const std::optional<compiler::RobotInfo>& robot);
 
 // run_on_controller for one request the controller does not answer: tells it and, once it is
 // confirmed, says `done` (summarize).

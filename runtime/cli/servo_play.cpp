@@ -87,9 +87,7 @@ ExitCode word_moves(Context& ctx, const compiler::CompileOutput& compiled,
       return ExitCode::InvalidInput;
     case boards::LiveStatus::NoBoard:
       if (r.probe.failure == boards::Failure::OtherDialect) {
-        const compiler::ServoProgram* program = compiled.servo_program();
-        ctx.err << "seqc: error: "
-                << other_dialect_text(board, program != nullptr ? program->robot.profile : "")
+        ctx.err << "seqc: error: " << other_dialect_text(board, compiled)
                 << "\nseqc: no move was sent\n";
         return ExitCode::Usage;
       }

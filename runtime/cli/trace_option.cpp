@@ -2,6 +2,8 @@
 
 #include <ostream>
 
+#include "runtime/cli/commands.hpp"
+
 namespace seqc::cli {
 
 void add_trace_option(CLI::App& cmd, std::string& path, const std::string& help) {
@@ -13,8 +15,7 @@ ExitCode open_trace(Context& ctx, boards::TraceFile& trace, const std::string& p
 }
 
 ExitCode trace_unwritable(Context& ctx, const std::string& path) {
-  ctx.err << "seqc: error: --trace " << path << ": cannot write the file\n";
-  return ExitCode::FileError;
+  return fail(ctx, ExitCode::FileError, "--trace " + path + ": cannot write the file");
 }
 
 }  // namespace seqc::cli

@@ -34,20 +34,12 @@ const CLI::App* child(const CLI::App& app, const std::string& name) {
   return nullptr;
 }
 
-bool known_option(const CLI::App* app, const std::string& name) {
+// The option `name` of `app` or of a parent (global options fall through); nullptr if none.
+const CLI::Option* find_option(const CLI::App* app, const std::string& name) {
   for (; app != nullptr; app = app->get_parent()) {
-    if (app->get_option_no_throw(name) != nullptr) return true;
+    if (const CLI::Option* o = app->get_option_no_throw(name)) return o;
   }
-  return false;
-}
-
-// Whether the option `name` of `app` (or a parent) takes a value, so the next word is its
-// value and not a subcommand.
-bool takes_value(const CLI::App* app, const std::string& name) {
-  for (; app != nullptr; app = app->get_parent()) {
-    if (const CLI::Option* o = app->get_option_no_throw(name)) return o->get_expected_max() > 0;
-  }
-  return false;
+  return nullptr;
 }
 
 std::string with_hint(std::string message, const std::string& suggestion) {
@@ -71,12 +63,16 @@ std::optional<std::string> find_unknown_word(const CLI::App& app,
       const std::string name = word.substr(0, word.find('='));
       // Short options may be bundled ("-qv") or carry a value ("-o-"); check the first letter.
       const std::string key = name[1] == '-' ? name : name.substr(0, 2);
-      if (!known_option(current, key)) {
+      const CLI::Option* option = find_option(current, key);
+      if (option == nullptr) {
         std::string title = current == &app ? "seqc" : "seqc " + current->get_name();
         return with_hint("unknown option '" + name + "' for '" + title + "'",
                          seqc::did_you_mean(name, option_names(current)));
       }
-      if (word.find('=') == std::string::npos && name == key && takes_value(current, key)) ++i;
+      // An option that takes a value: the next word is its value, not a subcommand.
+      if (word.find('=') == std::string::npos && name == key && option->get_expected_max() > 0) {
+        ++i;
+      }
       continue;
     }
     if (positional_seen) continue;

@@ -293,4 +293,13 @@ std::string same_file_among(const std::string& output, const std::vector<std::st
   return "";
 }
 
+std::string tagged_path(const std::string& path, const std::string& tag) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+    return path + "-" + tag;
+  }
+  return path.substr(0, dot) + "-" + tag + path.substr(dot);
+}
+
 }  // namespace seqc::io

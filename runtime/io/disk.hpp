@@ -94,4 +94,8 @@ bool same_file(const std::string& a, const std::string& b);
 // The first of `inputs` that `output` is the same file as, or "" when none is.
 std::string same_file_among(const std::string& output, const std::vector<std::string>& inputs);
 
+// `path` with "-" and `tag` before its extension, for one output file per part of a whole:
+// "out.csv" and "arm" -> "out-arm.csv"; "out" -> "out-arm"; "runs.d/out" -> "runs.d/out-arm".
+std::string tagged_path(const std::string& path, const std::string& tag);
+
 }  // namespace seqc::io

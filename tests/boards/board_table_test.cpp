@@ -182,5 +182,19 @@ TEST(BoardTable, PosesReadBackAreNamedByTheBoardsOwnProfile) {
   EXPECT_EQ(find_board("lsc6")->pose_profile, "lsc-6");
 }
 
+// A file for one servo controller meeting the other: the board that answered, and the
+// profiles whose files it runs.
+TEST(BoardTable, TheOtherDialectOfAFamily) {
+  const OtherDialect for_xarm = other_dialect(*find_board("xarm"));
+  ASSERT_NE(for_xarm.answered, nullptr);
+  EXPECT_EQ(for_xarm.answered->key, "lsc6");
+  EXPECT_EQ(for_xarm.profiles, (std::vector<std::string>{"lsc-6", "learm"}));
+  const OtherDialect for_lsc6 = other_dialect(*find_board("lsc6"));
+  ASSERT_NE(for_lsc6.answered, nullptr);
+  EXPECT_EQ(for_lsc6.answered->key, "xarm");
+  EXPECT_EQ(for_lsc6.profiles, (std::vector<std::string>{"xarm", "bus", "lsc-16", "lsc-32"}));
+  EXPECT_EQ(other_dialect(*find_board("raspblock")).answered, nullptr);  // nothing else stores
+}
+
 }  // namespace
 }  // namespace seqc::boards

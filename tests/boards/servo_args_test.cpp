@@ -112,5 +112,35 @@ TEST(ServoArgs, Offsets) {
   EXPECT_EQ(parse_offset("x").error().message, "offset: 'x' is not a whole number");
 }
 
+TEST(ServoArgs, GroupCommandArguments) {
+  EXPECT_EQ(erase_target("3", false)->group, 3);
+  EXPECT_TRUE(erase_target("", true)->all);
+  EXPECT_EQ(erase_target("3", true).error().message, "give GROUP or --all, not both");
+  EXPECT_EQ(erase_target("", false).error().message, "give a GROUP to erase, or --all");
+  EXPECT_EQ(*run_times(3, true, false), 3);
+  EXPECT_EQ(*run_times(1, false, true), 0);  // --forever is the wire's 0
+  EXPECT_EQ(run_times(1, true, true).error().message, "give --times or --forever, not both");
+  EXPECT_EQ(run_times(0, true, false).error().message,
+            "--times must be 1..65535, got 0 (--forever loops until `seqc group stop`)");
+  EXPECT_EQ(*parse_speed_percent("200"), 200);
+  EXPECT_EQ(*parse_speed_percent("65535"), 65535);
+  for (const char* bad : {"0", "65536", "12x", "", "-5"}) {
+    EXPECT_EQ(parse_speed_percent(bad).error().message,
+              "percent must be a whole number 1..65535 (100 = as stored), got '" +
+                  std::string(bad) + "'");
+  }
+}
+
+TEST(ServoArgs, Timeouts) {
+  EXPECT_EQ(*parse_timeout("250ms"), std::chrono::milliseconds(250));
+  EXPECT_EQ(*parse_timeout("2s"), std::chrono::seconds(2));
+  EXPECT_EQ(parse_timeout("0ms").error().message,
+            "--timeout must be more than 0 and at most 1 hour, got '0ms'");
+  EXPECT_EQ(parse_timeout("2h").error().message,
+            "--timeout: '2h' is not a time in ms or s; write it like '500ms' or '2s'");
+  EXPECT_EQ(parse_timeout("4b").error().message,
+            "--timeout: '4b' is not a time in ms or s; write it like '500ms' or '2s'");
+}
+
 }  // namespace
 }  // namespace seqc::boards

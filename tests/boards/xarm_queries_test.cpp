@@ -102,6 +102,28 @@ TEST(XarmQueries, ConflictingLimits) {
   EXPECT_EQ(conflict_in({500, 500, 4500, 4500, 85, 0, 0}), LimitConflict::None);
   EXPECT_EQ(conflict_in({501, 500, 4500, 12000, 85, 0, 0}), LimitConflict::Position);
   EXPECT_EQ(conflict_in({100, 1000, 12001, 12000, 85, 0, 0}), LimitConflict::Voltage);
+  EXPECT_EQ(conflict_text({501, 500, 4500, 12000, 85, 0, 0}),
+            "position-min 501 is above position-max 500");
+  EXPECT_EQ(conflict_text({100, 1000, 12001, 12000, 85, 0, 0}),
+            "millivolts-min 12001 is above millivolts-max 12000");
+}
+
+TEST(XarmQueries, EveryFieldGivenIsCheckedForConflictsBeforeAnyRead) {
+  BusServoFields f;
+  f.servo = 1;
+  f.position_min = 100;
+  f.position_max = 900;
+  f.millivolts_min = 9000;
+  f.millivolts_max = 8000;
+  f.temp_max = 80;
+  f.led = "on";
+  f.led_warning = "none";
+  EXPECT_EQ(checked_changes(f).error().message, "millivolts-min 9000 is above millivolts-max 8000");
+  f.millivolts_max = 12000;
+  EXPECT_TRUE(checked_changes(f));
+  f.led_warning.reset();  // not complete: the servo's values may settle it
+  f.millivolts_max = 8000;
+  EXPECT_TRUE(checked_changes(f));
 }
 
 TEST(XarmQueries, APartialWriteReadsTheServoFirstAndKeepsItsOtherValues) {

@@ -146,7 +146,7 @@ TEST(D6a, ForeignOrBrokenFilesSayWhatIsMissing) {
             "not a SQLite database (a .d6a file is one; this file does not start with \"SQLite "
             "format 3\")");
   EXPECT_EQ(compiler::read_d6a(sqlite_file(temp_path("other.db"), 0, {},
-                                          "CREATE TABLE Notes(a INT); CREATE TABLE Poses(b INT);"))
+                                           "CREATE TABLE Notes(a INT); CREATE TABLE Poses(b INT);"))
                 .error()
                 .message,
             "no ActionGroup table (a .d6a file has one; this database has the tables Notes, "
@@ -158,8 +158,8 @@ TEST(D6a, ForeignOrBrokenFilesSayWhatIsMissing) {
                 .message,
             "the ActionGroup table has no Time column");
   EXPECT_EQ(compiler::read_d6a(sqlite_file(temp_path("gap.d6a"), 0, {},
-                                          "CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY, "
-                                          "Time INT, Servo1 INT, Servo3 INT);"))
+                                           "CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY, "
+                                           "Time INT, Servo1 INT, Servo3 INT);"))
                 .error()
                 .message,
             "the ActionGroup table has Servo3 but no Servo2 column");
@@ -273,6 +273,20 @@ TEST(D6a, SqliteIsInterruptedPastItsStepBudget) {
     ASSERT_EQ(table->rows[k].index, std::int64_t(k + 1)) << k;
     ASSERT_EQ(table->rows[k].time_ms, int(100 + (20000 - k) % 7)) << k;
   }
+}
+
+// The names a file brings when none is given: its own, or for standard input fixed ones.
+TEST(D6a, NamesComeFromThePathOrStandardInput) {
+  const compiler::ImportOptions from_file =
+      compiler::import_options_for("moves/wave.d6a", "<stdin>", "bus");
+  EXPECT_EQ(from_file.name, "wave");
+  EXPECT_EQ(from_file.source, "wave.d6a");
+  EXPECT_EQ(from_file.profile, "bus");
+  const compiler::ImportOptions from_stdin = compiler::import_options_for("-", "<stdin>", "");
+  EXPECT_EQ(from_stdin.name, "imported");
+  EXPECT_EQ(from_stdin.source, "<stdin>");
+  EXPECT_EQ(compiler::d6a_output_name("dances/walk.yaml", 3), "walk.d6a");
+  EXPECT_EQ(compiler::d6a_output_name("-", 3), "group3.d6a");
 }
 
 }  // namespace

@@ -206,5 +206,17 @@ TEST(ProgramViews, AShowsPageDrawsEveryPartOnTheLongestPartsTimeAxis) {
                                parts, 1750));
 }
 
+TEST(ProgramViews, AFilesPageIsItsOnePartOnItsOwnTimeAxis) {
+  const compiler::CompileOutput out = compile_try();  // 1750 ms, no song
+  ASSERT_TRUE(out.program);
+  MemoryFiles files;
+  EXPECT_EQ(preview_program(*out.program, "try.yaml, group 0", nullptr, files),
+            preview_page("try.yaml, group 0", {""},
+                         {*preview_part(*out.program, "try.yaml, group 0", 1750)}, 1750));
+  PlotOptions options;
+  options.title = "try.yaml, group 0";
+  EXPECT_EQ(plot_program(*out.program, options, nullptr), plot_program(*out.program, options));
+}
+
 }  // namespace
 }  // namespace seqc::compiler

@@ -87,5 +87,22 @@ TEST(FormatSeconds, TrimsZeros) {
   EXPECT_EQ(format_seconds(1050), "1.05 s");
 }
 
+TEST(ParseClockMs, MillisecondsAndSecondsOnly) {
+  EXPECT_EQ(parse_clock_ms("500ms"), 500.0);
+  EXPECT_EQ(parse_clock_ms("1.5s"), 1500.0);
+  EXPECT_EQ(parse_clock_ms("2b"), std::nullopt);  // beats need a tempo
+  EXPECT_EQ(parse_clock_ms("1bar"), std::nullopt);
+  EXPECT_EQ(parse_clock_ms("20"), std::nullopt);  // no unit
+  EXPECT_EQ(parse_clock_ms("soon"), std::nullopt);
+}
+
+TEST(FormatGrouped, SeparatesThousands) {
+  EXPECT_EQ(format_grouped(0), "0");
+  EXPECT_EQ(format_grouped(999), "999");
+  EXPECT_EQ(format_grouped(7985), "7,985");
+  EXPECT_EQ(format_grouped(-10000), "-10,000");
+  EXPECT_EQ(format_grouped(1234567), "1,234,567");
+}
+
 }  // namespace
 }  // namespace seqc::compiler

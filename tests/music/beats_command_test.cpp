@@ -126,16 +126,5 @@ TEST(BeatsCommand, FailedClickWriteIsAFileError) {
       << run.err.str();
 }
 
-TEST(BeatsCommand, MeterText) {
-  EXPECT_EQ(parse_meter("3/4"), (music::Meter{3, 4}));
-  EXPECT_EQ(parse_meter("6/8"), (music::Meter{6, 8}));
-  EXPECT_EQ(parse_meter("12/16"), (music::Meter{12, 16}));
-  EXPECT_EQ(parse_meter("3"), std::nullopt);
-  EXPECT_EQ(parse_meter("3/5"), std::nullopt);
-  EXPECT_EQ(parse_meter("0/4"), std::nullopt);
-  EXPECT_EQ(parse_meter("17/4"), std::nullopt);
-  EXPECT_EQ(parse_meter("3/4x"), std::nullopt);
-}
-
 }  // namespace
 }  // namespace seqc::cli

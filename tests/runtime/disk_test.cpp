@@ -302,4 +302,11 @@ TEST(ReadInput, DashIsStandardInputAndAnythingElseAFile) {
             "b.yaml: No such file or directory");
 }
 
+TEST(TaggedPath, TheTagGoesBeforeTheExtension) {
+  EXPECT_EQ(seqc::io::tagged_path("out.csv", "arm"), "out-arm.csv");
+  EXPECT_EQ(seqc::io::tagged_path("out", "arm"), "out-arm");
+  EXPECT_EQ(seqc::io::tagged_path("runs.d/out", "arm"), "runs.d/out-arm");
+  EXPECT_EQ(seqc::io::tagged_path("runs.d/out.v2.csv", "car"), "runs.d/out.v2-car.csv");
+}
+
 }  // namespace

@@ -19,9 +19,9 @@
 #include <tuple>
 #include <vector>
 
+#include "base/units.hpp"
 #include "compiler/frontend/positions.hpp"
 #include "compiler/frontend/scope_chain.hpp"
-#include "base/units.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/frontend/step_walk.hpp"
 #include "compiler/targets/raspblock/raspblock_link.hpp"
@@ -55,12 +55,7 @@ inline constexpr int kHome = 1500;
 inline constexpr double kDegreeZero = 500.0;
 inline constexpr double kUnitsPerDegree = 2000.0 / 180.0;
 
-inline std::string grouped(std::uint64_t n) {
-  std::string s = std::to_string(n);
-  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
-    s.insert(static_cast<std::size_t>(i), ",");
-  return s;
-}
+inline std::string grouped(std::uint64_t n) { return format_grouped(static_cast<long long>(n)); }
 
 using LocationKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>;
 inline LocationKey key_of(const Location& at) { return {at.file, at.line, at.column}; }
