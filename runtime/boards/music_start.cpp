@@ -57,9 +57,14 @@ SyncedStart synced_start(const audio::StartPlan& plan, io::Duration wire, io::Du
   return s;
 }
 
+io::TimePoint carried_over(io::TimePoint t, io::Clock& from, io::Clock& to) {
+  if (&from == &to) return t;
+  return to.now() + (t - from.now());
+}
+
 MusicRunReport run_on_downbeat(const Board& board, const Line& line, std::uint8_t group,
                                std::uint16_t times, const SongStart& song,
-                               io::Duration audio_offset) {
+                               io::Duration audio_offset, io::Clock* song_clock) {
   MusicRunReport report;
   const Bytes command = board.run_frame(group, times);
   const audio::StartTiming timing =
@@ -75,7 +80,9 @@ MusicRunReport run_on_downbeat(const Board& board, const Line& line, std::uint8_
   if (board.stop_frame != nullptr) track.safe_stop = board.stop_frame();
   player::PlayOptions options;
   options.interrupted = line.interrupted;
-  options.start_at = plan.downbeat_heard;
+  options.start_at = song_clock != nullptr
+                         ? carried_over(plan.downbeat_heard, *song_clock, line.clock)
+                         : plan.downbeat_heard;
   report.play = player::play(std::vector<player::Track>{track}, line.clock, options);
   std::optional<io::TimePoint> written;
   if (!report.play.tracks.empty() && report.play.tracks[0].first) {

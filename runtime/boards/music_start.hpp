@@ -54,8 +54,14 @@ struct SyncedStart {
 SyncedStart synced_start(const audio::StartPlan& plan, io::Duration wire, io::Duration board_delay,
                          std::optional<io::TimePoint> written);
 
+// An instant on the clock `from` as the same instant on `to`: as far ahead of `to`'s now as it
+// lies ahead of `from`'s. For a robot on an in-process emulator's own clock, whose start is
+// dated on the host's clock by the song; `t` itself when they are one clock.
+io::TimePoint carried_over(io::TimePoint t, io::Clock& from, io::Clock& to);
+
 // A stored board's group started on the downbeat: its run frame written at plan.write_at (on
-// line.clock, which must be the output's clock), then its start confirmed the board's way.
+// line.clock, the output's clock; or, given `song_clock` for an emulator on its own clock,
+// carried over from it), then its start confirmed the board's way.
 // After an early end (Ctrl-C, a failed write) the board's stop frame is written.
 struct MusicRunReport {
   SyncedStart start;
@@ -64,7 +70,8 @@ struct MusicRunReport {
 };
 MusicRunReport run_on_downbeat(const Board& board, const Line& line, std::uint8_t group,
                                std::uint16_t times, const SongStart& song,
-                               io::Duration audio_offset);
+                               io::Duration audio_offset,
+                               io::Clock* song_clock = nullptr);
 
 // Waits, polling `interrupted`, until the output has played everything; false if interrupted.
 bool wait_for_song(audio::AudioOutput& output, io::Clock& clock,

@@ -160,7 +160,8 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
   }
   const boards::MusicRunReport r =
       boards::run_on_downbeat(board, line, static_cast<std::uint8_t>(a.group), times_of(a),
-                              *music.started, music.audio_offset);
+                              *music.started, music.audio_offset,
+                              music.robot_in_emulated_time ? &ctx.clock : nullptr);
   realtime.reset();
   switch (r.play.end) {
     case player::PlayEnd::Completed:

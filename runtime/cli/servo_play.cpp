@@ -185,7 +185,11 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
       if (!start_music(ctx, *music)) return std::nullopt;
       const std::size_t bytes = r.frames.empty() ? 0 : r.frames[0].bytes.size();
       planned = boards::live_song_start(board, *music, bytes, line.transport.seconds_per_byte());
-      return planned->start;
+      boards::LiveStart start = planned->start;
+      if (music->robot_in_emulated_time) {
+        start.at = boards::carried_over(start.at, ctx.clock, line.clock);
+      }
+      return start;
     };
   }
   const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);

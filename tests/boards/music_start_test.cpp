@@ -126,5 +126,15 @@ TEST(MusicStart, WaitingForTheSongEndsWithItOrWithCtrlC) {
   EXPECT_FALSE(wait_for_song(again.output, again.clock, &interrupted));
 }
 
+// A downbeat dated on the host's clock, 750 ms ahead of its now, is 750 ms ahead of an
+// emulator's own clock too, whatever that clock reads; on one clock it is the same instant.
+TEST(MusicStart, ADownbeatIsCarriedOverToAnEmulatorsOwnClock) {
+  io::ManualClock host(std::chrono::seconds(21216));
+  io::ManualClock emulator(std::chrono::milliseconds(20));
+  const io::TimePoint downbeat = host.now() + std::chrono::milliseconds(750);
+  EXPECT_EQ(carried_over(downbeat, host, emulator), io::TimePoint(std::chrono::milliseconds(770)));
+  EXPECT_EQ(carried_over(downbeat, host, host), downbeat);
+}
+
 }  // namespace
 }  // namespace seqc::boards

@@ -123,9 +123,6 @@ EXPECTED_REFUSALS = [
 # Cells that show a fault of the program (or of its documents) today: (command, kind, song,
 # show) -> (what its failure says, why it is a fault). Each must still fail, and for that reason;
 # the table's report prints them.
-TRACE_JUMP = ("--music against an in-process emulator: the trace's times jump to the host's "
-              "monotonic clock (t of the order of the machine's uptime) for the start and every "
-              "frame after it, where docs/trace.md gives seconds since the trace began")
 CAR_SONG_PREVIEW = ("docs/preview.md and docs/cli.md: a file with `music:` embeds its song in "
                     "the page (docs/language.md: a `music:` block for every robot kind); the "
                     "Raspblock page has no <audio id=\"song\">")
@@ -138,9 +135,6 @@ SHOW_SONG_PLOT = ("a show whose performers dance to one song gets a picture with
                   "lane docs/cli.md gives a file with `music:`: a missing feature or a gap in "
                   "the documents")
 KNOWN_FAULTS = {}
-for _k in SERVO_KINDS:  # every servo kind plays here on emu:xarm, emu:xarm-hid or emu:lsc6
-    KNOWN_FAULTS[("upload", _k, True, False)] = ("in the trace (over", TRACE_JUMP)
-    KNOWN_FAULTS[("play", _k, True, False)] = ("in the trace (over", TRACE_JUMP)
 for _k in KINDS:
     KNOWN_FAULTS[("preview", _k, True, True)] = ("no <audio id=\"song\">", SHOW_SONG_PREVIEW)
     KNOWN_FAULTS[("plot", _k, True, True)] = ("song lane missing", SHOW_SONG_PLOT)
