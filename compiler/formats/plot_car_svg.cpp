@@ -5,6 +5,7 @@
 
 #include "compiler/formats/car_path.hpp"
 #include "compiler/formats/plot_axes.hpp"
+#include "compiler/formats/plot_song.hpp"
 #include "compiler/formats/plot_svg.hpp"
 #include "compiler/formats/raspblock_simulate.hpp"
 #include "compiler/formats/svg_text.hpp"
@@ -142,11 +143,14 @@ std::string plot_car_program(const compiler::RaspblockProgram& program,
     y0 += kLane + kGap;
   }
   const double lanes_bottom = y0 - kGap;
-  const double panel_top = y0 + 40;
+  // The song under the lanes, as on the arm's picture, so its beats read against the bar lines.
+  const double song_lane = options.song != nullptr ? plot::kSongLane + kGap : 0;
+  const double panel_top = y0 + song_lane + 40;
   lanes += plot::markers(program.timeline, f, kTop, lanes_bottom);
-  lanes += plot::time_axis(f, y0);
+  lanes += plot::time_axis(f, y0 + song_lane);
   std::string body = svg::text(12, 20, options.title, "font-size=\"15\" font-weight=\"bold\"");
-  body += plot::beat_grid(program.timeline, f, kTop, lanes_bottom);
+  if (options.song != nullptr) body += plot::song_lane(*options.song, f, lanes_bottom + kGap);
+  body += plot::beat_grid(program.timeline, f, kTop, lanes_bottom + song_lane);
   body += svg::text(12, 38,
                     std::to_string(program.packets.size()) + " packets, " + num(duration / 1000.0) +
                         " s; the gimbal and servo outputs over time",

@@ -16,10 +16,22 @@ std::uint64_t length_ms(const compiler::Program& program) {
   return 0;
 }
 
+namespace {
+
+// The song of the file's `music:` block, for every robot kind (the walk keeps it on the
+// timeline of both programs).
+const compiler::Song* song_of(const compiler::Program& program) {
+  const compiler::Timeline& tl = std::visit(
+      [](const auto& p) -> const compiler::Timeline& { return p.timeline; }, program);
+  return tl.song ? &*tl.song : nullptr;
+}
+
+}  // namespace
+
 std::optional<PlotSong> plot_song(const compiler::Program& program, seqc::SongReader& songs) {
-  const auto* servo = std::get_if<compiler::ServoProgram>(&program);
-  if (servo == nullptr || !servo->timeline.song) return std::nullopt;
-  const compiler::Song& song = *servo->timeline.song;
+  const compiler::Song* written = song_of(program);
+  if (written == nullptr) return std::nullopt;
+  const compiler::Song& song = *written;
   Result<seqc::SongSamples> decoded = songs.read(song.file);
   if (!decoded) return std::nullopt;
   PlotSong out;
@@ -54,8 +66,27 @@ std::string plot_program(const compiler::Program& program, PlotOptions options,
   return plot_program(program, options);
 }
 
+const ShowPart* show_song_part(const std::vector<ShowPart>& parts) {
+  const ShowPart* first = nullptr;
+  for (const ShowPart& p : parts) {
+    const compiler::Song* song = song_of(*p.program);
+    if (song == nullptr) continue;
+    if (first == nullptr) {
+      first = &p;
+      continue;
+    }
+    const compiler::Song& one = *song_of(*first->program);
+    if (song->file != one.file || song->downbeat != one.downbeat) return nullptr;
+  }
+  return first;
+}
+
 std::string plot_show(const std::vector<ShowPart>& parts, const std::string& title,
-                      const std::string& show, PlotOptions options) {
+                      const std::string& show, PlotOptions options, seqc::SongReader* songs) {
+  // The show's one song, under the lanes of the first performer dancing to it.
+  const ShowPart* with_song = songs != nullptr ? show_song_part(parts) : nullptr;
+  std::optional<PlotSong> song;
+  if (with_song != nullptr) song = plot_song(*with_song->program, *songs);
   double end = 0;
   for (const ShowPart& part : parts) end = std::max(end, double(length_ms(*part.program)));
   if (!options.from_ms) options.from_ms = 0;
@@ -64,6 +95,7 @@ std::string plot_show(const std::vector<ShowPart>& parts, const std::string& tit
   double y = 36;
   for (const ShowPart& p : parts) {
     options.title = p.title;
+    options.song = &p == with_song && song ? &*song : nullptr;
     std::string part = plot_program(*p.program, options);
     const auto h = part.find("height=\"");
     const double height = std::atof(part.c_str() + h + 8);
@@ -96,26 +128,34 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 }
 
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
-                         const std::string& show) {
+                         const std::string& show, seqc::SongReader* songs,
+                         seqc::FileReader* files) {
   double end = 0;
   for (const ShowPart& p : parts) end = std::max(end, static_cast<double>(length_ms(*p.program)));
+  // The show's one song: played with the page, drawn under the first performer dancing to it.
+  const ShowPart* with_song = show_song_part(parts);
+  std::optional<PlotSong> picture;
+  std::optional<PreviewSong> song;
+  if (with_song != nullptr && songs != nullptr) picture = plot_song(*with_song->program, *songs);
+  if (with_song != nullptr && files != nullptr) song = preview_song(*with_song->program, *files);
   std::vector<std::string> names;
   std::vector<PreviewPart> drawn;
   for (const ShowPart& p : parts) {
-    auto part = preview_part(*p.program, p.title, end);
+    auto part = preview_part(*p.program, p.title, end,
+                             &p == with_song && picture ? &*picture : nullptr);
     if (!part) continue;
     names.push_back(p.name);
     drawn.push_back(std::move(*part));
   }
   return preview_page(
       "show " + show + " (" + std::to_string(drawn.size()) + " performers, one clock), " + title,
-      names, drawn, end);
+      names, drawn, end, song ? &*song : nullptr);
 }
 
 std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files) {
-  const auto* servo = std::get_if<compiler::ServoProgram>(&program);
-  if (servo == nullptr || !servo->timeline.song) return std::nullopt;
-  const compiler::Song& song = *servo->timeline.song;
+  const compiler::Song* written = song_of(program);
+  if (written == nullptr) return std::nullopt;
+  const compiler::Song& song = *written;
   const std::string mime = audio_mime(song.file);
   if (mime.empty()) return std::nullopt;
   Result<std::string> bytes = files.read(song.file);

@@ -47,8 +47,15 @@ struct ShowPart {
 // A show's picture: every part's plot_program() on one time axis (options.from_ms and to_ms,
 // by default 0 and the longest part's end), stacked as nested <svg> elements in one document
 // whose <title> is `title` and whose heading names the show `show` and counts its parts.
+// The show's one song (shown under the first performer whose file has it) comes through `songs`
+// when given.
 std::string plot_show(const std::vector<ShowPart>& parts, const std::string& title,
-                      const std::string& show, PlotOptions options);
+                      const std::string& show, PlotOptions options,
+                      seqc::SongReader* songs = nullptr);
+
+// The part whose `music:` song is the show's one song: the first with a song, when every part
+// with one names the same file and downbeat (as `seqc show --music` plays it); else nullptr.
+const ShowPart* show_song_part(const std::vector<ShowPart>& parts);
 
 // The song of a file with `music:` as the plot draws it under the lanes: decoded through
 // `songs`, with the beats found in it (the file's tempo as the hint between half and double
@@ -64,8 +71,11 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 
 // A show's page (preview_page): every part it can draw (preview_part) on one time axis, the
 // longest part's, titled "show SHOW (N performers, one clock), TITLE" where N counts those parts.
+// The show's one song (show_song_part) is embedded to play through `files` and drawn under its
+// performer's lanes through `songs`, when given.
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
-                         const std::string& show);
+                         const std::string& show, seqc::SongReader* songs = nullptr,
+                         seqc::FileReader* files = nullptr);
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; nullopt without a song, when it cannot be read or is of another type.

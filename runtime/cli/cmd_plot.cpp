@@ -24,13 +24,13 @@ std::optional<double> window_ms(Context& ctx, const std::string& option, const s
 
 // A show: every performer's picture, titled with its name and file, on one time axis.
 std::string plot_performers(const compiler::ShowOutput& show, const std::string& name,
-                            const compiler::PlotOptions& options) {
+                            const compiler::PlotOptions& options, seqc::SongReader* songs) {
   std::vector<compiler::ShowPart> parts;
   for (const compiler::Performer& p : show.performers) {
     parts.push_back(
         {&*p.output.program, part_title(p.output, p.name + ": " + p.file, p.group), p.name});
   }
-  return compiler::plot_show(parts, name, show.name, options);
+  return compiler::plot_show(parts, name, show.name, options, songs);
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (result.code != ExitCode::Ok) return;
     std::string svg;
     if (loaded.file.is_show()) {
-      svg = plot_performers(loaded.file.show(), name, options);
+      svg = plot_performers(loaded.file.show(), name, options, ctx.songs);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` gets its song drawn under the lanes.

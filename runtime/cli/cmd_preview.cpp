@@ -17,13 +17,14 @@ namespace seqc::cli {
 namespace {
 
 // Every performer on one time axis, titled with its file's name.
-std::string preview_performers(const compiler::ShowOutput& show, const std::string& name) {
+std::string preview_performers(Context& ctx, const compiler::ShowOutput& show,
+                               const std::string& name) {
   std::vector<compiler::ShowPart> parts;
   for (const compiler::Performer& p : show.performers) {
     const std::string file = std::filesystem::path(p.file).filename().string();
     parts.push_back({&*p.output.program, part_title(p.output, file, p.group), p.name});
   }
-  return compiler::preview_show(parts, name, show.name);
+  return compiler::preview_show(parts, name, show.name, ctx.songs, &ctx.files);
 }
 
 }  // namespace
@@ -51,7 +52,7 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
     if (result.code != ExitCode::Ok) return;
     std::string html;
     if (loaded.file.is_show()) {
-      html = preview_performers(loaded.file.show(), name);
+      html = preview_performers(ctx, loaded.file.show(), name);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` brings its song: drawn under the lanes and played with the page.

@@ -123,23 +123,7 @@ EXPECTED_REFUSALS = [
 # Cells that show a fault of the program (or of its documents) today: (command, kind, song,
 # show) -> (what its failure says, why it is a fault). Each must still fail, and for that reason;
 # the table's report prints them.
-CAR_SONG_PREVIEW = ("docs/preview.md and docs/cli.md: a file with `music:` embeds its song in "
-                    "the page (docs/language.md: a `music:` block for every robot kind); the "
-                    "Raspblock page has no <audio id=\"song\">")
-CAR_SONG_PLOT = ("docs/cli.md, seqc plot: a file with `music:` gets a lane with the song's "
-                 "waveform; the Raspblock picture draws the bar grid but no song lane")
-SHOW_SONG_PREVIEW = ("a show whose performers dance to one song (played by `seqc show --music`, "
-                     "docs/music.md) gets a page without the song, which docs/preview.md gives "
-                     "a file with `music:`: a missing feature or a gap in the documents")
-SHOW_SONG_PLOT = ("a show whose performers dance to one song gets a picture without the song "
-                  "lane docs/cli.md gives a file with `music:`: a missing feature or a gap in "
-                  "the documents")
 KNOWN_FAULTS = {}
-for _k in KINDS:
-    KNOWN_FAULTS[("preview", _k, True, True)] = ("no <audio id=\"song\">", SHOW_SONG_PREVIEW)
-    KNOWN_FAULTS[("plot", _k, True, True)] = ("song lane missing", SHOW_SONG_PLOT)
-KNOWN_FAULTS[("preview", "raspblock", True, False)] = ("no <audio id=\"song\">", CAR_SONG_PREVIEW)
-KNOWN_FAULTS[("plot", "raspblock", True, False)] = ("song lane missing", CAR_SONG_PLOT)
 
 
 class CellFailure(Exception):
