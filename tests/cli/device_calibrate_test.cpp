@@ -60,6 +60,24 @@ TEST(CalibrateClock, ASlowClockOnAPacedLineMeasuresMinus10000Ppm) {
   EXPECT_TRUE(h.emu.stored_group(7).has_value());
 }
 
+TEST(CalibrateClock, ARunLongerThanOneActionIsSeveralActionsAndMeasuresTheSame) {
+  // An action lasts at most 30 s, so a 130 s run is ceil(130 / 30) = 5 actions of 26,000 ms.
+  // On a clock 2 % slow each lasts 26000 / 0.98 ms = 26,530,612,244 ns (truncated), a run
+  // 5 x that = 132,653,061,220 ns: 130 / 132.65306122 - 1 = -0.01999999997 (-20,000 ppm, 3e-5
+  // ppm off), the same in both runs, so a spread of 0.
+  DeviceHarness h(with_clock("clock=-2%"));
+  RunResult r = h.run({"calibrate", "clock", "--port", "emu:xarm", "--runs", "2", "--length",
+                       "130s", "--group", "9"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "clock: -20,000 ppm \u00b1 0 (2 runs of 130.000 s)\n"
+            "rig file (--rig): clock_ppm: -20000\n");
+  const auto stored = h.emu.stored_group(9);
+  ASSERT_TRUE(stored.has_value());
+  ASSERT_EQ(stored->size(), 5u);
+  for (const lsc::GroupAction& a : *stored) EXPECT_EQ(a.time_ms, 26000);
+}
+
 TEST(CalibrateClock, AnExactClockMeasuresZero) {
   DeviceHarness h;
   RunResult r =

@@ -217,6 +217,38 @@ sequence:
                                      "move takes 0.1 s"});
 }
 
+// A first move that starts later than 0 ms (`at: 200ms` in a track, 1.2 s into the sequence)
+// is checked like one at the start: base 0..1000 at 800/s moving to 200 may come from 1000, 800
+// units away, 1 s; the move takes 500 ms (200..700 of the block), too fast; 1 s (200..1200) is
+// enough. shoulder gets its position first (to 500 in 1 s: from 0 at the xArm's 1562.5/s it
+// needs 0.32 s), so its track is no first move. Line 13 col 11 is base's `- move:`.
+TEST(MotionChecks, AFirstMoveStartingLaterThanZeroIsCheckedToo) {
+  const auto file = [](const std::string& time) {
+    return "robot:\n"
+           "  profile: xarm\n"
+           "  servos:\n"
+           "    base: {max_speed: 800/s}\n"
+           "sequence:\n"
+           "  - move: {shoulder: 500}\n"
+           "    time: 1s\n"
+           "  - together:\n"
+           "      a:\n"
+           "        - move: {shoulder: 600}\n"
+           "          time: 1200ms\n"
+           "      b:\n"
+           "        - move: {base: 200}\n"
+           "          time: " +
+           time +
+           "\n"
+           "          at: 200ms\n";
+  };
+  EXPECT_EQ(messages(compile_text(file("500ms"))),
+            std::vector<std::string>{"13:11 warning: first move of 'base' may start anywhere in "
+                                     "0..1000; from 1000 it needs 1 s at max_speed 800/s; this "
+                                     "move takes 0.5 s"});
+  EXPECT_EQ(messages(compile_text(file("1s"))), std::vector<std::string>{});
+}
+
 // base's first move (no position before it) runs 0..1100 ms while the other track's move ends
 // at 200 ms, a boundary of every servo's actions. The controller can only be told base's end:
 // sending it in the 200 ms action would take base all the way in 200 ms (5000/s). So base is

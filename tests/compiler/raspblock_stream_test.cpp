@@ -195,6 +195,50 @@ TEST(RaspblockStream, MovePacketsAtFractionalTimesRoundOnce) {
   EXPECT_EQ(p->duration_ms, 938u);  // 937.5 rounds away from zero
 }
 
+TEST(RaspblockStream, AMoveWhoseStepIsNotAWholeMsArrivesAtItsWrittenTime) {
+  // 1999 ms in 100 steps: a step lasts 19.99 ms. The move starts at 100 ms (after the first
+  // move's single packet), so step k (1..100), carrying 1000 + k, is sent at
+  // 100 + (k - 1) x 19.99 rounded once:
+  //   k=1: 100   k=2: 119.99 -> 120   k=51: 1099.5 -> 1100   k=52: 1119.49 -> 1119
+  //   k=100: 100 + 1979.01 = 2079.01 -> 2079, and the step ends at 100 + 1999 = 2099 (the stop).
+  // A whole-ms step would land elsewhere: 19 ms puts the last packet at 1981 (the target
+  // reached at 2000, 99 ms early); 20 ms at 2080 (ending at 2100).
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - move: {servo1: 1000}\n"
+      "    time: 100ms\n"
+      "    steps: 1\n"
+      "  - move: {servo1: 1100}\n"
+      "    time: 1999ms\n"
+      "    steps: 100\n");
+  const RaspblockProgram* p = out.raspblock_program();
+  ASSERT_NE(p, nullptr) << diagnostics_of(out);
+  std::vector<std::pair<std::uint32_t, int>> got;
+  for (const TimedPacket& t : p->packets) {
+    if (const auto* s = std::get_if<raspblock::SingleServo>(&t.packet)) {
+      got.emplace_back(t.at_ms, s->position);
+    }
+  }
+  ASSERT_EQ(got.size(), 101u);
+  EXPECT_EQ(got[0], (std::pair<std::uint32_t, int>{0, 1000}));
+  EXPECT_EQ(got[1], (std::pair<std::uint32_t, int>{100, 1001}));
+  EXPECT_EQ(got[2], (std::pair<std::uint32_t, int>{120, 1002}));
+  EXPECT_EQ(got[51], (std::pair<std::uint32_t, int>{1100, 1051}));
+  EXPECT_EQ(got[52], (std::pair<std::uint32_t, int>{1119, 1052}));
+  EXPECT_EQ(got[100], (std::pair<std::uint32_t, int>{2079, 1100}));
+  for (int k = 1; k <= 100; ++k) {
+    SCOPED_TRACE(k);
+    // (k - 1) x 1999 / 100 rounded half up, in whole numbers: ((k - 1) x 1999 + 50) / 100.
+    const auto at = static_cast<std::uint32_t>(100 + ((k - 1) * 1999 + 50) / 100);
+    EXPECT_EQ(got[static_cast<std::size_t>(k)], (std::pair<std::uint32_t, int>{at, 1000 + k}));
+  }
+  // The target is first sent by the last packet only, and the stream ends as its step ends.
+  EXPECT_EQ(p->duration_ms, 2099u);
+  ASSERT_FALSE(p->packets.empty());
+  EXPECT_EQ(p->packets.back().at_ms, 2099u);
+}
+
 TEST(RaspblockStream, MovesInterpolateAtTheResolutionAndSkipRepeats) {
   auto out = compile_text(
       "robot: raspblock\n"
