@@ -127,6 +127,10 @@ class Timeline {
   TempoMap tempo_map;
   // The song of the main file's `music:` block, which then owns the tempo map; nullopt without.
   std::optional<Song> song;
+  // The audio file the main file's `music:` block names, set also when the block or the steps
+  // have mistakes (and song or the fit is then missing): the commands that decode songs still
+  // say in the same run whether it can be read.
+  std::optional<SongFile> song_file;
 
  private:
   struct Span {  // what the servos of one step share

@@ -1,4 +1,5 @@
 // seqc compile FILE [--group N] [--emit hex|listing|json] [-o OUT] [--strict] [--dry-run]
+// [--port P]
 // The board the file is for renders it (runtime/boards); --dry-run lists what `seqc upload`
 // would send, from the board's own uploader run against a recording transport.
 #include <string>
@@ -31,6 +32,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     bool strict = false;
     ClockScaleOptions clock;
     bool dry_run = false;
+    std::string port;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -51,13 +53,15 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--dry-run", opts->dry_run,
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
                 "commented hex; `seqc decode -` reads it back");
+  add_link_port_option(*cmd, opts->port);
   cmd->callback([&ctx, &result, opts] {
     std::int32_t ppm = 0;
     if (const ExitCode e = resolve_clock_ppm(ctx, opts->clock, ppm); e != ExitCode::Ok) {
       result.code = e;
       return;
     }
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, ppm);
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, ppm,
+                                    link_of_port(opts->port));
     result.code = c.code;
     if (!c.output.program) return;
     boards::CompiledText text = boards::compiled_text(
