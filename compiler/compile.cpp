@@ -11,15 +11,22 @@
 #include "compiler/frontend/robot_section.hpp"
 #include "compiler/music/song_check.hpp"
 #include "compiler/targets/raspblock/raspblock_lowering.hpp"
+#include "compiler/targets/servo_controller/hid_actions.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 
 namespace seqc::compiler {
 namespace {
 
 // The audio check, for the commands that pass a SongReader and a file with a song.
+// A song whose block or dance has mistakes is only read, so that an unreadable file is said in
+// the same run as those mistakes.
 void check_music(const Timeline& timeline, const CompileOptions& options, Reporter& reporter) {
-  if (options.songs == nullptr || !timeline.song) return;
-  check_song(*timeline.song, timeline.tempo_map, timeline.end, *options.songs, reporter);
+  if (options.songs == nullptr) return;
+  if (timeline.song) {
+    check_song(*timeline.song, timeline.tempo_map, timeline.end, *options.songs, reporter);
+  } else if (timeline.song_file) {
+    check_song_readable(*timeline.song_file, *options.songs, reporter);
+  }
 }
 
 }  // namespace
@@ -43,12 +50,15 @@ ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoade
   if (!ready_to_fit(walk, robot, reporter)) {
     ServoProgram unfitted;
     unfitted.robot = robot.info;
+    unfitted.timeline.song_file = walk.timeline.song_file;
     unfitted.group_capacity = walk.capacity;
     return unfitted;
   }
   const FitResult fit = fit_timeline_on_board(
       walk.timeline, servo_fit_options(robot, options.free_end_points), options.clock_ppm);
-  return servo_program(robot, std::move(walk), fit, options.clock_ppm, reporter);
+  ServoProgram program = servo_program(robot, std::move(walk), fit, options.clock_ppm, reporter);
+  if (options.over_hid) check_hid_actions(program, reporter);
+  return program;
 }
 
 CompileOutput compile_file(const std::string& path, FileReader& files,

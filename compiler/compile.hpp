@@ -35,6 +35,10 @@ struct CompileOptions {
   // "Curves, tolerance and fitting"); false keeps every target on the rounded curve, the fit
   // before free end points, so that the two can be compared (fit_bench).
   bool free_end_points = true;
+  // The stored group will travel over USB HID (`--port hid`, `hid:PATH`, `emu:xarm-hid`): every
+  // GroupDownload frame must fit one 64-byte report, so an action naming more servos than one
+  // frame holds there is an error at its step (compiler/targets/servo_controller/hid_actions.hpp).
+  bool over_hid = false;
 };
 
 struct CompileOutput {

@@ -1,9 +1,12 @@
 #include "compiler/formats/plot_axes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include "compiler/formats/svg_text.hpp"
 
@@ -51,22 +54,61 @@ std::string time_axis(const Frame& f, double y) {
   return out;
 }
 
+double label_width(std::string_view text, double font_size) {
+  std::size_t chars = 0;  // code points: a UTF-8 continuation byte starts none
+  for (const char c : text) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80 ? 1 : 0;
+  return static_cast<double>(chars) * font_size * kCharWidth;
+}
+
 std::string markers(const compiler::Timeline& tl, const Frame& f, double top, double bottom) {
+  // Each label keeps the row the alternation gives it unless it would overlap a label already
+  // in that row; then it takes the other row, and when both are taken it is not drawn (its
+  // line and its <title> stay). A long piece with a section every bar or two would otherwise
+  // print its labels over one another.
+  struct Span {
+    double left, right;
+  };
+  std::array<std::vector<Span>, 2> rows;
+  auto fits = [&](int row, const Span& s) {
+    return std::none_of(rows[row].begin(), rows[row].end(), [&](const Span& o) {
+      return s.left < o.right + kLabelGap && o.left < s.right + kLabelGap;
+    });
+  };
   std::string out;
-  int row = 0;
+  std::size_t hidden = 0;
+  int count = 0;
   for (const compiler::TimelineMarker& m : tl.markers) {
     const double t = m.at.value();
     if (!f.inside(t)) continue;
     const bool section = m.label.rfind("section ", 0) == 0;
     const char* colour =
         section ? "#7c3aed" : (m.label.rfind("at ", 0) == 0 ? "#0e7490" : "#b45309");
+    const int preferred = count++ % 2;
+    const Span span{f.x(t) + 3, f.x(t) + 3 + label_width(m.label, kMarkerFontSize)};
+    int row = -1;
+    for (const int r : {preferred, 1 - preferred}) {
+      if (fits(r, span)) {
+        row = r;
+        break;
+      }
+    }
     out += "<g class=\"marker\"><title>" + svg::escape(m.label) + "</title>\n";
-    out += svg::line(f.x(t), top - 20 + 10.0 * (row % 2), f.x(t), bottom,
+    out += svg::line(f.x(t), top - 20 + 10.0 * (row < 0 ? preferred : row), f.x(t), bottom,
                      std::string("stroke=\"") + colour + "\" stroke-dasharray=\"4 3\"");
-    out += svg::text(f.x(t) + 3, top - 22 + 10.0 * (row % 2), m.label,
-                     std::string("fill=\"") + colour + "\" font-size=\"10\"");
+    if (row >= 0) {
+      rows[row].push_back(span);
+      out += svg::text(span.left, top - 22 + 10.0 * row, m.label,
+                       std::string("fill=\"") + colour + "\" font-size=\"10\"");
+    } else {
+      ++hidden;
+    }
     out += "</g>\n";
-    ++row;
+  }
+  if (hidden > 0) {
+    // In the left margin beside the rows, where no marker's label goes.
+    out += svg::text(12, top - 12,
+                     std::to_string(hidden) + (hidden == 1 ? " label" : " labels") + " hidden",
+                     "class=\"hidden-labels\" fill=\"#6b7280\" font-size=\"10\"");
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "compiler/timeline/timeline.hpp"
 
@@ -23,7 +24,14 @@ struct Frame {  // time window -> x
 std::string beat_grid(const compiler::Timeline& tl, const Frame& f, double top, double bottom);
 // The axis line at `y` with a tick and a label ("1.5 s") every nice step.
 std::string time_axis(const Frame& f, double y);
-// Each marker inside the window as a dashed line with its label, alternating two rows.
+// How wide a label is taken to be: its characters (code points) x font size x kCharWidth, a
+// sans-serif average; labels closer than kLabelGap count as overlapping.
+inline constexpr double kCharWidth = 0.6, kLabelGap = 2, kMarkerFontSize = 10;
+double label_width(std::string_view text, double font_size);
+// Each marker inside the window as a dashed line with its label, in two rows taken in turn; a
+// label that would overlap one already drawn goes to the other row, and one that fits in
+// neither is left out (the line's <title> still names it), with "N labels hidden" in the left
+// margin.
 std::string markers(const compiler::Timeline& tl, const Frame& f, double top, double bottom);
 
 }  // namespace seqc::compiler::plot

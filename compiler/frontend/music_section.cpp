@@ -93,11 +93,12 @@ std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, cons
   }
   const YamlNode* tempo = music.find("tempo");
   const YamlNode* meter = music.find("meter");
-  if (tempo == nullptr || meter == nullptr) {
-    reporter.error(key.location, std::string("'music' needs the song's ") +
-                                     (tempo == nullptr ? "'tempo' (e.g. 'tempo: 128')"
-                                                       : "'meter' (e.g. 'meter: 4/4')") +
-                                     " at bar 1");
+  if (tempo == nullptr) {
+    reporter.error(key.location, "'music' needs the song's 'tempo' (e.g. 'tempo: 128') at bar 1");
+    ok = false;
+  }
+  if (meter == nullptr) {
+    reporter.error(key.location, "'music' needs the song's 'meter' (e.g. 'meter: 4/4') at bar 1");
     ok = false;
   }
   if (tempo != nullptr) {
@@ -136,6 +137,12 @@ std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, cons
   }
   if (!ok) return std::nullopt;
   return song;
+}
+
+std::optional<SongFile> music_file(const YamlNode& music, const std::string& path) {
+  const YamlNode* file = music.is_map() ? music.find("file") : nullptr;
+  if (file == nullptr || !file->is_scalar() || file->scalar.empty()) return std::nullopt;
+  return SongFile{resolve_include(path, file->scalar), file->location};
 }
 
 TempoMap song_tempo_map(const Song& song) {

@@ -19,6 +19,10 @@ namespace seqc::compiler {
 std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, const std::string& path,
                                 Reporter& reporter);
 
+// The audio file `music` names, when its `file` is a non-empty scalar, whatever else in the block
+// is wrong (nothing is reported: parse_music() says the mistakes).
+std::optional<SongFile> music_file(const YamlNode& music, const std::string& path);
+
 // The song's tempo map: its tempo and meter at bar 1, then each change at its bar line.
 TempoMap song_tempo_map(const Song& song);
 

@@ -7,6 +7,14 @@
 #include "base/units.hpp"
 
 namespace seqc::compiler {
+namespace {
+
+// What a broken `music:` block's unreadable tempo or meter counts as while the steps are checked:
+// any value would do, as the file already has an error and makes no program.
+constexpr double kStandInTempo = 120;
+constexpr int kStandInBeatsPerBar = 4;
+
+}  // namespace
 
 std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& reporter) {
   auto it = scopes_.find(f.path);
@@ -20,6 +28,7 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
   if (music != nullptr) {
     // The song owns the one tempo map: a tempo or meter beside it would be a second one.
     scope->song = parse_music(music->first, music->second, f.path, reporter);
+    scope->song_file = music_file(music->second, f.path);
     for (std::string_view key : {"tempo", "meter"}) {
       if (const YamlNode* v = f.root->find(key)) {
         reporter.error(v->location,
@@ -34,11 +43,14 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
       scope->beats_per_bar = scope->song->beats_per_bar;
     } else if (music->second.is_map()) {
       // A broken block still counts beats by the tempo and meter it gives, so its mistakes are
-      // not followed by one "no tempo" per step (the reporter says each mistake once).
-      if (const YamlNode* t = music->second.find("tempo")) scope->tempo = parse_tempo(*t, reporter);
-      if (const YamlNode* m = music->second.find("meter")) {
-        scope->beats_per_bar = parse_meter(*m, reporter);
-      }
+      // not followed by one "no tempo" per step (the reporter says each mistake once); a tempo
+      // or meter it lacks, or gives as a mistake, counts as 120 and 4/4 (said once already).
+      const YamlNode* t = music->second.find("tempo");
+      const YamlNode* m = music->second.find("meter");
+      scope->tempo =
+          t != nullptr ? parse_tempo(*t, reporter).value_or(kStandInTempo) : kStandInTempo;
+      scope->beats_per_bar = m != nullptr ? parse_meter(*m, reporter).value_or(kStandInBeatsPerBar)
+                                          : kStandInBeatsPerBar;
     }
   } else {
     if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);

@@ -34,8 +34,9 @@ struct FileScope {
   const LoadedFile* file = nullptr;
   std::map<std::string, Pose, std::less<>> poses;
   std::optional<double> tempo;
-  std::optional<int> beats_per_bar;  // 'meter: 3/4' -> 3
-  std::optional<Song> song;          // `music:`: its tempo and meter at bar 1 are the above
+  std::optional<int> beats_per_bar;   // 'meter: 3/4' -> 3
+  std::optional<Song> song;           // `music:`: its tempo and meter at bar 1 are the above
+  std::optional<SongFile> song_file;  // `music:`'s audio file, also when the block has mistakes
   std::optional<std::uint32_t> resolution_ms;
   std::optional<double> tolerance;                               // device units
   std::map<std::string, const YamlNode*, std::less<>> sections;  // name -> its step list

@@ -235,6 +235,7 @@ void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const Yaml
   TempoMap& music = timeline_.tempo_map;
   if (is_main) {
     timeline_.song = scope.song;
+    timeline_.song_file = scope.song_file;
     music = scope.song ? song_tempo_map(*scope.song)
                        : TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
   } else {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,19 +44,31 @@ std::map<long long, std::vector<double>> offsets_by_bar(const TempoMap& map,
   return bars;
 }
 
+// The song's samples, or nullopt after an error at the `file:` value.
+std::optional<SongSamples> read_song(const SongFile& file, SongReader& reader, Reporter& reporter) {
+  Result<SongSamples> audio = reader.read(file.path);
+  if (!audio) {
+    reporter.error(file.at, "cannot use the song: " + audio.error().message);
+    return std::nullopt;
+  }
+  if (audio->sample_rate <= 0 || audio->samples.empty()) {
+    reporter.error(file.at, "cannot use the song: '" + file.path + "' holds no audio");
+    return std::nullopt;
+  }
+  return std::move(*audio);
+}
+
 }  // namespace
+
+void check_song_readable(const SongFile& file, SongReader& reader, Reporter& reporter) {
+  (void)read_song(file, reader, reporter);
+}
 
 void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& reader,
                 Reporter& reporter) {
-  const Result<SongSamples> audio = reader.read(song.file);
-  if (!audio) {
-    reporter.error(song.file_at, "cannot use the song: " + audio.error().message);
-    return;
-  }
-  if (audio->sample_rate <= 0 || audio->samples.empty()) {
-    reporter.error(song.file_at, "cannot use the song: '" + song.file + "' holds no audio");
-    return;
-  }
+  const std::optional<SongSamples> audio =
+      read_song(SongFile{song.file, song.file_at}, reader, reporter);
+  if (!audio) return;
   const double length_ms = static_cast<double>(audio->samples.size()) / audio->sample_rate * 1000;
   const double downbeat_ms = song.downbeat.value();
   const double dance_end_ms = downbeat_ms + end.value();

@@ -22,4 +22,8 @@ inline constexpr double kSongBeatToleranceMs = 20;
 void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& reader,
                 Reporter& reporter);
 
+// Only the first of those: an error at `file.at` when the song cannot be decoded, for a file whose
+// `music:` block or steps have mistakes (there is no tempo map or dance to compare then).
+void check_song_readable(const SongFile& file, SongReader& reader, Reporter& reporter);
+
 }  // namespace seqc::compiler

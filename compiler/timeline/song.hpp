@@ -21,6 +21,12 @@ struct SongChange {
   Location at;
 };
 
+// The audio file a `music:` block names, known also when the rest of the block has mistakes.
+struct SongFile {
+  std::string path;  // resolved relative to the choreography
+  Location at;       // the `file:` value
+};
+
 struct Song {
   std::string file;  // the audio file's path, resolved relative to the choreography
   ExactMs downbeat;  // where bar 1 beat 1 (time 0 of the sequence) falls in the audio

@@ -139,6 +139,10 @@ class Timeline {
   // null when none did. taken_into_lines: by servo, whether a line took its curve.
   std::shared_ptr<const Timeline> written;
   std::vector<bool> taken_into_lines;
+  // The audio file the main file's `music:` block names, set also when the block or the steps
+  // have mistakes (and song or the fit is then missing): the commands that decode songs still
+  // say in the same run whether it can be read.
+  std::optional<SongFile> song_file;
 
  private:
   struct Span {  // what the servos of one step share

@@ -29,6 +29,15 @@ inline constexpr std::uint8_t kActionMarker = 0x0b;  // reading: the table's con
 inline constexpr std::uint16_t kMinActionMs = 20;    // vendor tools' bounds per action
 inline constexpr std::uint16_t kMaxActionMs = 30000;
 
+// A step 4 (action) frame naming `servos` servos, its 4-byte header included: 55 55 LEN 05, then
+// 04 G b i 0B tLo tHi (7 bytes) and 3 bytes per servo (id posLo posHi).
+constexpr std::size_t action_frame_bytes(std::size_t servos) {
+  return kHeaderSize + 7 + 3 * servos;
+}
+// Over USB HID each frame travels in one report of kHidReportData bytes, header included, so an
+// action names at most (64 - 11) / 3 = 17 servos there; a serial link takes any frame.
+inline constexpr std::size_t kHidMaxActionServos = (kHidReportData - action_frame_bytes(0)) / 3;
+
 struct GroupAction {
   std::uint16_t time_ms = 0;
   std::vector<ServoTarget> servos;

@@ -1,4 +1,4 @@
-// seqc check FILE... [--strict] [--format text|json|sarif]: with text (the default)
+// seqc check FILE... [--strict] [--format text|json|sarif] [--port P]: with text (the default)
 // diagnostics on stderr and one summary line per file on stdout: for a stored group its budget
 // ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)", with
 // `path: line` moves "... and 0.99 mm (tip at 2.379 s)"), for a
@@ -33,10 +33,10 @@ struct Unit {
 };
 
 std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
-                           std::int32_t clock_ppm) {
+                           std::int32_t clock_ppm, Link link) {
   std::vector<Unit> out;
   const std::string shown = given == "-" ? kStdinName : given;
-  Loaded loaded = load_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm);
+  Loaded loaded = load_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm, link);
   if (!loaded.file.is_show()) {
     out.push_back({shown, shown, {std::move(loaded.file.program()), loaded.code}, false, 0});
     return out;
@@ -107,6 +107,7 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
     bool strict = false;
     std::string format = "text";
     ClockScaleOptions clock;
+    std::string port;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("check", "Check choreography (or show) files for mistakes");
@@ -116,15 +117,17 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "text (default), json (an array of diagnostics) or sarif (SARIF 2.1.0)")
       ->check(CLI::IsMember({"text", "json", "sarif"}));
   add_clock_options(*cmd, opts->clock);
+  add_link_port_option(*cmd, opts->port);
   cmd->callback([&ctx, &result, opts] {
     std::int32_t ppm = 0;
     if (const ExitCode e = resolve_clock_ppm(ctx, opts->clock, ppm); e != ExitCode::Ok) {
       result.code = e;
       return;
     }
+    const Link link = link_of_port(opts->port);
     std::vector<Unit> units;
     for (const std::string& given : opts->files) {
-      for (Unit& u : units_of(ctx, given, opts->strict, ppm)) units.push_back(std::move(u));
+      for (Unit& u : units_of(ctx, given, opts->strict, ppm, link)) units.push_back(std::move(u));
     }
     bool invalid = false;
     bool unreadable = false;

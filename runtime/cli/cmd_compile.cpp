@@ -1,4 +1,5 @@
 // seqc compile FILE [--group N] [--emit hex|listing|json] [-o OUT] [--strict] [--dry-run]
+// [--port P]
 // The board the file is for renders it (runtime/boards); --dry-run lists what `seqc upload`
 // would send, from the board's own uploader run against a recording transport.
 #include <string>
@@ -31,6 +32,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
     bool strict = false;
     ClockScaleOptions clock;
     bool dry_run = false;
+    std::string port;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -51,8 +53,10 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   cmd->add_flag("--dry-run", opts->dry_run,
                 "Print every frame `seqc upload` would send (probe, stop, download, barriers) as "
                 "commented hex; `seqc decode -` reads it back");
+  add_link_port_option(*cmd, opts->port);
   cmd->callback([&ctx, &result, opts] {
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, &opts->clock);
+    Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, &opts->clock,
+                                    link_of_port(opts->port));
     result.code = c.code;
     if (!c.output.program) return;
     boards::CompiledText text = boards::compiled_text(

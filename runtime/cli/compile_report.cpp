@@ -6,16 +6,19 @@
 
 #include "base/terminal_text.hpp"
 #include "runtime/cli/commands.hpp"
+#include "protocol/lsc/group_download.hpp"
 #include "runtime/io/disk.hpp"
+#include "runtime/transport/port_spec.hpp"
 
 namespace seqc::cli {
 namespace {
 
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
-                                         std::int32_t clock_ppm) {
+                                         std::int32_t clock_ppm, Link link) {
   compiler::CompileOptions options{strict};
   options.songs = song == SongCheck::Decode ? ctx.songs : nullptr;
   options.clock_ppm = clock_ppm;
+  options.over_hid = link == Link::UsbHid;
   return options;
 }
 
@@ -44,9 +47,28 @@ void report(Context& ctx, const compiler::Loaded& file, bool strict) {
 
 }  // namespace
 
+Link link_of_port(const std::string& port) {
+  const auto spec = transport::parse_port(port);
+  if (!spec) return Link::Any;
+  const bool hid = spec->kind == transport::PortKind::Hid ||
+                   (spec->kind == transport::PortKind::Emulator && spec->emulator == "xarm-hid");
+  return hid ? Link::UsbHid : Link::Any;
+}
+
+void add_link_port_option(CLI::App& cmd, std::string& port) {
+  cmd.add_option("--port", port,
+                 "Port the group is for (nothing is opened): over USB HID (hid, hid:PATH, "
+                 "emu:xarm-hid) an action holds at most " +
+                     std::to_string(lsc::kHidMaxActionServos) + " servos")
+      ->check([](const std::string& text) {
+        const auto spec = transport::parse_port(text);
+        return spec ? std::string() : spec.error().message;
+      });
+}
+
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                         std::int32_t clock_ppm) {
-  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm);
+                         std::int32_t clock_ppm, Link link) {
+  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm, link);
   Compiled c;
   if (path == "-") {
     auto text = io::read_input(path, ctx.files, ctx.in, kStdinName);
@@ -65,12 +87,12 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
 }
 
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                            const ClockScaleOptions* clock) {
+                            const ClockScaleOptions* clock, Link link) {
   std::int32_t ppm = 0;
   if (clock != nullptr) {
     if (const ExitCode e = resolve_clock_ppm(ctx, *clock, ppm); e != ExitCode::Ok) return {{}, e};
   }
-  Compiled c = compile_quietly(ctx, path, strict, song, ppm);
+  Compiled c = compile_quietly(ctx, path, strict, song, ppm, link);
   c.clock_ppm = ppm;
   if (c.output.read_error) {
     ctx.err << "seqc: error: " << terminal_safe(*c.output.read_error) << "\n";
@@ -81,22 +103,22 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
 }
 
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                    std::int32_t clock_ppm) {
+                    std::int32_t clock_ppm, Link link) {
   if (path == "-") {
-    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm);
+    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, link);
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
   compiler::Loaded file = compiler::load(
       path, ctx.files,
-      {compile_options(ctx, strict, song, clock_ppm), compiler::CompileOptions{strict}});
+      {compile_options(ctx, strict, song, clock_ppm, link), compiler::CompileOptions{strict}});
   const ExitCode code =
       file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
   return {std::move(file), code};
 }
 
 Loaded load_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                       std::int32_t clock_ppm) {
-  Loaded l = load_quietly(ctx, path, strict, song, clock_ppm);
+                       std::int32_t clock_ppm, Link link) {
+  Loaded l = load_quietly(ctx, path, strict, song, clock_ppm, link);
   report(ctx, l.file, strict);
   return l;
 }

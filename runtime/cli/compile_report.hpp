@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "base/diagnostics.hpp"
 #include "compiler/compile.hpp"
 #include "compiler/load.hpp"
@@ -57,16 +59,27 @@ compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path,
 // commands that check (check, compile, simulate, plot) do; the rest need only the program.
 enum class SongCheck { Skip, Decode };
 
+// The link a stored group will travel, when the command is told (`check` and `compile` take
+// `--port`): over USB HID every action must fit one report (compiler::CompileOptions::over_hid).
+enum class Link { Any, UsbHid };
+// UsbHid for `hid`, `hid:PATH` and `emu:xarm-hid`; Any for every other port, and for a port that
+// does not parse (the command that opens it says why).
+Link link_of_port(const std::string& port);
+// `--port P` on a command that only compiles: P is checked as upload checks it (a bad one is a
+// usage error) and only its link is used; nothing is opened.
+void add_link_port_option(CLI::App& cmd, std::string& port);
+
 // Compiles without printing anything (for --format json|sarif). clock_ppm: the board's clock
 // error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
-                         SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+                         SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
+                         Link link = Link::Any);
 // Compiles and prints the diagnostics (or the file error) on ctx.err. With `clock`, the ppm to
 // pre-scale for is resolved from --clock-ppm and --rig first (resolve_clock_ppm); when it cannot
-// be, nothing is compiled and code is its status.
+// be, nothing is compiled and code is its status. `link`: the port's kind (its frame limit).
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
                             SongCheck song = SongCheck::Skip,
-                            const ClockScaleOptions* clock = nullptr);
+                            const ClockScaleOptions* clock = nullptr, Link link = Link::Any);
 
 // A file given to a command that takes a choreography or a show (check, plot, simulate,
 // preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)
@@ -79,10 +92,12 @@ struct Loaded {
 // Loads without printing anything: a choreography compiled as compile_quietly() compiles it
 // (`song`, `clock_ppm`), a show's performers with `strict` alone. "-" is a choreography.
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict,
-                    SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+                    SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
+                    Link link = Link::Any);
 // Loads and prints the diagnostics (or the file error) on ctx.err: a show file's own, then
 // every performer's.
 Loaded load_and_report(Context& ctx, const std::string& path, bool strict,
-                       SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0);
+                       SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
+                       Link link = Link::Any);
 
 }  // namespace seqc::cli

@@ -186,7 +186,7 @@ TEST_F(SafeFiles, AnIncludeThatIsNoChoreographyIsLocatedButNotQuoted) {
                           "    4 |   - include: shadow\n"),
             std::string::npos)
       << text.err;
-  EXPECT_NE(text.err.find("broken:2:1: error: invalid YAML"), std::string::npos) << text.err;
+  EXPECT_NE(text.err.find("broken:1:2: error: invalid YAML"), std::string::npos) << text.err;
   SeqcRun sarif = seqc(dir_, "check --format sarif main.yaml");
   EXPECT_EQ(sarif.status, 1);
   EXPECT_EQ(sarif.out.find("secret"), std::string::npos) << sarif.out;

@@ -287,4 +287,32 @@ TEST(UploadCli, AFrameTooBigForAHidReportIsRefusedBeforeSending) {
   std::remove(file.c_str());
 }
 
+TEST(UploadCli, CheckWithAHidPortSaysTheWideActionAtItsStep) {
+  // Eighteen bus servos: 11 + 3 x 18 = 65 bytes, one more than a report holds; seventeen fit.
+  const std::string file = "/tmp/seqc-hexapod-" + std::to_string(getpid()) + ".yaml";
+  auto write = [&](int servos) {
+    std::ofstream f(file);
+    f << "robot: bus\nsequence:\n  - move: {";
+    for (int i = 1; i <= servos; ++i) f << (i > 1 ? ", " : "") << "s" << i << ": 100";
+    f << "}\n    time: 1s\n";
+  };
+  write(18);
+  int status = -1;
+  std::string out = run_seqc("check " + file + " --port emu:xarm-hid", status);
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(out.find(file + ":3:5: error: action 1 carries 18 servos, a 65-byte frame; over USB "
+                            "HID a frame holds at most 64 bytes, its 4-byte header included (at "
+                            "most 17 servos per action)"),
+            std::string::npos)
+      << out;
+  out = run_seqc("check " + file + " --port /dev/ttyUSB0", status);
+  EXPECT_EQ(status, 0) << out;
+  out = run_seqc("compile " + file + " --port hid", status);
+  EXPECT_EQ(status, 1) << out;
+  write(17);
+  out = run_seqc("check " + file + " --port hid", status);
+  EXPECT_EQ(status, 0) << out;
+  std::remove(file.c_str());
+}
+
 }  // namespace

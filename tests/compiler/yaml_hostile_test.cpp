@@ -190,10 +190,33 @@ TEST(YamlHostile, SyntaxErrorsKeepYamlCppsMark) {
             "syntax_error.yaml:1:5: error: invalid YAML: illegal map value\n"
             "    1 | a: b: c\n"
             "      |     ^\n");
+  // An unclosed bracket is said at the bracket, not where yaml-cpp noticed it (line 2).
   EXPECT_EQ(first_line(load_hostile("unclosed_flow.yaml").rendered),
-            "unclosed_flow.yaml:2:1: error: invalid YAML: end of sequence flow not found\n");
+            "unclosed_flow.yaml:1:8: error: invalid YAML: this '[' is never closed\n");
   EXPECT_EQ(first_line(load_hostile("unterminated_quote.yaml").rendered),
             "unterminated_quote.yaml:1:4: error: unterminated quoted string\n");
+}
+
+TEST(YamlHostile, AnUnclosedBraceIsSaidAtTheBrace) {
+  // yaml-cpp notices the missing '}' at "time" on the next line; the caret goes to the '{'.
+  EXPECT_EQ(load("move.yaml", "sequence:\n  - move: {base: 500\n    time: 1s\n").rendered,
+            "move.yaml:2:11: error: invalid YAML: this '{' is never closed\n"
+            "    2 |   - move: {base: 500\n"
+            "      |           ^\n");
+  // At the end of the file too; a brace in a comment or a quoted scalar is not counted, and
+  // the innermost bracket still open is the one named.
+  EXPECT_EQ(load("end.yaml", "a: {b: \"{\", c: [1, 2], d: {e: 1}  # {\n").rendered,
+            "end.yaml:1:4: error: invalid YAML: this '{' is never closed\n"
+            "    1 | a: {b: \"{\", c: [1, 2], d: {e: 1}  # {\n"
+            "      |    ^\n");
+  EXPECT_EQ(first_line(load("seq.yaml", "a: {b: [1, 2\n").rendered),
+            "seq.yaml:1:8: error: invalid YAML: this '[' is never closed\n");
+  // A byte-order mark counts in line 1's columns, as everywhere else.
+  EXPECT_EQ(first_line(load("bom.yaml",
+                            "\xEF\xBB\xBF"
+                            "a: {b: 1\n")
+                           .rendered),
+            "bom.yaml:1:7: error: invalid YAML: this '{' is never closed\n");
 }
 
 TEST(YamlHostile, DeepNesting) {

@@ -102,6 +102,74 @@ TEST(SongCheck, AMissingSongIsAnErrorAtItsFileName) {
   EXPECT_FALSE(out.program.has_value());
 }
 
+TEST(SongCheck, EveryMistakeOfAMusicBlockIsSaidInOneRun) {
+  // A bad tempo, an unknown key, a bad downbeat and a missing file: four located errors, and the
+  // steps that count beats by the bad tempo add none.
+  FakeSongs songs;
+  auto out = compile_with(R"(robot: xarm
+music:
+  file: music/song.wav
+  downbeat: soon
+  tempo: fast
+  meter: 4/4
+  volume: 3
+sequence:
+  - move: home
+    time: 2b
+  - move: {base: 600}
+    time: 1bar
+)",
+                          songs);
+  EXPECT_EQ(messages(out),
+            (std::vector<std::string>{
+                "7:3 error: unknown key 'volume' in 'music'",
+                "4:13 error: 'downbeat' is where bar 1 beat 1 falls in the audio, in seconds or "
+                "milliseconds, e.g. 'downbeat: 0.750s'",
+                "5:10 error: 'tempo' must be beats per minute between 1 and 1000, e.g. "
+                "'tempo: 120'",
+                "3:9 error: cannot use the song: music/song.wav: No such file or directory",
+            }));
+  EXPECT_FALSE(out.program.has_value());
+}
+
+TEST(SongCheck, AMusicBlockWithoutTempoOrMeterNamesBothAndNothingElse) {
+  // The steps counting beats and bars add no "no 'tempo' is set" of their own.
+  FakeSongs songs;
+  songs.songs["music/song.wav"] = seqc::testing::make_song(spec_120());
+  auto out = compile_with(R"(robot: xarm
+music:
+  file: music/song.wav
+sequence:
+  - move: home
+    time: 2b
+  - move: {base: 600}
+    time: 1bar
+)",
+                          songs);
+  EXPECT_EQ(messages(out),
+            (std::vector<std::string>{
+                "2:1 error: 'music' needs the song's 'tempo' (e.g. 'tempo: 128') at bar 1",
+                "2:1 error: 'music' needs the song's 'meter' (e.g. 'meter: 4/4') at bar 1",
+            }));
+}
+
+TEST(SongCheck, AMissingSongIsSaidBesideTheStepsMistakes) {
+  FakeSongs songs;
+  auto out = compile_with(R"(robot: xarm
+music:
+  file: music/song.wav
+  tempo: 120
+  meter: 4/4
+sequence:
+  - move: {bse: 500}
+    time: 1b
+)",
+                          songs);
+  const std::vector<std::string> m = messages(out);
+  ASSERT_EQ(m.size(), 2u) << ::testing::PrintToString(m);
+  EXPECT_EQ(m[1], "3:9 error: cannot use the song: music/song.wav: No such file or directory");
+}
+
 TEST(SongCheck, ADanceLongerThanTheSongSaysByHowMuch) {
   // A 10 s click track at 120 bpm; the dance is 12 s from the downbeat at 0.75 s, so it ends
   // 12.75 s into the audio: 2.75 s past its end.

@@ -192,3 +192,30 @@ TEST(GroupDownload, EveryPlannedRequestDecodesBackToItself) {
 
 }  // namespace
 }  // namespace seqc::lsc
+
+namespace seqc::lsc {
+namespace {
+
+TEST(GroupDownload, ActionFrameSizeAndTheHidLimit) {
+  // 55 55 LEN 05 04 G b i 0B tLo tHi = 11 bytes, then 3 per servo: 17 servos make 62 bytes, one
+  // 64-byte HID report; 18 make 65, one too many.
+  EXPECT_EQ(action_frame_bytes(17), 62u);
+  EXPECT_EQ(action_frame_bytes(18), 65u);
+  EXPECT_EQ(kHidMaxActionServos, 17u);
+  GroupDownloadAction wide{1, 0, 0, 1000, {}};
+  for (std::uint8_t id = 1; id <= 18; ++id) wide.servos.push_back({id, 500});
+  auto frame = encode_step(wide);
+  ASSERT_TRUE(frame.ok()) << frame.error().message;
+  auto serial = encode_serial(*frame);
+  ASSERT_TRUE(serial.ok());
+  EXPECT_EQ(serial->size(), 65u);
+  EXPECT_FALSE(encode_hid_report(*frame).ok());
+  wide.servos.pop_back();
+  auto fits = encode_step(wide);
+  ASSERT_TRUE(fits.ok());
+  EXPECT_EQ(encode_serial(*fits)->size(), 62u);
+  EXPECT_TRUE(encode_hid_report(*fits).ok());
+}
+
+}  // namespace
+}  // namespace seqc::lsc

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace seqc::compiler::yaml_detail {
 
@@ -107,6 +108,8 @@ bool quoted_scalar_closes(std::string_view text, std::size_t pos) {
   return false;
 }
 
+namespace {
+
 // yaml-cpp tokenizes a whole flow collection before it reports the collection's first event
 // (every '[' may be a simple key until its ']' is seen), so a megabyte of '[' costs about 250 MB
 // and half a second before any event handler could object. This scan rejects such input first.
@@ -115,7 +118,11 @@ bool quoted_scalar_closes(std::string_view text, std::size_t pos) {
 // comments ('#' after whitespace), quoted scalars, block scalars ('|' or '>' lines and the more
 // indented lines after them), and, outside flow collections, brackets that are not at the start
 // of a node (a plain scalar such as "x[1]"). Losing track only makes it count fewer brackets.
-std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t max_depth) {
+// The lexical scan behind check_flow_depth() and unclosed_flow(): calls on(c, line, column,
+// offset) for every '[', '{', ']' or '}' that opens or closes a flow collection, skipping
+// comments, quoted scalars and block scalars; a true return stops the scan.
+template <class OnBracket>
+void scan_flow_brackets(std::string_view text, OnBracket on) {
   const std::size_t n = text.size();
   std::size_t depth = 0;
   std::uint32_t line = 1;
@@ -151,7 +158,7 @@ std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t m
           break;
         }
         while (j < n && text[j] != '\n') ++j;
-        if (j >= n) return std::nullopt;
+        if (j >= n) return;
         i = j + 1;
         newline(i);
       }
@@ -192,7 +199,7 @@ std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t m
           }
         }
       }
-      if (!closed) return std::nullopt;
+      if (!closed) return;
       for (std::size_t k = i; k < j; ++k) {
         if (text[k] == '\n') {
           ++line;
@@ -208,16 +215,50 @@ std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t m
       continue;
     }
     if ((c == '[' || c == '{') && (depth > 0 || node_start)) {
-      if (++depth > max_depth) {
-        return ScanProblem{line, static_cast<std::uint32_t>(i - line_start + 1),
-                           "nesting is deeper than " + std::to_string(max_depth) + " levels"};
-      }
+      ++depth;
+      if (on(c, line, static_cast<std::uint32_t>(i - line_start + 1), i)) return;
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
+      if (on(c, line, static_cast<std::uint32_t>(i - line_start + 1), i)) return;
     }
     ++i;
   }
-  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t max_depth) {
+  std::size_t depth = 0;
+  std::optional<ScanProblem> problem;
+  scan_flow_brackets(text, [&](char c, std::uint32_t line, std::uint32_t column, std::size_t) {
+    if (c == ']' || c == '}') {
+      --depth;
+      return false;
+    }
+    if (++depth <= max_depth) return false;
+    problem = ScanProblem{line, column,
+                          "nesting is deeper than " + std::to_string(max_depth) + " levels"};
+    return true;
+  });
+  return problem;
+}
+
+std::optional<ScanProblem> unclosed_flow(std::string_view text, std::size_t before) {
+  std::vector<ScanProblem> open;
+  scan_flow_brackets(text,
+                     [&](char c, std::uint32_t line, std::uint32_t column, std::size_t offset) {
+                       if (offset >= before) return true;
+                       if (c == '[' || c == '{') {
+                         open.push_back({line, column, std::string(1, c)});
+                       } else if (!open.empty()) {
+                         open.pop_back();
+                       }
+                       return false;
+                     });
+  if (open.empty()) return std::nullopt;
+  ScanProblem innermost = open.back();
+  innermost.message = "this '" + innermost.message + "' is never closed";
+  return innermost;
 }
 
 }  // namespace seqc::compiler::yaml_detail

@@ -29,6 +29,11 @@ std::optional<ScanProblem> check_bytes(std::string_view text);
 // that is not there, except in a plain scalar whose continuation line starts with 65 brackets.
 std::optional<ScanProblem> check_flow_depth(std::string_view text, std::size_t max_depth);
 
+// The innermost '[' or '{' opened before byte `before` and not closed before it, found by the
+// same scan, as "this '{' is never closed" at the bracket: where yaml-cpp's "end of map flow not
+// found" belongs (it notices only where the map's next token should have been, lines later).
+std::optional<ScanProblem> unclosed_flow(std::string_view text, std::size_t before);
+
 // Whether the quoted scalar starting at text[pos] (a '"' or '\'') has its closing quote.
 bool quoted_scalar_closes(std::string_view text, std::size_t pos);
 

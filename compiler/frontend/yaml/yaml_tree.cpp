@@ -328,6 +328,18 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
   } catch (const Abort&) {
     return std::nullopt;
   } catch (const YAML::Exception& e) {
+    // yaml-cpp notices an unclosed '{' or '[' only at the token where the collection should have
+    // ended, often the next line; the mistake is the bracket itself.
+    const bool unclosed =
+        e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW || e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW;
+    if (unclosed && e.mark.pos >= 0) {
+      if (auto open = yaml_detail::unclosed_flow(body, static_cast<std::size_t>(e.mark.pos))) {
+        const std::uint32_t shift = open->line == 1 ? static_cast<std::uint32_t>(bom) : 0u;
+        diags.error(Location{file, open->line, open->column + shift},
+                    "invalid YAML: " + open->message);
+        return std::nullopt;
+      }
+    }
     diags.error(builder.location(e.mark), parser_message(e, limits));
     return std::nullopt;
   }
