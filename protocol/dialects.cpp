@@ -2,10 +2,10 @@
 
 #include <utility>
 
-#include "protocol/lsc6/lsc6_messages.hpp"
 #include "protocol/lsc/lsc_frame.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
 #include "protocol/lsc/lsc_stream.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "protocol/raspblock/raspblock.hpp"
 
 namespace seqc {

@@ -21,8 +21,8 @@ namespace {
 // The song of the file's `music:` block, for every robot kind (the walk keeps it on the
 // timeline of both programs).
 const compiler::Song* song_of(const compiler::Program& program) {
-  const compiler::Timeline& tl = std::visit(
-      [](const auto& p) -> const compiler::Timeline& { return p.timeline; }, program);
+  const compiler::Timeline& tl =
+      std::visit([](const auto& p) -> const compiler::Timeline& { return p.timeline; }, program);
   return tl.song ? &*tl.song : nullptr;
 }
 
@@ -141,8 +141,8 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
   std::vector<std::string> names;
   std::vector<PreviewPart> drawn;
   for (const ShowPart& p : parts) {
-    auto part = preview_part(*p.program, p.title, end,
-                             &p == with_song && picture ? &*picture : nullptr);
+    auto part =
+        preview_part(*p.program, p.title, end, &p == with_song && picture ? &*picture : nullptr);
     if (!part) continue;
     names.push_back(p.name);
     drawn.push_back(std::move(*part));

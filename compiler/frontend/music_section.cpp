@@ -3,9 +3,9 @@
 
 #include <cmath>
 
+#include "base/units.hpp"
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/scope_chain.hpp"
-#include "base/units.hpp"
 
 namespace seqc::compiler {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "base/units.hpp"
 #include "compiler/frontend/music_section.hpp"
 #include "compiler/frontend/robot_section.hpp"
-#include "base/units.hpp"
 
 namespace seqc::compiler {
 namespace {

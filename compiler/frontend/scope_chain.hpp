@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
+#include "base/units.hpp"
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/positions.hpp"
 #include "compiler/frontend/reporter.hpp"
-#include "base/units.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"

@@ -11,9 +11,9 @@
 #include <sstream>
 #include <utility>
 
-#include "compiler/frontend/music_section.hpp"
 #include "base/diagnostics.hpp"
 #include "base/units.hpp"
+#include "compiler/frontend/music_section.hpp"
 #include "compiler/frontend/step_parts.hpp"
 
 namespace seqc::compiler {

@@ -4,8 +4,8 @@
 // through a SongReader.
 #pragma once
 
-#include "compiler/frontend/reporter.hpp"
 #include "base/source.hpp"
+#include "compiler/frontend/reporter.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"
 #include "compiler/timeline/tempo_map.hpp"

@@ -47,7 +47,7 @@ struct Segment {
   // ends with the segment (it holds where it is until then) rather than sending the target in
   // an earlier, shorter action.
   bool from_unknown = false;
-  Location at;                          // the step (or waypoint) it comes from
+  Location at;  // the step (or waypoint) it comes from
 
   bool is_straight() const { return kind == CurveKind::Hold || kind == CurveKind::Linear; }
   // The intended position at absolute time t (ms), clamped to the segment.

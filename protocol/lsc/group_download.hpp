@@ -16,9 +16,9 @@
 #include <span>
 #include <vector>
 
+#include "base/result.hpp"
 #include "protocol/lsc/lsc_frame.hpp"
 #include "protocol/lsc/lsc_messages.hpp"
-#include "base/result.hpp"
 
 namespace seqc::lsc {
 

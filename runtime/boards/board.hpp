@@ -128,10 +128,10 @@ struct Board {
   // Is this board there, and not the family's other dialect (upload/dialect_questions.hpp)?
   // null: nothing can be asked
   Outcome (*probe)(const Line&) = nullptr;
-  Bytes (*safe_stop)() = nullptr;           // after an early end; null: none
-  bool measure_departure = false;           // drain each frame, report when it left
-  bool check_schedule = false;              // refuse a schedule the link cannot keep
-  bool wait_for_end = false;                // return when the last move ends
+  Bytes (*safe_stop)() = nullptr;  // after an early end; null: none
+  bool measure_departure = false;  // drain each frame, report when it left
+  bool check_schedule = false;     // refuse a schedule the link cannot keep
+  bool wait_for_end = false;       // return when the last move ends
   LiveStyle style = LiveStyle::Moves;
   // Without a probe: "the LSC-6 answers no move, so nothing shows that the board hears them".
   std::string_view unprobed_note;
@@ -184,6 +184,10 @@ const Board* board_for_emulator(std::string_view emulator);     // emu:NAME -> i
 // emu:NAME's board, else the --robot profile's board, else the first discoverable board.
 const Board& board_for_device(std::string_view profile, std::string_view port);
 bool same_family(const Board& a, const Board& b);
+// Whether `port` reaches its board over USB HID, where every frame must fit one report: `hid`,
+// `hid:PATH` and the emulator of such a board (emu:xarm-hid); false for any other port and for
+// one that does not parse (the command that opens it says why).
+bool port_over_hid(std::string_view port);
 // The emulator that serves each board of `board`'s family, in table order ("xarm", "lsc6").
 std::vector<std::string_view> family_emulators(const Board& board);
 // When a file for `board` meets a board of its family that stores in the other dialect

@@ -63,6 +63,13 @@ const Board& board_for_device(std::string_view profile, std::string_view port) {
 
 bool same_family(const Board& a, const Board& b) { return a.family == b.family; }
 
+bool port_over_hid(std::string_view port) {
+  const auto spec = transport::parse_port(port);
+  if (!spec) return false;
+  return spec->kind == transport::PortKind::Hid ||
+         (spec->kind == transport::PortKind::Emulator && spec->emulator == "xarm-hid");
+}
+
 std::vector<std::string_view> family_emulators(const Board& board) {
   std::vector<std::string_view> names;
   for (const Board* b : kBoards) {

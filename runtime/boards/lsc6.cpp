@@ -9,13 +9,13 @@
 
 #include "compiler/formats/listing.hpp"
 #include "compiler/targets/servo_controller/servo_wire.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
+#include "protocol/lsc6/lsc6_messages.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
-#include "protocol/lsc6/lsc6_messages.hpp"
-#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/upload/dialect_questions.hpp"
 #include "runtime/upload/lsc6_link.hpp"
 #include "runtime/upload/lsc6_uploader.hpp"
@@ -44,7 +44,7 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit, std
     case Emit::Listing:
       // How the listing describes the group's storage: " (LSC-6 dialect)".
       return compiler::render_listing(program, planned->frames, group, output.sources,
-                                     " (" + std::string(kLsc6Dialect.name) + " dialect)");
+                                      " (" + std::string(kLsc6Dialect.name) + " dialect)");
     case Emit::Json:
       return compiler::render_json(program, planned->frames, group, output.sources);
   }

@@ -65,7 +65,8 @@ bool play_song_out(MusicSession& music, io::Clock& clock, const std::atomic<bool
 }
 
 LiveSongStart live_song_start(const Board& board, const MusicSession& music,
-                              std::size_t first_frame_bytes, double seconds_per_byte) {
+                              std::size_t first_frame_bytes, double seconds_per_byte,
+                              io::Clock& host, io::Clock& line_clock) {
   const audio::StartTiming timing =
       start_timing(board, *music.started, music.audio_offset, first_frame_bytes, seconds_per_byte);
   LiveSongStart s;
@@ -73,6 +74,7 @@ LiveSongStart live_song_start(const Board& board, const MusicSession& music,
   s.wire = timing.wire;
   // The player writes each frame its own wire time early; the board's delay is the rest.
   s.start = LiveStart{s.plan.downbeat_heard, timing.board_delay};
+  if (music.robot_in_emulated_time) s.start.at = carried_over(s.start.at, host, line_clock);
   return s;
 }
 

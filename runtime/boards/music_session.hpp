@@ -91,8 +91,11 @@ struct LiveSongStart {
   io::Duration wire{0};
   LiveStart start;
 };
+// `host`: the clock the song is dated on; when music.robot_in_emulated_time, the start is carried
+// over to `line_clock` (carried_over).
 LiveSongStart live_song_start(const Board& board, const MusicSession& music,
-                              std::size_t first_frame_bytes, double seconds_per_byte);
+                              std::size_t first_frame_bytes, double seconds_per_byte,
+                              io::Clock& host, io::Clock& line_clock);
 
 // When the first frame of `play` began to be written, on its clock; nullopt when none was.
 std::optional<io::TimePoint> first_written(const player::PlayReport& play);

@@ -70,8 +70,7 @@ struct MusicRunReport {
 };
 MusicRunReport run_on_downbeat(const Board& board, const Line& line, std::uint8_t group,
                                std::uint16_t times, const SongStart& song,
-                               io::Duration audio_offset,
-                               io::Clock* song_clock = nullptr);
+                               io::Duration audio_offset, io::Clock* song_clock = nullptr);
 
 // Waits, polling `interrupted`, until the output has played everything; false if interrupted.
 bool wait_for_song(audio::AudioOutput& output, io::Clock& clock,

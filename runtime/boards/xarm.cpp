@@ -12,6 +12,8 @@
 
 #include "compiler/formats/listing.hpp"
 #include "compiler/targets/servo_controller/servo_wire.hpp"
+#include "protocol/lsc/group_download.hpp"
+#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/live_moves.hpp"
 #include "runtime/boards/ports.hpp"
@@ -19,8 +21,6 @@
 #include "runtime/emulator/emulator_transport.hpp"
 #include "runtime/emulator/hid_face.hpp"
 #include "runtime/emulator/xarm_config.hpp"
-#include "protocol/lsc/group_download.hpp"
-#include "protocol/lsc/lsc_frame.hpp"
 #include "runtime/transport/open_port.hpp"
 #include "runtime/upload/controller_link.hpp"
 #include "runtime/upload/dialect_questions.hpp"
@@ -65,7 +65,7 @@ Result<std::string> render(const compiler::CompileOutput& output, Emit emit, std
       return compiler::render_hex(planned->frames);
     case Emit::Listing:
       return compiler::render_listing(program, planned->frames, group, output.sources,
-                                     storage(program));
+                                      storage(program));
     case Emit::Json:
       return compiler::render_json(program, planned->frames, group, output.sources);
   }

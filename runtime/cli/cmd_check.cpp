@@ -3,7 +3,7 @@
 // ("walk.yaml: 29/1020 actions, 8.000 s, fit within 0.98 units (base at 4.411 s)", with
 // `path: line` moves "... and 0.99 mm (tip at 2.379 s)"), for a
 // streamed program its packets and duration, else its mistakes. With json or sarif, one
-// document on stdout holding every file's diagnostics (base/diagnostic_formats.hpp) and nothing else.
+// document on stdout with every file's diagnostics (base/diagnostic_formats.hpp), nothing else.
 #include <string>
 #include <vector>
 
@@ -11,9 +11,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/diagnostic_formats.hpp"
 #include "base/terminal_text.hpp"
 #include "base/units.hpp"
-#include "base/diagnostic_formats.hpp"
+#include "runtime/boards/board.hpp"
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
@@ -33,10 +34,10 @@ struct Unit {
 };
 
 std::vector<Unit> units_of(Context& ctx, const std::string& given, bool strict,
-                           std::int32_t clock_ppm, Link link) {
+                           std::int32_t clock_ppm, bool over_hid) {
   std::vector<Unit> out;
   const std::string shown = given == "-" ? kStdinName : given;
-  Loaded loaded = load_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm, link);
+  Loaded loaded = load_quietly(ctx, given, strict, SongCheck::Decode, clock_ppm, over_hid);
   if (!loaded.file.is_show()) {
     out.push_back({shown, shown, {std::move(loaded.file.program()), loaded.code}, false, 0});
     return out;
@@ -124,10 +125,11 @@ void add_check_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = e;
       return;
     }
-    const Link link = link_of_port(opts->port);
+    const bool over_hid = boards::port_over_hid(opts->port);
     std::vector<Unit> units;
     for (const std::string& given : opts->files) {
-      for (Unit& u : units_of(ctx, given, opts->strict, ppm, link)) units.push_back(std::move(u));
+      for (Unit& u : units_of(ctx, given, opts->strict, ppm, over_hid))
+        units.push_back(std::move(u));
     }
     bool invalid = false;
     bool unreadable = false;

@@ -56,7 +56,7 @@ void add_compile_command(CLI::App& app, Context& ctx, Outcome& result) {
   add_link_port_option(*cmd, opts->port);
   cmd->callback([&ctx, &result, opts] {
     Compiled c = compile_and_report(ctx, opts->file, opts->strict, SongCheck::Decode, &opts->clock,
-                                    link_of_port(opts->port));
+                                    boards::port_over_hid(opts->port));
     result.code = c.code;
     if (!c.output.program) return;
     boards::CompiledText text = boards::compiled_text(

@@ -223,7 +223,7 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
       return ExitCode::PortUnavailable;
     }
     // The performers' wire times are the show's; the song's instant is the common start.
-    plan = boards::live_song_start(*stages[0].board, music, 0, 0).plan;
+    plan = boards::live_song_start(*stages[0].board, music, 0, 0, ctx.clock, ctx.clock).plan;
     start_at = plan->downbeat_heard;
   }
   const boards::ShowReport report =

@@ -158,10 +158,9 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
     ctx.err << "seqc: group " << a.group << " is stored but was not started\n";
     return ExitCode::PortUnavailable;
   }
-  const boards::MusicRunReport r =
-      boards::run_on_downbeat(board, line, static_cast<std::uint8_t>(a.group), times_of(a),
-                              *music.started, music.audio_offset,
-                              music.robot_in_emulated_time ? &ctx.clock : nullptr);
+  const boards::MusicRunReport r = boards::run_on_downbeat(
+      board, line, static_cast<std::uint8_t>(a.group), times_of(a), *music.started,
+      music.audio_offset, music.robot_in_emulated_time ? &ctx.clock : nullptr);
   realtime.reset();
   switch (r.play.end) {
     case player::PlayEnd::Completed:
@@ -287,11 +286,12 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (r.reopens > 0) {
     detail += ", the port came back " + plural(static_cast<std::size_t>(r.reopens), "time");
   }
-  if (r.run_refused && too_fast) {
-    ctx.err << "seqc: error: " << first_move_text(*too_fast) << "; group " << a.group
-            << " is stored but was not started\n";
-    return ExitCode::InvalidInput;
-  }
+  const auto not_started = [&](const boards::FirstMoveTooFast& fast) {
+    return fail(ctx, ExitCode::InvalidInput,
+                first_move_text(fast) + "; group " + std::to_string(a.group) +
+                    " is stored but was not started");
+  };
+  if (r.run_refused && too_fast) return not_started(*too_fast);
   if (ctx.verbosity >= 0) {
     ctx.err << "seqc: the controller acknowledged " << plural(r.actions_acknowledged, "action")
             << " into group " << a.group << " (" << detail << ")\n";
@@ -299,9 +299,7 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (a.run && a.music.music) {
     // On the downbeat the run is the computer's to send: the first-move read comes first.
     if (const auto fast = boards::run_too_fast(board, line, c.output, a.force)) {
-      ctx.err << "seqc: error: " << first_move_text(*fast) << "; group " << a.group
-              << " is stored but was not started\n";
-      return ExitCode::InvalidInput;
+      return not_started(*fast);
     }
     music.robot_in_emulated_time = port.own_clock();
     return run_to_music(ctx, a, board, line, music);

@@ -5,8 +5,8 @@
 #include <ostream>
 
 #include "base/terminal_text.hpp"
-#include "runtime/cli/commands.hpp"
 #include "protocol/lsc/group_download.hpp"
+#include "runtime/cli/commands.hpp"
 #include "runtime/io/disk.hpp"
 #include "runtime/transport/port_spec.hpp"
 
@@ -14,12 +14,11 @@ namespace seqc::cli {
 namespace {
 
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
-                                         std::int32_t clock_ppm, Link link) {
-  compiler::CompileOptions options{strict};
-  options.songs = song == SongCheck::Decode ? ctx.songs : nullptr;
-  options.clock_ppm = clock_ppm;
-  options.over_hid = link == Link::UsbHid;
-  return options;
+                                         std::int32_t clock_ppm, bool over_hid) {
+  return {.strict = strict,
+          .songs = song == SongCheck::Decode ? ctx.songs : nullptr,
+          .clock_ppm = clock_ppm,
+          .over_hid = over_hid};
 }
 
 ExitCode program_code(const compiler::CompileOutput& output) {
@@ -32,13 +31,17 @@ ExitCode show_code(const compiler::ShowOutput& show, bool strict) {
   return show.ok(strict) ? ExitCode::Ok : ExitCode::InvalidInput;
 }
 
-// The file's read error, or its diagnostics and for a show every performer's.
+// The file's read error, or else its diagnostics; false after a read error.
+bool report(Context& ctx, const std::optional<std::string>& error, const Diagnostics& diagnostics,
+            const SourceManager& sources, bool strict) {
+  if (error) ctx.err << "seqc: error: " << terminal_safe(*error) << "\n";
+  if (!error) ctx.err << seqc::render_all(diagnostics, sources, strict, ctx.color);
+  return !error;
+}
+
+// The same, and for a show every performer's diagnostics.
 void report(Context& ctx, const compiler::Loaded& file, bool strict) {
-  if (const std::optional<std::string>& error = file.read_error()) {
-    ctx.err << "seqc: error: " << terminal_safe(*error) << "\n";
-    return;
-  }
-  ctx.err << seqc::render_all(file.diagnostics(), file.sources(), strict, ctx.color);
+  if (!report(ctx, file.read_error(), file.diagnostics(), file.sources(), strict)) return;
   if (!file.is_show()) return;
   for (const compiler::Performer& p : file.show().performers) {
     ctx.err << seqc::render_all(p.output.diagnostics, p.output.sources, strict, ctx.color);
@@ -46,14 +49,6 @@ void report(Context& ctx, const compiler::Loaded& file, bool strict) {
 }
 
 }  // namespace
-
-Link link_of_port(const std::string& port) {
-  const auto spec = transport::parse_port(port);
-  if (!spec) return Link::Any;
-  const bool hid = spec->kind == transport::PortKind::Hid ||
-                   (spec->kind == transport::PortKind::Emulator && spec->emulator == "xarm-hid");
-  return hid ? Link::UsbHid : Link::Any;
-}
 
 void add_link_port_option(CLI::App& cmd, std::string& port) {
   cmd.add_option("--port", port,
@@ -67,8 +62,8 @@ void add_link_port_option(CLI::App& cmd, std::string& port) {
 }
 
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                         std::int32_t clock_ppm, Link link) {
-  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm, link);
+                         std::int32_t clock_ppm, bool over_hid) {
+  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm, over_hid);
   Compiled c;
   if (path == "-") {
     auto text = io::read_input(path, ctx.files, ctx.in, kStdinName);
@@ -87,38 +82,34 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
 }
 
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                            const ClockScaleOptions* clock, Link link) {
+                            const ClockScaleOptions* clock, bool over_hid) {
   std::int32_t ppm = 0;
   if (clock != nullptr) {
     if (const ExitCode e = resolve_clock_ppm(ctx, *clock, ppm); e != ExitCode::Ok) return {{}, e};
   }
-  Compiled c = compile_quietly(ctx, path, strict, song, ppm, link);
+  Compiled c = compile_quietly(ctx, path, strict, song, ppm, over_hid);
   c.clock_ppm = ppm;
-  if (c.output.read_error) {
-    ctx.err << "seqc: error: " << terminal_safe(*c.output.read_error) << "\n";
-    return c;
-  }
-  ctx.err << seqc::render_all(c.output.diagnostics, c.output.sources, strict, ctx.color);
+  report(ctx, c.output.read_error, c.output.diagnostics, c.output.sources, strict);
   return c;
 }
 
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                    std::int32_t clock_ppm, Link link) {
+                    std::int32_t clock_ppm, bool over_hid) {
   if (path == "-") {
-    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, link);
+    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid);
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
   compiler::Loaded file = compiler::load(
       path, ctx.files,
-      {compile_options(ctx, strict, song, clock_ppm, link), compiler::CompileOptions{strict}});
+      {compile_options(ctx, strict, song, clock_ppm, over_hid), compiler::CompileOptions{strict}});
   const ExitCode code =
       file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
   return {std::move(file), code};
 }
 
 Loaded load_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                       std::int32_t clock_ppm, Link link) {
-  Loaded l = load_quietly(ctx, path, strict, song, clock_ppm, link);
+                       std::int32_t clock_ppm, bool over_hid) {
+  Loaded l = load_quietly(ctx, path, strict, song, clock_ppm, over_hid);
   report(ctx, l.file, strict);
   return l;
 }

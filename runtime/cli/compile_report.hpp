@@ -59,12 +59,6 @@ compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path,
 // commands that check (check, compile, simulate, plot) do; the rest need only the program.
 enum class SongCheck { Skip, Decode };
 
-// The link a stored group will travel, when the command is told (`check` and `compile` take
-// `--port`): over USB HID every action must fit one report (compiler::CompileOptions::over_hid).
-enum class Link { Any, UsbHid };
-// UsbHid for `hid`, `hid:PATH` and `emu:xarm-hid`; Any for every other port, and for a port that
-// does not parse (the command that opens it says why).
-Link link_of_port(const std::string& port);
 // `--port P` on a command that only compiles: P is checked as upload checks it (a bad one is a
 // usage error) and only its link is used; nothing is opened.
 void add_link_port_option(CLI::App& cmd, std::string& port);
@@ -73,13 +67,14 @@ void add_link_port_option(CLI::App& cmd, std::string& port);
 // error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
                          SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
-                         Link link = Link::Any);
+                         bool over_hid = false);
 // Compiles and prints the diagnostics (or the file error) on ctx.err. With `clock`, the ppm to
 // pre-scale for is resolved from --clock-ppm and --rig first (resolve_clock_ppm); when it cannot
-// be, nothing is compiled and code is its status. `link`: the port's kind (its frame limit).
+// be, nothing is compiled and code is its status. over_hid: the port is USB HID
+// (boards::port_over_hid), where every action must fit one report.
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
                             SongCheck song = SongCheck::Skip,
-                            const ClockScaleOptions* clock = nullptr, Link link = Link::Any);
+                            const ClockScaleOptions* clock = nullptr, bool over_hid = false);
 
 // A file given to a command that takes a choreography or a show (check, plot, simulate,
 // preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)
@@ -93,11 +88,11 @@ struct Loaded {
 // (`song`, `clock_ppm`), a show's performers with `strict` alone. "-" is a choreography.
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict,
                     SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
-                    Link link = Link::Any);
+                    bool over_hid = false);
 // Loads and prints the diagnostics (or the file error) on ctx.err: a show file's own, then
 // every performer's.
 Loaded load_and_report(Context& ctx, const std::string& path, bool strict,
                        SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
-                       Link link = Link::Any);
+                       bool over_hid = false);
 
 }  // namespace seqc::cli

@@ -34,13 +34,6 @@ std::string start_of(const boards::LiveReport& r, std::size_t move) {
   return move < r.origins.size() ? seqc::format_seconds(r.origins[move].start_ms) : "?";
 }
 
-std::string link_text(const io::Transport& t) {
-  if (t.seconds_per_byte() > 0) {
-    return "at " + std::to_string(static_cast<long>(10.0 / t.seconds_per_byte() + 0.5)) + " baud";
-  }
-  return "at one report per " + io::ms_text(t.frame_interval(), 1);
-}
-
 // The first late move of a schedule the link cannot keep, and by how much.
 std::string late_text(const compiler::CompileOutput& compiled, const boards::LiveReport& r,
                       const io::Transport& t) {
@@ -49,9 +42,10 @@ std::string late_text(const compiler::CompileOutput& compiled, const boards::Liv
   const std::string n = std::to_string(r.frames.size());
   return "move " + std::to_string(i + 1) + " of " + n + " at " + start_of(r, i) +
          where(compiled, r, i) + " would leave " + io::ms_text(c.late_by, 1) +
-         " late: " + link_text(t) + " the move before it takes " + io::ms_text(c.wire_time, 1) +
-         " on the wire (" + std::to_string(c.late_frames) + " of " + n +
-         " moves late, the worst by " + io::ms_text(c.worst, 1) + ")";
+         " late: " + io::pace_text(t.seconds_per_byte(), t.frame_interval()) +
+         " the move before it takes " + io::ms_text(c.wire_time, 1) + " on the wire (" +
+         std::to_string(c.late_frames) + " of " + n + " moves late, the worst by " +
+         io::ms_text(c.worst, 1) + ")";
 }
 
 // A servo board's report: moves, measured once each had left.
@@ -184,12 +178,9 @@ ExitCode play_and_word(Context& ctx, const compiler::CompileOutput& compiled,
     hooks.start = [&](const boards::LiveReport& r) -> std::optional<boards::LiveStart> {
       if (!start_music(ctx, *music)) return std::nullopt;
       const std::size_t bytes = r.frames.empty() ? 0 : r.frames[0].bytes.size();
-      planned = boards::live_song_start(board, *music, bytes, line.transport.seconds_per_byte());
-      boards::LiveStart start = planned->start;
-      if (music->robot_in_emulated_time) {
-        start.at = boards::carried_over(start.at, ctx.clock, line.clock);
-      }
-      return start;
+      planned = boards::live_song_start(board, *music, bytes, line.transport.seconds_per_byte(),
+                                        ctx.clock, line.clock);
+      return planned->start;
     };
   }
   const boards::LiveReport r = boards::play_live(board, compiled, line, args.allow_late, hooks);

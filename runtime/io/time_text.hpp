@@ -20,6 +20,10 @@ inline std::string seconds_text(Duration d, int decimals = 3) {
   return buf;
 }
 
+// A link's pace as a report names it: "at 9600 baud" for a byte stream (10 bits a byte), "at one
+// report per 1.0 ms" for one that sends whole reports on an interval.
+inline std::string pace_text(double seconds_per_byte, Duration frame_interval);
+
 // "12.5 ms" with `decimals` places.
 inline std::string ms_text(Duration d, int decimals) {
   char buf[48];
@@ -45,6 +49,13 @@ inline std::string duration_text(Duration d) {
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
   if (ms < 1000) return std::to_string(ms) + " ms";
   return seqc::format_seconds(static_cast<std::uint64_t>(ms));
+}
+
+inline std::string pace_text(double seconds_per_byte, Duration frame_interval) {
+  if (seconds_per_byte > 0) {
+    return "at " + std::to_string(static_cast<long>(10.0 / seconds_per_byte + 0.5)) + " baud";
+  }
+  return "at one report per " + ms_text(frame_interval, 1);
 }
 
 }  // namespace seqc::io

@@ -27,9 +27,9 @@
 #include <string>
 #include <vector>
 
+#include "base/bytes.hpp"
 #include "runtime/io/clock.hpp"
 #include "runtime/io/transport.hpp"
-#include "base/bytes.hpp"
 
 namespace seqc::player {
 

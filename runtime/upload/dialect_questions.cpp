@@ -14,15 +14,14 @@ namespace {
 // Both frames on the wire at the link's rate, plus the margin.
 io::Duration wait_for_reply(const io::Transport& transport, std::size_t frame_bytes,
                             std::size_t reply_bytes, io::Duration margin) {
-  const double wire =
-      static_cast<double>(frame_bytes + reply_bytes) * transport.seconds_per_byte();
+  const double wire = static_cast<double>(frame_bytes + reply_bytes) * transport.seconds_per_byte();
   return io::Duration(static_cast<long long>(std::ceil(wire * 1e9))) + margin;
 }
 
 }  // namespace
 
-bool lsc6_answers(io::Transport& transport, io::Clock& clock,
-                  const std::atomic<bool>* interrupted, std::uint8_t group, io::Duration margin) {
+bool lsc6_answers(io::Transport& transport, io::Clock& clock, const std::atomic<bool>* interrupted,
+                  std::uint8_t group, io::Duration margin) {
   if (transport.max_frame_bytes() != 0) return false;
   Lsc6Link link(transport, clock, interrupted);
   if (link.interrupted()) return false;
@@ -38,8 +37,8 @@ bool lsc6_answers(io::Transport& transport, io::Clock& clock,
   return w.ok();
 }
 
-bool xarm_answers(io::Transport& transport, io::Clock& clock,
-                  const std::atomic<bool>* interrupted, io::Duration margin) {
+bool xarm_answers(io::Transport& transport, io::Clock& clock, const std::atomic<bool>* interrupted,
+                  io::Duration margin) {
   FrameLink link(transport, clock, interrupted);
   if (link.interrupted()) return false;
   const Bytes request = lsc::encode_serial(lsc::Request{lsc::GetBatteryVoltage{}}).value();

@@ -24,11 +24,11 @@
 namespace seqc::upload {
 
 // True when an LSC-6 answered the LSC-6 question.
-bool lsc6_answers(io::Transport& transport, io::Clock& clock,
-                  const std::atomic<bool>* interrupted, std::uint8_t group, io::Duration margin);
+bool lsc6_answers(io::Transport& transport, io::Clock& clock, const std::atomic<bool>* interrupted,
+                  std::uint8_t group, io::Duration margin);
 
 // True when a board of the xArm dialect answered GetBatteryVoltage with its voltage.
-bool xarm_answers(io::Transport& transport, io::Clock& clock,
-                  const std::atomic<bool>* interrupted, io::Duration margin);
+bool xarm_answers(io::Transport& transport, io::Clock& clock, const std::atomic<bool>* interrupted,
+                  io::Duration margin);
 
 }  // namespace seqc::upload

@@ -3,8 +3,8 @@
 // tables are goldens in tests/cli/golden (SEQC_UPDATE_GOLDEN=1 rewrites them; review by eye).
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <sys/wait.h>
+#include <fstream>
 
 #include <cstdio>
 #include <string>
@@ -95,8 +95,7 @@ TEST(Decode, TheDialectQuestionsAreNamedNotFlagged) {
                        "question: no command of this dialect)"),
             std::string::npos)
       << x.out;
-  EXPECT_NE(x.out.find("< ActionStored (an LSC-6 answering the LSC-6 question)"),
-            std::string::npos)
+  EXPECT_NE(x.out.find("< ActionStored (an LSC-6 answering the LSC-6 question)"), std::string::npos)
       << x.out;
   SeqcRun l = seqc(dir, "decode lsc6-asks.trace");
   EXPECT_EQ(l.status, 0) << l.out << l.err;

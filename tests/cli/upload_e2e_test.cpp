@@ -1,5 +1,6 @@
 // `seqc upload` end to end with the real binary: `seqc emulate xarm --link PATH --record CSV`
-// runs as a separate process on a pseudo-terminal, `seqc upload tests/data/walk-joints.yaml --port PATH
+// runs as a separate process on a pseudo-terminal, `seqc upload tests/data/walk-joints.yaml --port
+// PATH
 // --run` talks to it, and the GroupDownload frames the emulator recorded must equal
 // `seqc compile --emit hex` byte for byte, and the group the emulator stored (its
 // --dump-groups file) must equal the keyframes of `seqc compile --emit json`, action by

@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "base/bytes.hpp"
 #include "runtime/cli/app.hpp"
 #include "runtime/cli/context.hpp"
 #include "runtime/emulator/lsc6_emulator.hpp"
 #include "runtime/emulator/xarm_emulator.hpp"
 #include "runtime/io/clock.hpp"
-#include "base/bytes.hpp"
 #include "tests/cli/device_test_util.hpp"
 
 namespace seqc::cli::test {

@@ -296,8 +296,7 @@ sequence:
 // A first move longer than one action (30 s) would be split, and its first part would carry
 // the end: base would arrive at 22.5 s of a 45 s move. It is an error, located.
 TEST(MotionChecks, AFirstMoveLongerThanOneActionIsAnError) {
-  const auto out = compile_text(
-      "robot: xarm\nsequence:\n  - move: {base: 1000}\n    time: 45s\n");
+  const auto out = compile_text("robot: xarm\nsequence:\n  - move: {base: 1000}\n    time: 45s\n");
   EXPECT_EQ(messages(out),
             std::vector<std::string>{
                 "3:5 error: 'base' has no known position before this move, so it cannot be split "
@@ -422,9 +421,10 @@ TEST(MotionChecks, UnknownRobotsAndEasingsListTheValidNames) {
   EXPECT_EQ(messages(compile_text("robot: r2d2\nsequence: []\n")),
             std::vector<std::string>{"1:8 error: unknown robot 'r2d2' (robots: xarm, bus, lsc-16, "
                                      "lsc-32, lsc-6, learm, raspblock)"});
-  EXPECT_EQ(messages(compile_text("robot: xarn\nsequence: []\n")),
-            std::vector<std::string>{"1:8 error: unknown robot 'xarn'; did you mean 'xarm'? "
-                                     "(robots: xarm, bus, lsc-16, lsc-32, lsc-6, learm, raspblock)"});
+  EXPECT_EQ(
+      messages(compile_text("robot: xarn\nsequence: []\n")),
+      std::vector<std::string>{"1:8 error: unknown robot 'xarn'; did you mean 'xarm'? "
+                               "(robots: xarm, bus, lsc-16, lsc-32, lsc-6, learm, raspblock)"});
   const std::string easings =
       "(easings: linear, in, out, in-out; back, bounce, circ, cubic, elastic, expo, quad, quart, "
       "quint, sine, each with -in, -out or -in-out; cubic-bezier(x1, y1, x2, y2))";

@@ -266,9 +266,8 @@ sequence:
   }
   EXPECT_GT(largest, 0.3);
   const std::vector<Difference> d = compare_with_intent(p);
-  const auto claw = std::find_if(d.begin(), d.end(), [](const Difference& x) {
-    return x.servo == "claw";
-  });
+  const auto claw =
+      std::find_if(d.begin(), d.end(), [](const Difference& x) { return x.servo == "claw"; });
   ASSERT_NE(claw, d.end());
   EXPECT_NEAR(claw->largest, largest, 0.01);
 }

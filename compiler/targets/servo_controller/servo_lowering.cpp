@@ -13,8 +13,8 @@
 
 #include <fmt/format.h>
 
-#include "compiler/fitting/fitter.hpp"
 #include "base/units.hpp"
+#include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "protocol/lsc/group_download.hpp"
@@ -139,8 +139,8 @@ void warn_shortfalls(const RobotInfo& robot, const ServoWalk& walk, const FitRes
                   format_seconds(worst.at_ms)
             : "even 20ms actions cannot keep servos " + who + " within " +
                   format_units(worst.tolerance) + " of this curve: up to " +
-                  format_units(worst.error) + " off ('" + robot.servos[worst.servo].name +
-                  "' at " + format_seconds(worst.at_ms) + ")";
+                  format_units(worst.error) + " off ('" + robot.servos[worst.servo].name + "' at " +
+                  format_seconds(worst.at_ms) + ")";
     reporter.warning(where, message);
     for (std::size_t servo : servos) {
       timeline.warnings.push_back({static_cast<double>(worst.at_ms), servo, message});
@@ -162,8 +162,7 @@ void warn_late_first_moves(const RobotInfo& robot, const Timeline& timeline,
       return std::any_of(a.targets.begin(), a.targets.end(),
                          [&](const FittedTarget& t) { return t.servo == servo; });
     });
-    if (named == actions.end() ||
-        static_cast<std::int64_t>(named->start_ms) <= seg.start.round()) {
+    if (named == actions.end() || static_cast<std::int64_t>(named->start_ms) <= seg.start.round()) {
       continue;
     }
     const ServoInfo& info = robot.servos[servo];
@@ -181,8 +180,9 @@ void warn_late_first_moves(const RobotInfo& robot, const Timeline& timeline,
                                std::ceil(needs / 10 - 1e-9) / 100, *info.max_speed);
       }
     }
-    reporter.warning(seg.at, message + "; give it a position before this, or start its move "
-                                       "with the others");
+    reporter.warning(seg.at, message +
+                                 "; give it a position before this, or start its move "
+                                 "with the others");
   }
 }
 
@@ -475,6 +475,5 @@ void ServoLowering::mirror_step(const YamlNode& step, const YamlNode& body) {
 void ServoLowering::tolerance_step(const YamlNode& value) {
   if (auto t = parse_tolerance(value)) lists_.back().tolerance = t;
 }
-
 
 }  // namespace seqc::compiler

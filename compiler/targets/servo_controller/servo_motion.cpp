@@ -214,12 +214,11 @@ void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool
   const bool shaped = n > 1 || (n == 0 && !ease.is_linear()) || too_long;
   for (std::size_t servo = 0; servo < targets.size() && shaped; ++servo) {
     if (!targets[servo] || pos_[servo]) continue;
-    const std::string split =
-        n > 1 ? "split into " + std::to_string(n) + " actions"
-        : too_long
-            ? "split into actions (" + format_ms(static_cast<double>(t)) +
-                  " is longer than the controller's 30s per action)"
-            : "eased";
+    const std::string split = n > 1 ? "split into " + std::to_string(n) + " actions"
+                              : too_long
+                                  ? "split into actions (" + format_ms(static_cast<double>(t)) +
+                                        " is longer than the controller's 30s per action)"
+                                  : "eased";
     reporter_.error(step.location, "'" + robot_.info.servos[servo].name +
                                        "' has no known position before this move, so it cannot "
                                        "be " +

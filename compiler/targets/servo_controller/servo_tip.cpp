@@ -201,7 +201,8 @@ bool ServoLowering::tip_entries(const YamlNode& step, const YamlNode& target,
     return false;
   }
   const double base_now = pos_[joint_servo[0]] ? angle_of(0) : 0.0;
-  const compiler::ArmSolution solution = compiler::solve_arm(arm, point, *pitch, elbow_up, base_now);
+  const compiler::ArmSolution solution =
+      compiler::solve_arm(arm, point, *pitch, elbow_up, base_now);
   if (!solution.angles) {
     if (solution.needed > solution.reach) {
       reporter_.error(
@@ -282,9 +283,10 @@ void ServoLowering::check_tip_depth() {
   for (const TipDip& d : find_tip_dips(*robot_.info.arm, *joints, timeline_, arm_moves_)) {
     // A warning (an error with --strict): the end points a file names are errors below the
     // table, but between them the dip is the joints' path, which the file may well mean.
-    reporter_.warning(d.at, fmt::format("the tip goes {:.1f} mm below the table at {:.3f} s "
-                                      "(deepest, {}), for {:.0f} ms",
-                                      d.depth_mm, d.at_ms / 1000, point_text(d.point), d.below_ms));
+    reporter_.warning(d.at,
+                      fmt::format("the tip goes {:.1f} mm below the table at {:.3f} s "
+                                  "(deepest, {}), for {:.0f} ms",
+                                  d.depth_mm, d.at_ms / 1000, point_text(d.point), d.below_ms));
   }
 }
 

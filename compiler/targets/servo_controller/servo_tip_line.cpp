@@ -171,17 +171,16 @@ bool ServoLowering::tip_line(const YamlNode& step, const TipTarget& placed,
   for (const compiler::TipLineAction& a : fit.actions) record.ends.push_back(a.end_ms);
   record.request = std::move(request);
   lines_.push_back(std::move(record));
-  record_arm_move([](std::size_t) { return true; }, start, end, step.location, true,
-                  tolerance_mm);
+  record_arm_move([](std::size_t) { return true; }, start, end, step.location, true, tolerance_mm);
   count_actions(fit.actions.size(), step.location);
   timeline_.tip_moves.push_back(
       {start.value(), end.value(), fit.from, placed.point, /*line=*/true});
   return true;
 }
 
-std::vector<std::vector<Segment>> ServoLowering::line_pieces(const compiler::TipLineRequest& request,
-                                                             const compiler::TipLineResult& fit,
-                                                             const LineRecord& line) const {
+std::vector<std::vector<Segment>> ServoLowering::line_pieces(
+    const compiler::TipLineRequest& request, const compiler::TipLineResult& fit,
+    const LineRecord& line) const {
   // Ordinary straight pieces of every servo of the move, kept as they are (keep_boundaries):
   // the fitter makes each one action, whole units at whole milliseconds, so what runs is what
   // was checked here.
