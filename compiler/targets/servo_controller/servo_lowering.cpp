@@ -172,13 +172,10 @@ void warn_late_first_moves(const RobotInfo& robot, const Timeline& timeline,
         "holds until {} and reaches {} in {} (the action that ends the move), not in {}",
         info.name, format_seconds(named->start_ms), target, format_seconds(named->time_ms),
         format_seconds(static_cast<std::uint64_t>(seg.end.round() - seg.start.round())));
-    if (info.max_speed && *info.max_speed > 0) {
-      const int from = target - info.min >= info.max - target ? info.min : info.max;
-      const double needs = std::abs(target - from) * 1000.0 / *info.max_speed;
-      if (needs > named->time_ms + 1e-9) {
-        message += fmt::format("; from {} it needs {:g} s at max_speed {:.0f}/s", from,
-                               std::ceil(needs / 10 - 1e-9) / 100, *info.max_speed);
-      }
+    if (const std::optional<FarEnd> far = far_end(info, target);
+        far && far->needs_ms > named->time_ms + 1e-9) {
+      message += fmt::format("; from {} it needs {:g} s at max_speed {:.0f}/s", far->from,
+                             std::ceil(far->needs_ms / 10 - 1e-9) / 100, *info.max_speed);
     }
     reporter.warning(seg.at, message +
                                  "; give it a position before this, or start its move "

@@ -36,6 +36,14 @@
 
 namespace seqc::compiler {
 
+// Where a servo may be when a group starts and it has no known position: the end of its limits
+// farthest from `target`, and how long max_speed needs from there (nullopt without max_speed).
+struct FarEnd {
+  int from = 0;
+  double needs_ms = 0;
+};
+std::optional<FarEnd> far_end(const ServoInfo& info, int target);
+
 class ServoLowering final : public StepWalker {
  public:
   ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);

@@ -182,6 +182,12 @@ void ServoLowering::report_kinematics(const std::vector<KinematicFinding>& findi
   }
 }
 
+std::optional<FarEnd> far_end(const ServoInfo& info, int target) {
+  if (!info.max_speed || *info.max_speed <= 0) return std::nullopt;
+  const int from = target - info.min >= info.max - target ? info.min : info.max;
+  return FarEnd{from, std::abs(target - from) * 1000.0 / *info.max_speed};
+}
+
 void ServoLowering::check_first_move(const std::vector<std::optional<int>>& targets, ExactMs time,
                                      Location at) {
   // The robot may be anywhere when a group starts: a servo's first move may have to come from
@@ -195,11 +201,9 @@ void ServoLowering::check_first_move(const std::vector<std::optional<int>>& targ
   const double takes = time.value();
   for (std::size_t servo = 0; servo < targets.size(); ++servo) {
     const ServoInfo& info = robot_.info.servos[servo];
-    if (!targets[servo] || pos_[servo] || !info.max_speed || *info.max_speed <= 0) continue;
-    const int target = *targets[servo];
-    const int from = target - info.min >= info.max - target ? info.min : info.max;
-    const double needs = std::abs(target - from) * 1000.0 / *info.max_speed;
-    if (takes + 1e-9 < needs) slow.push_back({servo, from, needs});
+    if (!targets[servo] || pos_[servo]) continue;
+    const std::optional<FarEnd> far = far_end(info, *targets[servo]);
+    if (far && takes + 1e-9 < far->needs_ms) slow.push_back({servo, far->from, far->needs_ms});
   }
   if (slow.empty()) return;
   const auto worst = std::max_element(slow.begin(), slow.end(), [](const Slow& a, const Slow& b) {
