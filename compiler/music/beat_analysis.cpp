@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include "compiler/music/beat_tracking.hpp"
 #include "compiler/music/onset_envelope.hpp"
@@ -16,9 +18,12 @@ namespace {
 constexpr double kMinSeconds = 6.0;
 
 struct Beat {
+  double frame = 0;        // where the tracker put it, in envelope frames
   double time_s = 0;       // the onset, or the tracker's frame when there is none
-  bool has_onset = false;  // a clear rise in amplitude near the tracked frame
+  bool has_onset = false;  // a clear onset near the tracked frame
+  bool fine = false;       // placed on the amplitude envelope (a hit standing out of silence)
   double rise = 0;         // how much the amplitude rose at the onset
+  double strength = 0;     // the onset envelope's peak near the beat (unit: its RMS)
   double accent = 0;       // how strongly the beat is marked (bar lines are, in most music)
 };
 
@@ -34,10 +39,11 @@ double mean(const std::vector<double>& x, long long from, long long to) {
 // Places a tracked beat on the onset near it: the block where the mean amplitude of the next
 // 4 ms rises most over that of the 4 ms before, then the point where the amplitude crosses 30%
 // of the way from before to the peak after (linear between block centres).
-Beat place_on_onset(int frame, double period_frames, const OnsetEnvelope& env,
+Beat place_on_onset(double frame, double period_frames, const OnsetEnvelope& env,
                     const FineEnvelope& fine, double analysis_rate) {
   Beat beat;
-  const double frame_s = double(frame) * double(env.hop) / analysis_rate;
+  beat.frame = frame;
+  const double frame_s = frame * double(env.hop) / analysis_rate;
   beat.time_s = frame_s;
   const double period_s = period_frames / env.frame_rate;
   // The tracker's frame can be off the onset by a few frames either way (its interval penalty
@@ -76,8 +82,74 @@ Beat place_on_onset(int frame, double period_frames, const OnsetEnvelope& env,
   // Block k's amplitude stands for its centre, k + 0.5 blocks.
   beat.time_s = (double(k) - 0.5 + frac) / fine.block_rate;
   beat.has_onset = true;
+  beat.fine = true;
   beat.rise = peak - before;
   return beat;
+}
+
+// The tracker's beats with the ones it skipped put back: an interval of about k periods (a
+// break, a stop) holds k - 1 beats evenly spaced, so every beat's index counts whole beats from
+// the first and one line fits them all.
+std::vector<double> whole_beats(const std::vector<int>& frames,
+                                const std::vector<double>& periods) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i > 0) {
+      const double gap = double(frames[i] - frames[i - 1]);
+      const double p = periods[static_cast<std::size_t>(frames[i])];
+      const long k = std::lround(gap / p);
+      for (long j = 1; j < k; ++j)
+        out.push_back(double(frames[i - 1]) + gap * double(j) / double(k));
+    }
+    out.push_back(double(frames[i]));
+  }
+  return out;
+}
+
+// Each beat on its onset: on the amplitude envelope where a hit stands out of what is before it
+// (a click, a drum in a sparse mix), else on the fine band flux, which finds a kick or a snare
+// inside a dense mix. The two mark an onset at slightly different instants: the flux's times
+// are moved by the median difference of the beats both place, so one line fits them all.
+std::vector<Beat> place_beats(const std::vector<double>& frames, const std::vector<double>& periods,
+                              const OnsetEnvelope& env, const FineEnvelope& fine,
+                              const AnalysisSignal& signal) {
+  std::vector<Beat> beats;
+  std::vector<double> flux_times, differences;
+  for (double f : frames) {
+    const auto u = std::min(static_cast<std::size_t>(std::lround(f)), env.flux.size() - 1);
+    Beat beat = place_on_onset(f, periods[u], env, fine, signal.sample_rate);
+    // The envelope's peak within a frame either side: the tracker may sit beside it.
+    for (std::size_t k = u > 0 ? u - 1 : 0; k <= u + 1 && k < env.flux.size(); ++k) {
+      beat.strength = std::max(beat.strength, env.flux[k]);
+    }
+    const double frame_s = f / env.frame_rate;
+    const double reach_s = std::min(0.15 * periods[u] / env.frame_rate, 0.05);
+    const FinePeak peak = fine_flux_peak(signal, frame_s - reach_s, frame_s + reach_s);
+    flux_times.push_back(peak.time_s);
+    if (beat.fine && peak.time_s >= 0) differences.push_back(beat.time_s - peak.time_s);
+    beats.push_back(beat);
+  }
+  double shift = 0;
+  if (!differences.empty()) {
+    std::nth_element(differences.begin(), differences.begin() + long(differences.size() / 2),
+                     differences.end());
+    shift = differences[differences.size() / 2];
+  }
+  // An onset at least a third of the typical beat's (the envelope is at unit RMS, so the
+  // off-beat texture of a dense mix stays under it).
+  std::vector<double> strengths;
+  for (const Beat& b : beats) strengths.push_back(b.strength);
+  std::nth_element(strengths.begin(), strengths.begin() + long(strengths.size() / 2),
+                   strengths.end());
+  const double floor = strengths.empty() ? 0.0 : strengths[strengths.size() / 2] / 3;
+  for (std::size_t i = 0; i < beats.size(); ++i) {
+    Beat& b = beats[i];
+    if (b.fine || flux_times[i] < 0 || b.strength <= floor || b.strength < 0.5) continue;
+    b.time_s = flux_times[i] + shift;
+    b.has_onset = true;
+    b.rise = -1;  // not measured on the amplitude: kept by the strength test only
+  }
+  return beats;
 }
 
 // Least squares t = a + b * i over the beats in [from, to) that have onsets.
@@ -224,6 +296,60 @@ std::vector<std::size_t> split_stretches(const std::vector<Beat>& beats, const B
   return bounds;
 }
 
+// How far one line through the beats of [from, to) strays from them, bar by bar (each bar's
+// onsets averaged): the longest run of bars beyond `audible`, and the largest bar's offset.
+struct Stray {
+  int run = 0;
+  double worst = 0;
+};
+Stray stray_from_one_line(const std::vector<Beat>& beats, const PrefixSums& sums, std::size_t from,
+                          std::size_t to, int per_bar, double audible) {
+  const LineFit f = sums.fit(from, to);
+  if (f.count < 2) return {std::numeric_limits<int>::max(), 0};
+  Stray stray;
+  int run = 0;
+  for (std::size_t start = from; start < to; start += static_cast<std::size_t>(per_bar)) {
+    double sum = 0;
+    int n = 0;
+    for (std::size_t i = start; i < std::min(to, start + static_cast<std::size_t>(per_bar)); ++i) {
+      if (!beats[i].has_onset) continue;
+      sum += beats[i].time_s - (f.a + f.b * double(i));
+      ++n;
+    }
+    if (n == 0) continue;
+    const double offset = std::abs(sum / n);
+    stray.worst = std::max(stray.worst, offset);
+    run = offset > audible ? run + 1 : 0;
+    stray.run = std::max(stray.run, run);
+  }
+  return stray;
+}
+
+// A change the ear cannot follow is noise in the map: two neighbouring stretches are one when a
+// single line through both stays within 25 ms of each bar's beats (or four times the onsets'
+// timing noise averaged over a bar, when that is more: a band playing to a click wanders that
+// much from sound to sound), allowing a passage of up to 7 bars within three times that, where
+// the onsets are those of another instrument for a while (a break, a fill). A real change of
+// tempo puts every bar after it further off. The closest pair is joined first.
+void merge_inaudible_changes(const std::vector<Beat>& beats, const PrefixSums& sums, int per_bar,
+                             double sigma, std::vector<std::size_t>& bounds) {
+  const double audible = std::max(0.025, 4 * sigma / std::sqrt(double(per_bar)));
+  while (bounds.size() > 2) {
+    std::size_t best = 0;
+    Stray best_stray{std::numeric_limits<int>::max(), 0};
+    for (std::size_t s = 0; s + 2 < bounds.size(); ++s) {
+      const Stray stray =
+          stray_from_one_line(beats, sums, bounds[s], bounds[s + 2], per_bar, audible);
+      if (std::tie(stray.run, stray.worst) < std::tie(best_stray.run, best_stray.worst)) {
+        best_stray = stray;
+        best = s;
+      }
+    }
+    if (best_stray.run >= 8 || best_stray.worst > 3 * audible) return;
+    bounds.erase(bounds.begin() + long(best + 1));
+  }
+}
+
 int decimals_for(const LineFit& fit, double sigma) {
   const double residual = fit.count > 2 ? std::sqrt(fit.sse / (fit.count - 2)) : sigma;
   // At least 1 ms per beat: placing a kick's onset and a snare's is good to about that, and
@@ -258,41 +384,69 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
   if (options.tempo_hint) hint_period = 60.0 * env.frame_rate / *options.tempo_hint;
   const auto tempo = estimate_tempo(env.flux, env.low, env.frame_rate, hint_period);
   if (!tempo || tempo->strength < 0.05) return no_steady_beat("no repeating onsets");
-  const std::vector<double> periods = local_periods(env.flux, env.frame_rate, tempo->period);
-  const std::vector<int> frames = track_beats(env.flux, periods);
+  // The span with onsets: the levels' grids are laid over it.
+  std::size_t first_onset = 0, last_onset = 0;
+  for (std::size_t f = 0; f < env.flux.size(); ++f) {
+    if (env.flux[f] >= 1.0) {
+      if (last_onset == 0) first_onset = f;
+      last_onset = f;
+    }
+  }
+  const LevelScore level = choose_level(env.flux, env.low, env.frame_rate, tempo->period,
+                                        first_onset, last_onset, hint_period);
+  // Below 1.5 the beat stands out of the music no more than a grid laid over noise does.
+  if (level.salience > 0 && level.salience < 1.5) {
+    char text[96];
+    std::snprintf(text, sizeof text, "its strongest pulse stands only %.2f times above the music",
+                  level.salience);
+    return no_steady_beat(text);
+  }
+  const double period = level.period;
+  const std::vector<double> periods = local_periods(env.flux, env.frame_rate, period);
+  std::vector<double> frames = whole_beats(track_beats(env.flux, periods), periods);
+  if (frames.size() >= 16) {
+    // Music played to a click: when one steady grid lands on onsets nearly as often as the
+    // tracked beats do, the grid's beats are the song's, also where the tracker slipped to the
+    // off-beats or to another level for a while.
+    const SteadyGrid grid = steady_grid(env.flux, period, static_cast<std::size_t>(frames.front()),
+                                        static_cast<std::size_t>(frames.back()));
+    std::vector<double> steady = grid_frames(grid, frames.front(), frames.back());
+    const double grid_hits = onset_share(env.flux, steady);
+    const double tracked_hits = onset_share(env.flux, frames);
+    if (grid_hits >= 0.75 * tracked_hits) frames = std::move(steady);
+  }
+  std::vector<Beat> beats = place_beats(frames, periods, env, fine, signal);
 
-  std::vector<Beat> beats;
   std::vector<double> lows;
   double low_sum = 0, rise_sum = 0;
-  for (int f : frames) {
-    const auto u = static_cast<std::size_t>(f);
-    beats.push_back(place_on_onset(f, periods[u], env, fine, signal.sample_rate));
+  for (const Beat& b : beats) {
+    const auto u = static_cast<std::size_t>(std::lround(b.frame));
     double low = 0;
     for (std::size_t k = u > 0 ? u - 1 : 0; k <= u + 2 && k < env.low.size(); ++k) {
       low = std::max(low, env.low[k]);
     }
     lows.push_back(low);
     low_sum += low;
-    rise_sum += beats.back().rise;
+    rise_sum += std::max(0.0, b.rise);
   }
   // An onset a thirtieth of the typical one (-30 dB) is the decay of a note or noise, not a
   // beat; a quiet intro at -20 dB still counts.
   std::vector<double> rises;
   for (const Beat& b : beats) {
-    if (b.has_onset) rises.push_back(b.rise);
+    if (b.fine) rises.push_back(b.rise);
   }
   if (!rises.empty()) {
     std::nth_element(rises.begin(), rises.begin() + long(rises.size() / 2), rises.end());
     const double typical = rises[rises.size() / 2];
     for (Beat& b : beats) {
-      if (b.rise < typical / 30) b.has_onset = false;
+      if (b.fine && b.rise < typical / 30) b.has_onset = false;
     }
   }
   // A bar's first beat is usually the one with the bass note and the kick, and the loudest:
   // the low band's onset counts twice as much as the loudness of the onset.
   for (std::size_t i = 0; i < beats.size(); ++i) {
     beats[i].accent = (low_sum > 0 ? lows[i] / low_sum : 0.0) +
-                      0.5 * (rise_sum > 0 ? beats[i].rise / rise_sum : 0.0);
+                      0.5 * (rise_sum > 0 ? std::max(0.0, beats[i].rise) / rise_sum : 0.0);
   }
   std::optional<int> given_beats;
   if (options.meter) given_beats = options.meter->beats;
@@ -334,6 +488,7 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     if (!dropped || round == 4) break;
   }
   const PrefixSums sums(beats);
+  merge_inaudible_changes(beats, sums, bar.beats, sigma, bounds);
 
   BeatAnalysis result;
   result.map.meter = options.meter ? *options.meter : Meter{bar.beats, 4};
@@ -364,9 +519,11 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
   }
 
   std::vector<double> onsets;
-  for (const Beat& b : beats) {
-    result.beats_s.push_back(b.time_s);
-    if (b.has_onset) onsets.push_back(b.time_s);
+  for (std::size_t i = 0; i < beats.size(); ++i) {
+    result.beats_s.push_back(beats[i].time_s);
+    const long place = (static_cast<long>(i) - bar.phase) % bar.beats;
+    result.positions.push_back(static_cast<int>((place + bar.beats) % bar.beats) + 1);
+    if (beats[i].has_onset) onsets.push_back(beats[i].time_s);
   }
   const std::vector<MapBeat> grid =
       map_beats(result.map, onsets.front() - 1e-3, onsets.back() + 1e-3);
@@ -385,6 +542,25 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     return no_steady_beat(text);
   }
   return result;
+}
+
+std::string beat_list(const BeatAnalysis& analysis) {
+  std::string out;
+  char line[64];
+  for (std::size_t i = 0; i < analysis.beats_s.size(); ++i) {
+    std::snprintf(line, sizeof line, "%.3f\t%d\n", analysis.beats_s[i], analysis.positions[i]);
+    out += line;
+  }
+  return out;
+}
+
+std::string analysis_summary(const BeatAnalysis& analysis) {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "%zu beats, confidence %.2f (the share of the map's beats with an onset within a "
+                "tenth of a beat)",
+                analysis.beats_s.size(), analysis.confidence);
+  return line;
 }
 
 }  // namespace seqc::music

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/music/tempo_map.hpp"
 #include "base/result.hpp"
+#include "compiler/music/tempo_map.hpp"
 
 namespace seqc::music {
 
@@ -28,6 +28,8 @@ struct BeatAnalysis {
   double confidence = 0;
   // The tracked beats from the first onset to the last, each on its onset where it has one.
   std::vector<double> beats_s;
+  // Each of those beats' place in its bar, 1 (the bar's first beat) to the meter's beats.
+  std::vector<int> positions;
   bool meter_detected = false;  // false when BeatOptions::meter gave it
 };
 
@@ -35,5 +37,13 @@ struct BeatAnalysis {
 // steady beat), worded for "seqc: error: SONG: <message>".
 Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample_rate,
                                    const BeatOptions& options);
+
+// The tracked beats, one per line: the time in seconds to the millisecond, a tab, the place in
+// the bar ("12.500\t1"), the layout of the beat annotations that evaluation tools read.
+std::string beat_list(const BeatAnalysis& analysis);
+
+// "163 beats, confidence 0.97 (the share of the map's beats with an onset within a tenth of a
+// beat)".
+std::string analysis_summary(const BeatAnalysis& analysis);
 
 }  // namespace seqc::music

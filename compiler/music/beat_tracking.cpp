@@ -210,4 +210,146 @@ std::vector<int> track_beats(const std::vector<double>& flux, const std::vector<
   return beats;
 }
 
+namespace {
+
+// The comb's value: the envelope summed at every grid beat from `first` to `last`.
+double comb(const std::vector<double>& peaks, double period, double phase, std::size_t first,
+            std::size_t last) {
+  double sum = 0;
+  for (double t = double(first) + phase; t <= double(last); t += period) sum += at(peaks, t);
+  return sum;
+}
+
+}  // namespace
+
+SteadyGrid steady_grid(const std::vector<double>& flux, double period, std::size_t first,
+                       std::size_t last) {
+  // Each frame's largest value within a frame either side: a grid beat between two frames, or
+  // one frame off the onset, still counts it.
+  std::vector<double> peaks(flux.size(), 0.0);
+  for (std::size_t i = 0; i < flux.size(); ++i) {
+    peaks[i] =
+        std::max({flux[i], i > 0 ? flux[i - 1] : 0.0, i + 1 < flux.size() ? flux[i + 1] : 0.0});
+  }
+  last = std::min(last, flux.size() - 1);
+  const double beats = std::max(1.0, double(last - first) / period);
+  SteadyGrid best{period, 0};
+  double best_score = -1;
+  // Coarse: the grid's end moves about two frames per step, the phase a frame per step; then
+  // fine steps around the best, twice, each a tenth of the one before.
+  double step = 2.0 / beats, lo = period * 0.97, hi = period * 1.03, phase_step = 1.0;
+  for (int round = 0; round < 3; ++round) {
+    for (double p = lo; p <= hi; p += step) {
+      const double phase_lo = round == 0 ? 0.0 : best.phase - 2 * phase_step * 10;
+      const double phase_hi = round == 0 ? p : best.phase + 2 * phase_step * 10;
+      for (double ph = phase_lo; ph < phase_hi; ph += phase_step) {
+        const double wrapped = std::fmod(ph + p, p);
+        const double score = comb(peaks, p, wrapped, first, last);
+        if (score > best_score) {
+          best_score = score;
+          best = {p, wrapped};
+        }
+      }
+    }
+    lo = best.period - 2 * step;
+    hi = best.period + 2 * step;
+    step /= 10;
+    phase_step /= 10;
+  }
+  best.phase = std::fmod(double(first) + best.phase, best.period);
+  return best;
+}
+
+double onset_share(const std::vector<double>& flux, const std::vector<double>& frames) {
+  std::size_t hits = 0;
+  for (double f : frames) {
+    const auto u = static_cast<long long>(std::lround(f));
+    for (long long k = std::max(0LL, u - 1); k <= u + 1; ++k) {
+      if (k < static_cast<long long>(flux.size()) && flux[static_cast<std::size_t>(k)] >= 1.0) {
+        ++hits;
+        break;
+      }
+    }
+  }
+  return frames.empty() ? 0.0 : double(hits) / double(frames.size());
+}
+
+std::vector<double> grid_frames(const SteadyGrid& grid, double first, double last) {
+  std::vector<double> out;
+  const double k0 = std::ceil((first - grid.phase) / grid.period - 0.5);
+  for (double f = grid.phase + k0 * grid.period; f <= last + 0.5 * grid.period; f += grid.period) {
+    out.push_back(f);
+  }
+  return out;
+}
+
+LevelScore score_level(const std::vector<double>& flux, double period, std::size_t first,
+                       std::size_t last) {
+  const SteadyGrid grid = steady_grid(flux, period, first, last);
+  double on = 0, all = 0;
+  std::size_t beats = 0, frames = 0;
+  for (double f : grid_frames(grid, double(first), double(last))) {
+    on += std::max({at(flux, f - 1), at(flux, f), at(flux, f + 1)});
+    ++beats;
+  }
+  for (std::size_t f = first + 1; f + 1 < last && f + 1 < flux.size(); ++f) {
+    all += std::max({flux[f - 1], flux[f], flux[f + 1]});
+    ++frames;
+  }
+  if (beats == 0 || frames == 0 || all <= 0) return {grid.period, 0};
+  return {grid.period, (on / double(beats)) / (all / double(frames))};
+}
+
+namespace {
+
+bool in_range(double period, double frame_rate) {
+  const double bpm = 60.0 * frame_rate / period;
+  return bpm >= 40 && bpm <= 240;
+}
+
+}  // namespace
+
+LevelScore choose_level(const std::vector<double>& flux, const std::vector<double>& low,
+                        double frame_rate, double period, std::size_t first, std::size_t last,
+                        std::optional<double> hint_period) {
+  last = std::min(last, flux.size() - 1);
+  if (double(last) <= double(first) + 4 * period) return {period, 0};
+  // The family first: the autocorrelation's level, or a level in three halves or two thirds
+  // of it when that one is more strongly marked (a riff in dotted rhythms can make the
+  // autocorrelation peak at two thirds of the beat).
+  LevelScore best = score_level(flux, period, first, last);
+  for (double ratio : {1.5, 2.0 / 3.0}) {
+    if (!in_range(period * ratio, frame_rate)) continue;
+    const LevelScore other = score_level(flux, period * ratio, first, last);
+    if (other.salience > best.salience) best = other;
+  }
+  // Then the octave, as estimate_tempo decides it: the slowest level whose off-beats are
+  // clearly weaker than its beats, or the one nearest the hint.
+  std::vector<double> octaves;
+  for (double ratio : {2.0, 1.0, 0.5}) {
+    if (!in_range(best.period * ratio, frame_rate)) continue;
+    octaves.push_back(ratio == 1.0 ? best.period
+                                   : steady_grid(flux, best.period * ratio, first, last).period);
+  }
+  if (octaves.empty()) return best;
+  if (hint_period) {
+    LevelScore chosen = best;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (double p : octaves) {
+      const double distance = std::abs(std::log(p / *hint_period));
+      if (distance < nearest) {
+        nearest = distance;
+        chosen.period = p;
+      }
+    }
+    return chosen;
+  }
+  for (double p : octaves) {
+    const double ratio =
+        0.5 * (offbeat_ratio(flux, p, frame_rate) + offbeat_ratio(low, p, frame_rate));
+    if (ratio < 0.55) return {p, best.salience};
+  }
+  return best;
+}
+
 }  // namespace seqc::music

@@ -1,8 +1,11 @@
 // What the beat analysis reads from the samples: the onset-strength envelope (spectral flux of
-// log magnitudes, all bands and the low band apart) on a frame grid, and a fine amplitude
-// envelope for placing onsets to a fraction of a millisecond. Pure functions of the samples.
+// log band energies over third-octave bands, all bands and the low band apart) and each frame's
+// pitch classes on a frame grid, a fine amplitude envelope, and a fine spectral flux around a
+// given instant, for placing onsets to a fraction of a millisecond. Pure functions of the
+// samples.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -23,9 +26,12 @@ AnalysisSignal reduce_for_analysis(std::span<const float> samples, double sample
 struct OnsetEnvelope {
   std::vector<double> flux;  // high-passed (local mean removed), half-wave rectified, unit std
   std::vector<double> low;   // low-band flux, not normalised
-  std::size_t hop = 0;       // analysis samples per frame
-  std::size_t window = 0;    // analysis samples per FFT
-  double frame_rate = 0;     // frames per second
+  // The energy of each pitch class (200 Hz - 2 kHz, where chords are), summed to 1 per frame:
+  // a chord change moves it, a drum hit barely does.
+  std::vector<std::array<float, 12>> chroma;
+  std::size_t hop = 0;     // analysis samples per frame
+  std::size_t window = 0;  // analysis samples per FFT
+  double frame_rate = 0;   // frames per second
 };
 OnsetEnvelope onset_envelope(const AnalysisSignal& signal);
 
@@ -37,5 +43,15 @@ struct FineEnvelope {
   double block_rate = 0;  // blocks per second
 };
 FineEnvelope fine_envelope(const AnalysisSignal& signal);
+
+// The same band flux as the envelope's, on 64-sample windows every 8 samples (0.7 ms at
+// 11 kHz), from `from_s` to `to_s`: the instant of its largest value (refined by a parabola) and
+// that value, or a negative time when the span is outside the signal. Computed only around
+// beats, so its cost grows with the beats, not with the song's length.
+struct FinePeak {
+  double time_s = -1;
+  double strength = 0;
+};
+FinePeak fine_flux_peak(const AnalysisSignal& signal, double from_s, double to_s);
 
 }  // namespace seqc::music

@@ -1,5 +1,5 @@
-// seqc beats SONG [--meter N/D] [--tempo-hint BPM] [--click OUT.wav]: the song's beats as a
-// `music:` block (compiler/music), decoded by libsndfile (runtime/audio).
+// seqc beats SONG [--meter N/D] [--tempo-hint BPM] [--click OUT.wav] [--beats-out OUT]: the
+// song's beats as a `music:` block (compiler/music), decoded by libsndfile (runtime/audio).
 #include <cstdio>
 #include <memory>
 
@@ -16,8 +16,9 @@ namespace seqc::cli {
 
 ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader& reader,
                    audio::AudioWriter& writer) {
-  if (request.click && refuse_input_as_output(ctx, "--click", *request.click, {request.song})) {
-    return ExitCode::Usage;
+  for (const auto& [option, path] :
+       {std::pair{"--click", request.click}, std::pair{"--beats-out", request.beats_out}}) {
+    if (path && refuse_input_as_output(ctx, option, *path, {request.song})) return ExitCode::Usage;
   }
   auto song = reader.read(request.song);
   if (!song) return fail(ctx, ExitCode::FileError, song.error().message);
@@ -29,12 +30,12 @@ ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader
     return fail(ctx, ExitCode::InvalidInput, request.song + ": " + analysis.error().message);
   }
   ctx.out << music::music_block(request.song, analysis->map);
-  char line[160];
-  std::snprintf(line, sizeof line,
-                "%s: %zu beats, confidence %.2f (the share of the map's beats with an onset "
-                "within a tenth of a beat)",
-                request.song.c_str(), analysis->beats_s.size(), analysis->confidence);
-  summarize(ctx, line);
+  summarize(ctx, request.song + ": " + music::analysis_summary(*analysis));
+  if (request.beats_out) {
+    const ExitCode code = write_output(ctx, *request.beats_out, music::beat_list(*analysis),
+                                       {request.song}, "--beats-out");
+    if (code != ExitCode::Ok) return code;
+  }
   if (request.click) {
     audio::MonoAudio mixed{music::mix_click_track(song->samples, song->sample_rate, analysis->map),
                            song->sample_rate};
@@ -64,6 +65,8 @@ void add_beats_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "About how fast, in BPM: picks between half, the detected and double tempo")
       ->check(CLI::Range(20.0, 400.0));
   cmd->add_option("--click", *click, "Also write OUT.wav: the song with a click on every beat");
+  cmd->add_option("--beats-out", request->beats_out,
+                  "Also write OUT: each beat's time and place in its bar, one per line");
   cmd->callback([&ctx, &result, request, meter, hint, click] {
     BeatsRequest r = *request;
     if (!meter->empty()) {

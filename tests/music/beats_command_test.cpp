@@ -62,7 +62,7 @@ TEST(BeatsCommand, PrintsTheMusicBlockAndWritesTheClickTrack) {
   FakeReader reader(clicks(120, 0.5));
   FakeWriter writer;
   CommandRun run;
-  BeatsRequest request{"songs/clicks.ogg", std::nullopt, std::nullopt, "out.wav"};
+  BeatsRequest request{"songs/clicks.ogg", std::nullopt, std::nullopt, "out.wav", std::nullopt};
   EXPECT_EQ(run_beats(run.ctx, request, reader, writer), ExitCode::Ok);
   EXPECT_EQ(reader.paths, std::vector<std::string>{"songs/clicks.ogg"});
   EXPECT_EQ(run.out.str(),
@@ -83,7 +83,8 @@ TEST(BeatsCommand, QuietPrintsOnlyTheBlock) {
   FakeWriter writer;
   CommandRun run;
   run.ctx.verbosity = -1;
-  EXPECT_EQ(run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, std::nullopt}, reader, writer),
+  EXPECT_EQ(run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, std::nullopt, std::nullopt},
+                      reader, writer),
             ExitCode::Ok);
   EXPECT_EQ(run.err.str(), "");
   EXPECT_EQ(writer.written_path, "");  // no --click, nothing written
@@ -94,7 +95,8 @@ TEST(BeatsCommand, UnreadableSongIsAFileError) {
   FakeWriter writer;
   CommandRun run;
   EXPECT_EQ(
-      run_beats(run.ctx, {"gone.flac", std::nullopt, std::nullopt, std::nullopt}, reader, writer),
+      run_beats(run.ctx, {"gone.flac", std::nullopt, std::nullopt, std::nullopt, std::nullopt},
+                reader, writer),
       ExitCode::FileError);
   EXPECT_EQ(run.out.str(), "");
   EXPECT_EQ(run.err.str(), "seqc: error: gone.flac: no such file\n");
@@ -105,7 +107,8 @@ TEST(BeatsCommand, NoSteadyBeatIsInvalidInputAndPrintsNoGuess) {
   FakeReader reader(audio::MonoAudio{noise.samples, noise.sample_rate});
   FakeWriter writer;
   CommandRun run;
-  EXPECT_EQ(run_beats(run.ctx, {"rain.wav", std::nullopt, std::nullopt, "c.wav"}, reader, writer),
+  EXPECT_EQ(run_beats(run.ctx, {"rain.wav", std::nullopt, std::nullopt, "c.wav", std::nullopt},
+                      reader, writer),
             ExitCode::InvalidInput);
   EXPECT_EQ(run.out.str(), "");
   EXPECT_EQ(run.err.str().rfind("seqc: error: rain.wav: no steady beat found (", 0), 0u)
@@ -118,9 +121,9 @@ TEST(BeatsCommand, FailedClickWriteIsAFileError) {
   FakeWriter writer;
   writer.fail = true;
   CommandRun run;
-  EXPECT_EQ(
-      run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, "/full/out.wav"}, reader, writer),
-      ExitCode::FileError);
+  EXPECT_EQ(run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, "/full/out.wav", std::nullopt},
+                      reader, writer),
+            ExitCode::FileError);
   EXPECT_NE(run.err.str().find("seqc: error: /full/out.wav: cannot write: disk full\n"),
             std::string::npos)
       << run.err.str();
