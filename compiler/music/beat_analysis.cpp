@@ -1,11 +1,10 @@
 #include "compiler/music/beat_analysis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <cstdlib>
-#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -152,6 +151,36 @@ std::vector<Beat> place_beats(const std::vector<double>& frames, const std::vect
   return beats;
 }
 
+// How much the harmony changes at each beat: one minus the cosine between the pitch classes of
+// the two beats from it and those of the two beats before it (0 where it stays, towards 1 at a
+// new chord). Chords change on bar lines far more often than between them.
+std::vector<double> chord_changes(const std::vector<Beat>& beats, const OnsetEnvelope& env) {
+  const std::size_t n = beats.size();
+  std::vector<std::array<double, 12>> per_beat(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto from = static_cast<std::size_t>(std::max(0L, std::lround(beats[i].frame)));
+    const auto to =
+        i + 1 < n ? static_cast<std::size_t>(std::lround(beats[i + 1].frame)) : from + 1;
+    per_beat[i].fill(0.0);
+    for (std::size_t f = from; f < to && f < env.chroma.size(); ++f) {
+      for (std::size_t c = 0; c < 12; ++c) per_beat[i][c] += env.chroma[f][c];
+    }
+  }
+  std::vector<double> change(n, 0.0);
+  for (std::size_t i = 2; i + 1 < n; ++i) {
+    double dot = 0, before = 0, after = 0;
+    for (std::size_t c = 0; c < 12; ++c) {
+      const double a = per_beat[i][c] + per_beat[i + 1][c];
+      const double b = per_beat[i - 1][c] + per_beat[i - 2][c];
+      dot += a * b;
+      after += a * a;
+      before += b * b;
+    }
+    if (before > 0 && after > 0) change[i] = 1.0 - dot / std::sqrt(before * after);
+  }
+  return change;
+}
+
 // Least squares t = a + b * i over the beats in [from, to) that have onsets.
 struct LineFit {
   double a = 0, b = 0;
@@ -296,24 +325,30 @@ std::vector<std::size_t> split_stretches(const std::vector<Beat>& beats, const B
   return bounds;
 }
 
-// How far one line through the beats of [from, to) strays from them, bar by bar (each bar's
-// onsets averaged): the longest run of bars beyond `audible`, and the largest bar's offset.
+// How far one stretch made of [from, mid) and [mid, to) would stray from their beats, bar by
+// bar (each bar's onsets averaged), read as the map reads it: a straight run from where the
+// first one's line starts to where the second one's line ends. The longest run of bars beyond
+// `audible`, and the largest bar's offset.
 struct Stray {
   int run = 0;
   double worst = 0;
 };
-Stray stray_from_one_line(const std::vector<Beat>& beats, const PrefixSums& sums, std::size_t from,
-                          std::size_t to, int per_bar, double audible) {
-  const LineFit f = sums.fit(from, to);
-  if (f.count < 2) return {std::numeric_limits<int>::max(), 0};
+Stray stray_if_joined(const std::vector<Beat>& beats, const PrefixSums& sums, std::size_t from,
+                      std::size_t mid, std::size_t to, int per_bar, double audible) {
+  const LineFit first = sums.fit(from, mid);
+  const LineFit second = sums.fit(mid, to);
+  if (first.count < 2 || second.count < 2) return {std::numeric_limits<int>::max(), 0};
+  const double start = first.a + first.b * double(from);
+  const double end = second.a + second.b * double(to);
+  const double slope = (end - start) / double(to - from);
   Stray stray;
   int run = 0;
-  for (std::size_t start = from; start < to; start += static_cast<std::size_t>(per_bar)) {
+  for (std::size_t bar = from; bar < to; bar += static_cast<std::size_t>(per_bar)) {
     double sum = 0;
     int n = 0;
-    for (std::size_t i = start; i < std::min(to, start + static_cast<std::size_t>(per_bar)); ++i) {
+    for (std::size_t i = bar; i < std::min(to, bar + static_cast<std::size_t>(per_bar)); ++i) {
       if (!beats[i].has_onset) continue;
-      sum += beats[i].time_s - (f.a + f.b * double(i));
+      sum += beats[i].time_s - (start + slope * double(i - from));
       ++n;
     }
     if (n == 0) continue;
@@ -325,27 +360,57 @@ Stray stray_from_one_line(const std::vector<Beat>& beats, const PrefixSums& sums
   return stray;
 }
 
-// A change the ear cannot follow is noise in the map: two neighbouring stretches are one when a
-// single line through both stays within 25 ms of each bar's beats (or four times the onsets'
-// timing noise averaged over a bar, when that is more: a band playing to a click wanders that
-// much from sound to sound), allowing a passage of up to 7 bars within three times that, where
-// the onsets are those of another instrument for a while (a break, a fill). A real change of
-// tempo puts every bar after it further off. The closest pair is joined first.
+// Each bar's offset from its own stretch's line (the bar's onsets averaged), for every bar.
+std::vector<double> bar_offsets(const std::vector<Beat>& beats, const PrefixSums& sums,
+                                const std::vector<std::size_t>& bounds, int per_bar) {
+  std::vector<double> out;
+  for (std::size_t s = 0; s + 1 < bounds.size(); ++s) {
+    const LineFit f = sums.fit(bounds[s], bounds[s + 1]);
+    for (std::size_t start = bounds[s]; start < bounds[s + 1];
+         start += static_cast<std::size_t>(per_bar)) {
+      double sum = 0;
+      int n = 0;
+      for (std::size_t i = start;
+           i < std::min(bounds[s + 1], start + static_cast<std::size_t>(per_bar)); ++i) {
+        if (!beats[i].has_onset) continue;
+        sum += beats[i].time_s - (f.a + f.b * double(i));
+        ++n;
+      }
+      if (n > 0) out.push_back(sum / n);
+    }
+  }
+  return out;
+}
+
+// A change the ear cannot follow, or one the onsets' own unevenness explains, is noise in the
+// map: two neighbouring stretches are one when a single line through both stays within 15 ms
+// of each bar's beats, or within 3.5 times the bars' own scatter about their stretches' lines
+// when that is more (the onsets of a band playing to a click wander from sound to sound),
+// allowing two bars in a row within twice that (a fill, where the onsets are another
+// instrument's). A real change of tempo, or a drift, puts every bar after it further off. The
+// closest pair is joined first.
 void merge_inaudible_changes(const std::vector<Beat>& beats, const PrefixSums& sums, int per_bar,
-                             double sigma, std::vector<std::size_t>& bounds) {
-  const double audible = std::max(0.025, 4 * sigma / std::sqrt(double(per_bar)));
+                             std::vector<std::size_t>& bounds) {
+  std::vector<double> offsets = bar_offsets(beats, sums, bounds, per_bar);
+  for (double& o : offsets) o = std::abs(o);
+  double scatter = 0;
+  if (!offsets.empty()) {
+    std::nth_element(offsets.begin(), offsets.begin() + long(offsets.size() / 2), offsets.end());
+    scatter = 1.4826 * offsets[offsets.size() / 2];
+  }
+  const double audible = std::max(0.015, 3.5 * scatter);
   while (bounds.size() > 2) {
     std::size_t best = 0;
     Stray best_stray{std::numeric_limits<int>::max(), 0};
     for (std::size_t s = 0; s + 2 < bounds.size(); ++s) {
       const Stray stray =
-          stray_from_one_line(beats, sums, bounds[s], bounds[s + 2], per_bar, audible);
+          stray_if_joined(beats, sums, bounds[s], bounds[s + 1], bounds[s + 2], per_bar, audible);
       if (std::tie(stray.run, stray.worst) < std::tie(best_stray.run, best_stray.worst)) {
         best_stray = stray;
         best = s;
       }
     }
-    if (best_stray.run >= 8 || best_stray.worst > 3 * audible) return;
+    if (best_stray.run >= 3 || best_stray.worst > 2 * audible) return;
     bounds.erase(bounds.begin() + long(best + 1));
   }
 }
@@ -359,6 +424,37 @@ int decimals_for(const LineFit& fit, double sigma) {
   // The last digit shown is no finer than two standard errors.
   const double digits = std::floor(std::log10(1.0 / (2.0 * tempo_error)));
   return static_cast<int>(std::clamp(digits, 0.0, 3.0));
+}
+
+// A map is read as one chain: each stretch starts where the one before it ends at its printed
+// tempo (docs/music.md), not where its own line puts it. Each change's bar line is set where
+// the lines on either side of it meet it (their mean), and each stretch but the last gets the
+// tempo that reaches the next bar line from where the printed map so far stands, printed with
+// enough decimals that its rounding moves that bar line by less than half a millisecond: the
+// chain stays on the song's beats however many changes it has.
+void make_continuous(TempoMap& map, const std::vector<std::size_t>& bounds,
+                     const PrefixSums& sums) {
+  const std::size_t count = map.stretches.size();
+  if (count < 2 || bounds.size() != count + 1) return;
+  const int per_bar = map.meter.beats;
+  double printed = map.stretches.front().start_s;
+  for (std::size_t j = 0; j + 1 < count; ++j) {
+    TempoStretch& here = map.stretches[j];
+    const TempoStretch& next = map.stretches[j + 1];
+    const LineFit before = sums.fit(bounds[j], bounds[j + 1]);
+    const LineFit after = sums.fit(bounds[j + 1], bounds[j + 2]);
+    const double at = double(bounds[j + 1]);
+    const double knot = 0.5 * ((before.a + before.b * at) + (after.a + after.b * at));
+    const double beats = double((next.bar - here.bar) * per_bar);
+    here.start_s = printed;
+    here.tempo = 60.0 * beats / (knot - printed);
+    const double duration = knot - printed;
+    const double needed = std::ceil(std::log10(duration / (0.001 * here.tempo)));
+    here.decimals = std::max(here.decimals, static_cast<int>(std::clamp(needed, 0.0, 3.0)));
+    const double shown = std::stod(tempo_text(here.tempo, here.decimals));
+    printed += beats * 60.0 / shown;
+  }
+  map.stretches.back().start_s = printed;
 }
 
 Error no_steady_beat(const char* why) {
@@ -442,11 +538,21 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
       if (b.fine && b.rise < typical / 30) b.has_onset = false;
     }
   }
-  // A bar's first beat is usually the one with the bass note and the kick, and the loudest:
-  // the low band's onset counts twice as much as the loudness of the onset.
+  // A bar's first beat is usually where the chord changes, with the bass note and the kick,
+  // and the loudest: each cue over its mean, the low band's onset and the chord change counting
+  // twice as much as the loudness.
+  const std::vector<double> changes = chord_changes(beats, env);
+  double change_sum = 0, strength_sum = 0;
   for (std::size_t i = 0; i < beats.size(); ++i) {
-    beats[i].accent = (low_sum > 0 ? lows[i] / low_sum : 0.0) +
-                      0.5 * (rise_sum > 0 ? std::max(0.0, beats[i].rise) / rise_sum : 0.0);
+    change_sum += changes[i];
+    strength_sum += beats[i].strength;
+  }
+  for (std::size_t i = 0; i < beats.size(); ++i) {
+    const double n = double(beats.size());
+    beats[i].accent = (low_sum > 0 ? n * lows[i] / low_sum : 0.0) +
+                      (change_sum > 0 ? n * changes[i] / change_sum : 0.0) +
+                      0.5 * (rise_sum > 0 ? n * std::max(0.0, beats[i].rise) / rise_sum : 0.0) +
+                      0.5 * (strength_sum > 0 ? n * beats[i].strength / strength_sum : 0.0);
   }
   std::optional<int> given_beats;
   if (options.meter) given_beats = options.meter->beats;
@@ -455,22 +561,26 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
   std::vector<std::size_t> bounds;
   // A spurious onset (noise before the music, a fill) would pull a stretch's line towards it:
   // onsets far off the fitted lines are dropped and the map is made again, until none is.
+  // The song's beats run from the first to the last beat with an onset: the tracker also fills
+  // silence and noise before and after the music with beats.
+  const auto first =
+      std::find_if(beats.begin(), beats.end(), [](const Beat& b) { return b.has_onset; });
+  const auto last =
+      std::find_if(beats.rbegin(), beats.rend(), [](const Beat& b) { return b.has_onset; });
+  if (first == beats.end()) return no_steady_beat("no clear onsets");
+  beats = std::vector<Beat>(first, last.base());
+  if (beats.size() < 16) return no_steady_beat("fewer than 16 beats");
+  std::vector<bool> heard;
+  for (const Beat& b : beats) heard.push_back(b.has_onset);
+  // Each round judges every onset heard against the lines of the round before, so an onset
+  // dropped against one line for a drifting song comes back once the song has its stretches.
   for (int round = 0;; ++round) {
-    // The song's beats run from the first to the last beat with an onset: the tracker also
-    // fills silence and noise before and after the music with beats.
-    const auto first =
-        std::find_if(beats.begin(), beats.end(), [](const Beat& b) { return b.has_onset; });
-    const auto last =
-        std::find_if(beats.rbegin(), beats.rend(), [](const Beat& b) { return b.has_onset; });
-    if (first == beats.end()) return no_steady_beat("no clear onsets");
-    beats = std::vector<Beat>(first, last.base());
-    if (beats.size() < 16) return no_steady_beat("fewer than 16 beats");
     bar = bar_phase(beats, given_beats);
     sigma = jitter_sigma(beats);
     bounds = split_stretches(beats, bar, sigma);
     if (bounds.empty()) return no_steady_beat("too few beats with onsets");
     const PrefixSums sums(beats);
-    bool dropped = false;
+    bool changed = false;
     for (std::size_t s = 0; s + 1 < bounds.size(); ++s) {
       const LineFit f = sums.fit(bounds[s], bounds[s + 1]);
       for (std::size_t i = bounds[s]; i < bounds[s + 1]; ++i) {
@@ -479,16 +589,17 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
         const double leverage = 1.0 / f.count + (double(i) - f.xbar) * (double(i) - f.xbar) / f.sxx;
         const double residual =
             (beats[i].time_s - (f.a + f.b * double(i))) / std::max(1e-3, 1.0 - leverage);
-        if (beats[i].has_onset && std::abs(residual) > std::max(5 * sigma, 0.04 * f.b)) {
-          beats[i].has_onset = false;
-          dropped = true;
+        const bool keep = heard[i] && std::abs(residual) <= std::max(5 * sigma, 0.04 * f.b);
+        if (keep != beats[i].has_onset) {
+          beats[i].has_onset = keep;
+          changed = true;
         }
       }
     }
-    if (!dropped || round == 4) break;
+    if (!changed || round == 4) break;
   }
   const PrefixSums sums(beats);
-  merge_inaudible_changes(beats, sums, bar.beats, sigma, bounds);
+  merge_inaudible_changes(beats, sums, bar.beats, bounds);
 
   BeatAnalysis result;
   result.map.meter = options.meter ? *options.meter : Meter{bar.beats, 4};
@@ -517,6 +628,7 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     result.map.stretches.push_back(stretch);
     ++s;
   }
+  make_continuous(result.map, bounds, sums);
 
   std::vector<double> onsets;
   for (std::size_t i = 0; i < beats.size(); ++i) {

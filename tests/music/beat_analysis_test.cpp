@@ -173,6 +173,43 @@ TEST(BeatAnalysis, ALargeTempoChangeIsFollowed) {
   EXPECT_NEAR(a.map.stretches[1].start_s, 32.75, 0.005);
 }
 
+TEST(BeatAnalysis, ATempoThatDriftsIsFollowedAndTheMapStaysOnTheBeats) {
+  // A band speeding up by a quarter of a BPM every bar, 100 to 111.75 BPM over 48 bars: no
+  // single tempo fits (bar 48 would be off by seconds), and the map read as a chain (each
+  // stretch starting where the one before ends at its printed tempo) must stay on the beats.
+  SongSpec spec;
+  spec.tempo = 100;
+  spec.drift_per_bar = 0.25;
+  spec.bars = 48;
+  spec.jitter_ms = 2;
+  const Song song = make_song(spec);
+  const BeatAnalysis a = analyze(song);
+  ASSERT_GE(a.map.stretches.size(), 3u);
+  // 10 ms: the first stretch's line runs through a tempo that is already rising.
+  EXPECT_NEAR(a.map.downbeat_s(), 0.75, 0.010);
+  // Chained here from the printed text, the way a choreography's `changes:` are read.
+  const std::string block = music_block("s.wav", a.map);
+  std::vector<double> map_beats;
+  double t = 0.75;
+  for (std::size_t i = 0; i < a.map.stretches.size(); ++i) {
+    const TempoStretch& s = a.map.stretches[i];
+    const double shown = std::stod(tempo_text(s.tempo, s.decimals));
+    EXPECT_NE(block.find(tempo_text(s.tempo, s.decimals)), std::string::npos);
+    const int end_bar = i + 1 < a.map.stretches.size() ? a.map.stretches[i + 1].bar : 49;
+    for (int beat = 0; beat < (end_bar - s.bar) * 4; ++beat) {
+      map_beats.push_back(t);
+      t += 60.0 / shown;
+    }
+  }
+  ASSERT_EQ(map_beats.size(), song.beats_s.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < map_beats.size(); ++i) {
+    worst = std::max(worst, std::abs(map_beats[i] - song.beats_s[i]));
+  }
+  // Within 25 ms everywhere: the tolerance the analysis keeps a stretch to.
+  EXPECT_LT(worst, 0.025) << block;
+}
+
 TEST(BeatAnalysis, TempoHintPicksTheMetricalLevel) {
   SongSpec spec;
   spec.tempo = 75;

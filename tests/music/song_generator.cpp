@@ -84,7 +84,8 @@ Song make_song(const SongSpec& spec) {
   double t = spec.lead_in_s;
   for (int bar = 1; bar <= spec.bars; ++bar) {
     const double tempo =
-        spec.change_bar && bar >= *spec.change_bar ? spec.change_tempo : spec.tempo;
+        (spec.change_bar && bar >= *spec.change_bar ? spec.change_tempo : spec.tempo) +
+        spec.drift_per_bar * (bar - 1);
     for (int b = 0; b < spec.meter; ++b) {
       beats.push_back(t);
       t += 60.0 / tempo;

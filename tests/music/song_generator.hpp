@@ -18,6 +18,8 @@ struct SongSpec {
   // From this bar (1-based) on, this tempo.
   std::optional<int> change_bar;
   double change_tempo = 0;
+  // Each bar this much faster than the one before (BPM): a band speeding up without a click.
+  double drift_per_bar = 0;
   double swing = 0;    // the off-beat eighth at (1 + swing) / 2 of the beat: 1/3 = triplet
   int quiet_bars = 0;  // the first bars at -20 dB (a quiet intro)
   int pickup = 0;      // beats before bar 1 (an upbeat: snare and hi-hat), ending at it
