@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <numeric>
+#include <string>
 #include <tuple>
 
 #include "compiler/music/beat_tracking.hpp"
