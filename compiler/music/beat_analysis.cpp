@@ -250,8 +250,10 @@ double jitter_sigma(const std::vector<Beat>& beats) {
 }
 
 // Which beat of the bar is 1, and how many beats a bar has (unless given): per phase of the
-// bar, the mean low-band accent of its beats; the meter whose strongest phase stands out most
-// from its others wins, and that phase is the downbeat.
+// bar, the mean accent of its beats; the meter whose strongest phase stands out most from its
+// others wins, and that phase is the downbeat. Two beats to the bar must stand out a fifth more
+// than four, and six a fifth more than three: a bar of four whose third beat is nearly as
+// strong as its first scores well as two, and two bars of three as one of six.
 struct BarPhase {
   int beats = 4;
   int phase = 0;  // index (among the kept beats) of the first downbeat
@@ -259,7 +261,7 @@ struct BarPhase {
 BarPhase bar_phase(const std::vector<Beat>& beats, std::optional<int> given) {
   BarPhase best;
   double best_contrast = -std::numeric_limits<double>::infinity();
-  std::vector<int> meters = given ? std::vector<int>{*given} : std::vector<int>{4, 3};
+  std::vector<int> meters = given ? std::vector<int>{*given} : std::vector<int>{4, 3, 2, 6};
   for (int m : meters) {
     std::vector<double> sum(static_cast<std::size_t>(m), 0.0);
     std::vector<int> count(static_cast<std::size_t>(m), 0);
@@ -276,7 +278,8 @@ BarPhase bar_phase(const std::vector<Beat>& beats, std::optional<int> given) {
       if (sum[u] > sum[static_cast<std::size_t>(top)]) top = p;
     }
     const double others = (total - sum[static_cast<std::size_t>(top)]) / (m - 1);
-    const double contrast = (sum[static_cast<std::size_t>(top)] - others) / (total / m + 1e-9);
+    double contrast = (sum[static_cast<std::size_t>(top)] - others) / (total / m + 1e-9);
+    if (m == 2 || m == 6) contrast /= 1.2;
     if (contrast > best_contrast) {
       best_contrast = contrast;
       best = {m, top};
@@ -604,7 +607,8 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
   merge_inaudible_changes(beats, sums, bar.beats, bounds);
 
   BeatAnalysis result;
-  result.map.meter = options.meter ? *options.meter : Meter{bar.beats, 4};
+  // Six beats to the bar are eighths (6/8); two, three and four are quarters.
+  result.map.meter = options.meter ? *options.meter : Meter{bar.beats, bar.beats == 6 ? 8 : 4};
   result.meter_detected = !options.meter;
   std::size_t s = 0;
   while (s + 1 < bounds.size()) {

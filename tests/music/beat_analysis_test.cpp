@@ -85,6 +85,26 @@ TEST(BeatAnalysis, WaltzIsThreeFour) {
   EXPECT_TRUE(a.meter_detected);
 }
 
+TEST(BeatAnalysis, TwoAndSixBeatsToTheBarAreFound) {
+  // A march: kick and bass on 1, snare on 2, a new bass note every two beats.
+  SongSpec march;
+  march.tempo = 112;
+  march.meter = 2;
+  march.bars = 40;
+  const BeatAnalysis two = analyze(make_song(march));
+  EXPECT_EQ(two.map.meter, (Meter{2, 4}));
+  EXPECT_NEAR(two.map.downbeat_s(), 0.75, 0.005);
+  // A jig counted in eighths: kick and bass on 1 of 6, soft snares on the other five.
+  SongSpec jig;
+  jig.tempo = 150;
+  jig.meter = 6;
+  jig.bars = 16;
+  const BeatAnalysis six = analyze(make_song(jig));
+  EXPECT_EQ(six.map.meter, (Meter{6, 8}));
+  EXPECT_NEAR(six.map.downbeat_s(), 0.75, 0.005);
+  EXPECT_NEAR(six.map.stretches.front().tempo, 150, 0.05);
+}
+
 TEST(BeatAnalysis, SwungEighthsKeepTheBeat) {
   SongSpec spec;
   spec.tempo = 100;

@@ -114,7 +114,7 @@ Song make_song(const SongSpec& spec) {
       }
     } else if (spec.meter == 4 && beat == 2) {
       kick(mix, sr, at(0), 0.6 * level, noise);
-    } else if (spec.meter == 4) {
+    } else if (spec.meter == 4 || spec.meter == 2) {
       snare(mix, sr, at(0), level, noise);
     } else {
       snare(mix, sr, at(0), 0.5 * level, noise);

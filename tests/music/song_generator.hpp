@@ -12,7 +12,9 @@ namespace seqc::testing {
 struct SongSpec {
   double sample_rate = 22050;
   double tempo = 120;
-  int meter = 4;            // beats per bar: 4 (kick 1 and 3, snare 2 and 4) or 3 (kick on 1)
+  // Beats per bar: 4 (kick 1 and 3, snare 2 and 4), 2 (kick 1, snare 2), 3 or 6 (kick on 1,
+  // soft snares on the others).
+  int meter = 4;
   double lead_in_s = 0.75;  // background noise only, before bar 1 beat 1
   int bars = 24;
   // From this bar (1-based) on, this tempo.
