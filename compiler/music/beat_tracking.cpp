@@ -314,14 +314,14 @@ LevelScore choose_level(const std::vector<double>& flux, const std::vector<doubl
                         std::optional<double> hint_period) {
   last = std::min(last, flux.size() - 1);
   if (double(last) <= double(first) + 4 * period) return {period, 0};
-  // The family first: the autocorrelation's level, or a level in three halves or two thirds
-  // of it when that one is more strongly marked (a riff in dotted rhythms can make the
-  // autocorrelation peak at two thirds of the beat).
+  // The family first: the autocorrelation's level, or the level at two thirds of its period
+  // when that one is more strongly marked (a riff in dotted rhythms can make the
+  // autocorrelation peak at two thirds of the beat's tempo). Not three halves: when the level
+  // is half the beat, three halves of it is three beats, as strongly marked as the beat.
   LevelScore best = score_level(flux, period, first, last);
-  for (double ratio : {1.5, 2.0 / 3.0}) {
-    if (!in_range(period * ratio, frame_rate)) continue;
-    const LevelScore other = score_level(flux, period * ratio, first, last);
-    if (other.salience > best.salience) best = other;
+  if (in_range(period * 2.0 / 3.0, frame_rate)) {
+    const LevelScore faster = score_level(flux, period * 2.0 / 3.0, first, last);
+    if (faster.salience > best.salience) best = faster;
   }
   // Then the octave, as estimate_tempo decides it: the slowest level whose off-beats are
   // clearly weaker than its beats, or the one nearest the hint.

@@ -53,8 +53,8 @@ double onset_share(const std::vector<double>& flux, const std::vector<double>& f
 std::vector<double> grid_frames(const SteadyGrid& grid, double first, double last);
 
 // The beat among the metrical levels around `period`, each on its own steady grid over frames
-// `first` to `last`: the family (the level, or one at three halves or two thirds of it, when
-// that one's grid is more strongly marked) and then the octave: the slowest of half, the level
+// `first` to `last`: the family (the level, or the one at two thirds of its period when that
+// one's grid is more strongly marked) and then the octave: the slowest of half, the level
 // and double whose off-beats are clearly weaker than its beats, or the one nearest
 // `hint_period`.
 // How strongly a level's steady grid is marked (its salience): the envelope's mean at its beats

@@ -52,22 +52,21 @@ ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader
 void add_beats_command(CLI::App& app, Context& ctx, Outcome& result) {
   auto request = std::make_shared<BeatsRequest>();
   auto meter = std::make_shared<std::string>();
-  auto hint = std::make_shared<double>(0.0);
-  auto click = std::make_shared<std::string>();
   CLI::App* cmd =
       app.add_subcommand("beats", "Find a song's beats and print its tempo map as a music: block");
   cmd->add_option("SONG", request->song, "The audio file (WAV, FLAC, Ogg Vorbis, Opus, MP3)")
       ->required();
   cmd->add_option("--meter", *meter,
                   "Beats per bar and beat unit, e.g. 3/4 (default: detected,\n"
-                  "4/4 or 3/4)");
-  cmd->add_option("--tempo-hint", *hint,
+                  "2/4, 3/4, 4/4 or 6/8)");
+  cmd->add_option("--tempo-hint", request->tempo_hint,
                   "About how fast, in BPM: picks between half, the detected and double tempo")
       ->check(CLI::Range(20.0, 400.0));
-  cmd->add_option("--click", *click, "Also write OUT.wav: the song with a click on every beat");
+  cmd->add_option("--click", request->click,
+                  "Also write OUT.wav: the song with a click on every beat");
   cmd->add_option("--beats-out", request->beats_out,
                   "Also write OUT: each beat's time and place in its bar, one per line");
-  cmd->callback([&ctx, &result, request, meter, hint, click] {
+  cmd->callback([&ctx, &result, request, meter] {
     BeatsRequest r = *request;
     if (!meter->empty()) {
       r.meter = music::parse_meter(*meter);
@@ -78,8 +77,6 @@ void add_beats_command(CLI::App& app, Context& ctx, Outcome& result) {
         return;
       }
     }
-    if (*hint > 0) r.tempo_hint = *hint;
-    if (!click->empty()) r.click = *click;
     // The real decoder and encoder; tests call run_beats with their own.
     audio::SndfileAudioReader reader;
     audio::SndfileAudioWriter writer;

@@ -2,6 +2,7 @@
 // song's own recipe (tests/music/song_generator.hpp), with the tolerance stated at each check.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -241,6 +242,23 @@ TEST(BeatAnalysis, TempoHintPicksTheMetricalLevel) {
   const BeatAnalysis doubled = analyze(song, fast);
   ASSERT_FALSE(doubled.map.stretches.empty());
   EXPECT_NEAR(doubled.map.stretches.front().tempo, 150, 0.1);
+  // Half the tempo of a 128 BPM song is 64, not a level two thirds of the beat's tempo that a
+  // grid of three beats (as strongly marked as every beat) would suggest.
+  SongSpec quick;
+  quick.tempo = 128;
+  BeatOptions slow;
+  slow.tempo_hint = 64;
+  const BeatAnalysis halved = analyze(make_song(quick), slow);
+  ASSERT_FALSE(halved.map.stretches.empty());
+  EXPECT_NEAR(halved.map.stretches.front().tempo, 64, 0.05);
+}
+
+TEST(BeatAnalysis, BeatListGivesEachBeatsTimeAndPlaceInTheBar) {
+  // Clicks at 120 BPM from 0.5 s, every 4th accented: beats every 0.5 s, bar 1 at 0.5 s.
+  const BeatAnalysis a = analyze(make_clicks(120, 4, 0.5, 12, 22050));
+  const std::string list = beat_list(a);
+  EXPECT_EQ(list.substr(0, 40), "0.500\t1\n1.000\t2\n1.500\t3\n2.000\t4\n2.500\t1\n") << list;
+  EXPECT_EQ(std::count(list.begin(), list.end(), '\n'), static_cast<long>(a.beats_s.size()));
 }
 
 TEST(BeatAnalysis, GivenMeterIsKept) {

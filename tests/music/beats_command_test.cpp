@@ -1,7 +1,11 @@
-// `seqc beats` in-process on fake audio (no files): what it prints for a song whose tempo map is
-// known from how it was made, and the exit status and wording of each failure.
+// `seqc beats` in-process on fake audio (no song files; the beat list goes to a temporary
+// folder): what it prints for a song whose tempo map is known from how it was made, and the exit
+// status and wording of each failure.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "runtime/cli/beats_command.hpp"
@@ -127,6 +131,35 @@ TEST(BeatsCommand, FailedClickWriteIsAFileError) {
   EXPECT_NE(run.err.str().find("seqc: error: /full/out.wav: cannot write: disk full\n"),
             std::string::npos)
       << run.err.str();
+}
+
+TEST(BeatsCommand, BeatsOutWritesEachBeatAndItsPlaceInTheBar) {
+  // 120 BPM clicks from 0.5 s, every 4th accented: a beat every 0.5 s, bar 1 at 0.5 s.
+  FakeReader reader(clicks(120, 0.5));
+  FakeWriter writer;
+  CommandRun run;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("seqc-beats-out-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string out = (dir / "song.beats").string();
+  EXPECT_EQ(
+      run_beats(run.ctx, {"c.wav", std::nullopt, std::nullopt, std::nullopt, out}, reader, writer),
+      ExitCode::Ok);
+  std::ifstream in(out);
+  std::string first, second;
+  std::getline(in, first);
+  std::getline(in, second);
+  EXPECT_EQ(first, "0.500\t1");
+  EXPECT_EQ(second, "1.000\t2");
+  // The song itself is never the list's destination.
+  CommandRun again;
+  EXPECT_EQ(
+      run_beats(again.ctx, {out, std::nullopt, std::nullopt, std::nullopt, out}, reader, writer),
+      ExitCode::Usage);
+  EXPECT_NE(again.err.str().find("--beats-out " + out + " is the same file as the input"),
+            std::string::npos)
+      << again.err.str();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
