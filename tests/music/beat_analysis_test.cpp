@@ -106,6 +106,17 @@ TEST(BeatAnalysis, TwoAndSixBeatsToTheBarAreFound) {
   EXPECT_NEAR(six.map.stretches.front().tempo, 150, 0.05);
 }
 
+TEST(BeatAnalysis, AStrongThirdBeatStillMakesBarsOfFour) {
+  // Kicks as loud on 3 as on 1; only the bass note (a new one each bar, on 1) marks the bar.
+  SongSpec spec;
+  spec.tempo = 124;
+  spec.third_kick = 1.0;
+  spec.bars = 32;
+  const BeatAnalysis a = analyze(make_song(spec));
+  EXPECT_EQ(a.map.meter, (Meter{4, 4}));
+  EXPECT_NEAR(a.map.downbeat_s(), 0.75, 0.005);
+}
+
 TEST(BeatAnalysis, SwungEighthsKeepTheBeat) {
   SongSpec spec;
   spec.tempo = 100;
@@ -229,6 +240,29 @@ TEST(BeatAnalysis, ATempoThatDriftsIsFollowedAndTheMapStaysOnTheBeats) {
   }
   // Within 25 ms everywhere: the tolerance the analysis keeps a stretch to.
   EXPECT_LT(worst, 0.025) << block;
+}
+
+TEST(BeatAnalysis, ABreakdownOnTheOffBeatsKeepsTheSongsGrid) {
+  // 16 bars at 140 BPM, then 6 bars where the off-beats are loud and the beats a soft hi-hat,
+  // then 16 bars as before: played to a click, the beats stay where they were; a tracker that
+  // follows the loudest onsets slips half a beat there and back.
+  SongSpec spec;
+  spec.tempo = 140;
+  spec.bars = 38;
+  spec.skank_bar = 17;
+  spec.skank_bars = 6;
+  spec.jitter_ms = 2;
+  const Song song = make_song(spec);
+  const BeatAnalysis a = analyze(song);
+  expect_map(a, 140, 0.75, 4);
+  EXPECT_EQ(a.map.stretches.size(), 1u);
+  // Every beat listed is one of the song's beats (within 20 ms), none half a beat off.
+  for (double t : a.beats_s) {
+    const auto near =
+        std::min_element(song.beats_s.begin(), song.beats_s.end(),
+                         [&](double x, double y) { return std::abs(x - t) < std::abs(y - t); });
+    EXPECT_LT(std::abs(*near - t), 0.020) << t;
+  }
 }
 
 TEST(BeatAnalysis, TempoHintPicksTheMetricalLevel) {

@@ -107,13 +107,20 @@ Song make_song(const SongSpec& spec) {
     auto at = [&](double offset) {
       return beats[i] + late + offset * period + spec.jitter_ms * 1e-3 * noise.normal();
     };
+    if (spec.skank_bars > 0 && bar + 1 >= spec.skank_bar &&
+        bar + 1 < spec.skank_bar + spec.skank_bars) {
+      hat(mix, sr, at(0), 0.3 * level, noise);
+      snare(mix, sr, at(0.5), level, noise);
+      hat(mix, sr, at(0.5), level, noise);
+      continue;
+    }
     if (beat == 0) {
       kick(mix, sr, at(0), level, noise);
       if (spec.bass) {
         bass_note(mix, sr, at(0), period * spec.meter, notes[bar % 4], level);
       }
     } else if (spec.meter == 4 && beat == 2) {
-      kick(mix, sr, at(0), 0.6 * level, noise);
+      kick(mix, sr, at(0), spec.third_kick * level, noise);
     } else if (spec.meter == 4 || spec.meter == 2) {
       snare(mix, sr, at(0), level, noise);
     } else {

@@ -15,6 +15,7 @@ struct SongSpec {
   // Beats per bar: 4 (kick 1 and 3, snare 2 and 4), 2 (kick 1, snare 2), 3 or 6 (kick on 1,
   // soft snares on the others).
   int meter = 4;
+  double third_kick = 0.6;  // 4/4: the kick on beat 3, against 1 on beat 1
   double lead_in_s = 0.75;  // background noise only, before bar 1 beat 1
   int bars = 24;
   // From this bar (1-based) on, this tempo.
@@ -24,6 +25,10 @@ struct SongSpec {
   double drift_per_bar = 0;
   double swing = 0;    // the off-beat eighth at (1 + swing) / 2 of the beat: 1/3 = triplet
   int quiet_bars = 0;  // the first bars at -20 dB (a quiet intro)
+  // From this bar (1-based), this many bars of a skank: the off-beats loud (snare and open
+  // hi-hat), the beats a soft hi-hat only, as in a breakdown.
+  int skank_bar = 0;
+  int skank_bars = 0;
   int pickup = 0;      // beats before bar 1 (an upbeat: snare and hi-hat), ending at it
   int late_beat = -1;  // this beat's hits (0-based, from bar 1) and late_count - 1 more
   int late_count = 1;  // come late_ms late
