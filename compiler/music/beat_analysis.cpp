@@ -654,7 +654,7 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     if (nearest <= 0.1 * 60.0 / result.map.stretches.front().tempo) ++hits;
   }
   result.confidence = grid.empty() ? 0.0 : double(hits) / double(grid.size());
-  if (result.confidence < 0.5) {
+  if (result.confidence < 0.35) {
     char text[64];
     std::snprintf(text, sizeof text, "confidence %.2f", result.confidence);
     return no_steady_beat(text);

@@ -1,11 +1,14 @@
-// A song's beats and tempo map from its samples (mono, any sample rate): onset envelope ->
-// tempo -> beat tracking -> each beat placed on its onset to about half a millisecond ->
-// meter and downbeat -> stretches of steady tempo -> a least-squares line per stretch. Pure: no
-// files, no clocks. `seqc beats` prints the result (docs/music.md).
+// A song's beats and tempo map from its samples (mono, any sample rate): band-flux onset
+// envelope -> tempo and metrical level -> beat tracking, or one steady grid for music played to
+// a click -> each beat placed on its onset -> meter and downbeat -> stretches of steady tempo,
+// a least-squares line each, read as one chain. Pure: no files, no clocks. `seqc beats` prints
+// the result (docs/music.md, How it listens).
 //
-// Confidence (0-1): the fraction of the map's beats, between the first and the last beat that
-// has an onset, that have an onset within a tenth of a beat of where the map puts them. A
-// drum-led song scores above 0.9; below 0.5 the map is refused as "no steady beat".
+// Refused as "no steady beat": a pulse that stands out of the music no more than a grid laid
+// over noise does (salience under 1.5), or a confidence under 0.35. Confidence (0-1): the
+// fraction of the map's beats, between the first and the last beat that has an onset, that have
+// an onset within a tenth of a beat of where the map puts them. A drum machine scores above 0.9,
+// a band in a dense mix 0.5-0.9.
 #pragma once
 
 #include <optional>
