@@ -395,7 +395,7 @@ std::vector<double> bar_offsets(const std::vector<Beat>& beats, const PrefixSums
 // instrument's). A real change of tempo, or a drift, puts every bar after it further off. The
 // closest pair is joined first.
 void merge_inaudible_changes(const std::vector<Beat>& beats, const PrefixSums& sums, int per_bar,
-                             std::vector<std::size_t>& bounds) {
+                             double floor, std::vector<std::size_t>& bounds) {
   std::vector<double> offsets = bar_offsets(beats, sums, bounds, per_bar);
   for (double& o : offsets) o = std::abs(o);
   double scatter = 0;
@@ -403,7 +403,7 @@ void merge_inaudible_changes(const std::vector<Beat>& beats, const PrefixSums& s
     std::nth_element(offsets.begin(), offsets.begin() + long(offsets.size() / 2), offsets.end());
     scatter = 1.4826 * offsets[offsets.size() / 2];
   }
-  const double audible = std::max(0.015, 3.5 * scatter);
+  const double audible = std::max(floor, 3.5 * scatter);
   while (bounds.size() > 2) {
     std::size_t best = 0;
     Stray best_stray{std::numeric_limits<int>::max(), 0};
@@ -462,60 +462,33 @@ void make_continuous(TempoMap& map, const std::vector<std::size_t>& bounds,
   map.stretches.back().start_s = printed;
 }
 
+// Beat `k` of the printed chain (0 is bar 1 beat 1; negative counts back from it at the first
+// stretch's tempo), each stretch at its printed tempo.
+double chain_time(const TempoMap& map, long k) {
+  const auto shown = [](const TempoStretch& s) {
+    return std::stod(tempo_text(s.tempo, s.decimals));
+  };
+  for (std::size_t j = 0; j < map.stretches.size(); ++j) {
+    const TempoStretch& s = map.stretches[j];
+    const bool last = j + 1 == map.stretches.size();
+    const long length = last ? 0 : long(map.stretches[j + 1].bar - s.bar) * map.meter.beats;
+    if (k < 0 || last || k < length) return s.start_s + double(k) * 60.0 / shown(s);
+    k -= length;
+  }
+  return 0;
+}
+
 Error no_steady_beat(const char* why) {
   return make_error(std::string("no steady beat found (") + why +
                     "); --tempo-hint or --meter may help if the music has one");
 }
 
-}  // namespace
-
-Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample_rate,
-                                   const BeatOptions& options) {
-  const double seconds = sample_rate > 0 ? double(samples.size()) / sample_rate : 0;
-  if (seconds < kMinSeconds) {
-    char text[128];
-    std::snprintf(text, sizeof text, "too short to find a beat (%.1f s; at least %.0f s)", seconds,
-                  kMinSeconds);
-    return make_error(text);
-  }
-  const AnalysisSignal signal = reduce_for_analysis(samples, sample_rate);
-  const OnsetEnvelope env = onset_envelope(signal);
-  const FineEnvelope fine = fine_envelope(signal);
-  std::optional<double> hint_period;
-  if (options.tempo_hint) hint_period = 60.0 * env.frame_rate / *options.tempo_hint;
-  const auto tempo = estimate_tempo(env.flux, env.low, env.frame_rate, hint_period);
-  if (!tempo || tempo->strength < 0.05) return no_steady_beat("no repeating onsets");
-  // The span with onsets: the levels' grids are laid over it.
-  std::size_t first_onset = 0, last_onset = 0;
-  for (std::size_t f = 0; f < env.flux.size(); ++f) {
-    if (env.flux[f] >= 1.0) {
-      if (last_onset == 0) first_onset = f;
-      last_onset = f;
-    }
-  }
-  const LevelScore level = choose_level(env.flux, env.low, env.frame_rate, tempo->period,
-                                        first_onset, last_onset, hint_period);
-  // Below 1.5 the beat stands out of the music no more than a grid laid over noise does.
-  if (level.salience > 0 && level.salience < 1.5) {
-    char text[96];
-    std::snprintf(text, sizeof text, "its strongest pulse stands only %.2f times above the music",
-                  level.salience);
-    return no_steady_beat(text);
-  }
-  const double period = level.period;
-  const std::vector<double> periods = local_periods(env.flux, env.frame_rate, period);
-  std::vector<double> frames = whole_beats(track_beats(env.flux, periods), periods);
-  if (frames.size() >= 16) {
-    // Music played to a click: when one steady grid lands on onsets nearly as often as the
-    // tracked beats do, the grid's beats are the song's, also where the tracker slipped to the
-    // off-beats or to another level for a while.
-    const SteadyGrid grid = steady_grid(env.flux, period, static_cast<std::size_t>(frames.front()),
-                                        static_cast<std::size_t>(frames.back()));
-    std::vector<double> steady = grid_frames(grid, frames.front(), frames.back());
-    const double grid_hits = onset_share(env.flux, steady);
-    const double tracked_hits = onset_share(env.flux, frames);
-    if (grid_hits >= 0.75 * tracked_hits) frames = std::move(steady);
-  }
+// The map from beat frames (ascending, whole beats apart): each beat placed on its onset, the
+// meter and downbeat, the stretches and the confidence; or why there is none.
+Result<BeatAnalysis> map_from_beats(const std::vector<double>& frames,
+                                    const std::vector<double>& periods, const OnsetEnvelope& env,
+                                    const FineEnvelope& fine, const AnalysisSignal& signal,
+                                    const BeatOptions& options, bool on_grid) {
   std::vector<Beat> beats = place_beats(frames, periods, env, fine, signal);
 
   std::vector<double> lows;
@@ -604,7 +577,7 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     if (!changed || round == 4) break;
   }
   const PrefixSums sums(beats);
-  merge_inaudible_changes(beats, sums, bar.beats, bounds);
+  merge_inaudible_changes(beats, sums, bar.beats, on_grid ? 0.030 : 0.015, bounds);
 
   BeatAnalysis result;
   // Six beats to the bar are eighths (6/8); two, three and four are quarters.
@@ -638,7 +611,11 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
 
   std::vector<double> onsets;
   for (std::size_t i = 0; i < beats.size(); ++i) {
-    result.beats_s.push_back(beats[i].time_s);
+    // A beat without an onset on the map (a rest, a stray hit left out) is where the map puts
+    // it, so the list never leaves the map's beats.
+    result.beats_s.push_back(beats[i].has_onset
+                                 ? beats[i].time_s
+                                 : chain_time(result.map, static_cast<long>(i) - bar.phase));
     const long place = (static_cast<long>(i) - bar.phase) % bar.beats;
     result.positions.push_back(static_cast<int>((place + bar.beats) % bar.beats) + 1);
     if (beats[i].has_onset) onsets.push_back(beats[i].time_s);
@@ -654,12 +631,87 @@ Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample
     if (nearest <= 0.1 * 60.0 / result.map.stretches.front().tempo) ++hits;
   }
   result.confidence = grid.empty() ? 0.0 : double(hits) / double(grid.size());
+  std::vector<double> distances;
+  for (std::size_t i = 0; i < beats.size(); ++i) {
+    if (!beats[i].has_onset) continue;
+    distances.push_back(
+        std::abs(beats[i].time_s - chain_time(result.map, static_cast<long>(i) - bar.phase)));
+  }
+  if (!distances.empty()) {
+    std::nth_element(distances.begin(), distances.begin() + long(distances.size() / 2),
+                     distances.end());
+    result.spread_s = distances[distances.size() / 2];
+  }
   if (result.confidence < 0.35) {
     char text[64];
     std::snprintf(text, sizeof text, "confidence %.2f", result.confidence);
     return no_steady_beat(text);
   }
   return result;
+}
+
+}  // namespace
+
+Result<BeatAnalysis> analyze_beats(std::span<const float> samples, double sample_rate,
+                                   const BeatOptions& options) {
+  const double seconds = sample_rate > 0 ? double(samples.size()) / sample_rate : 0;
+  if (seconds < kMinSeconds) {
+    char text[128];
+    std::snprintf(text, sizeof text, "too short to find a beat (%.1f s; at least %.0f s)", seconds,
+                  kMinSeconds);
+    return make_error(text);
+  }
+  const AnalysisSignal signal = reduce_for_analysis(samples, sample_rate);
+  const OnsetEnvelope env = onset_envelope(signal);
+  const FineEnvelope fine = fine_envelope(signal);
+  std::optional<double> hint_period;
+  if (options.tempo_hint) hint_period = 60.0 * env.frame_rate / *options.tempo_hint;
+  const auto tempo = estimate_tempo(env.flux, env.low, env.frame_rate, hint_period);
+  if (!tempo || tempo->strength < 0.05) return no_steady_beat("no repeating onsets");
+  // The span with onsets: the levels' grids are laid over it.
+  std::size_t first_onset = 0, last_onset = 0;
+  for (std::size_t f = 0; f < env.flux.size(); ++f) {
+    if (env.flux[f] >= 1.0) {
+      if (last_onset == 0) first_onset = f;
+      last_onset = f;
+    }
+  }
+  const LevelScore level = choose_level(env.flux, env.low, env.frame_rate, tempo->period,
+                                        first_onset, last_onset, hint_period);
+  // Below 1.5 the beat stands out of the music no more than a grid laid over noise does.
+  if (level.salience > 0 && level.salience < 1.5) {
+    char text[96];
+    std::snprintf(text, sizeof text, "its strongest pulse stands only %.2f times above the music",
+                  level.salience);
+    return no_steady_beat(text);
+  }
+  const double period = level.period;
+  const std::vector<double> periods = local_periods(env.flux, env.frame_rate, period);
+  const std::vector<double> frames = whole_beats(track_beats(env.flux, periods), periods);
+  Result<BeatAnalysis> tracked = map_from_beats(frames, periods, env, fine, signal, options, false);
+  if (frames.size() >= 16) {
+    // Music played to a click: one steady grid for the whole song keeps its beats through
+    // breaks, fills and passages where the off-beats are louder, where the tracker can slip by
+    // half a beat or follow another level for a while. Its map is taken when its beats have
+    // onsets about as often as the tracked map's do (a song that drifts or changes tempo
+    // leaves the grid, and the grid's map loses its onsets). The grid is one tempo, so its map
+    // is one stretch: where its onsets lean one way for a while (another instrument carries the
+    // beat), the grid, not a change of tempo, is the song's.
+    const SteadyGrid grid = steady_grid(env.flux, period, static_cast<std::size_t>(frames.front()),
+                                        static_cast<std::size_t>(frames.back()));
+    // The tracked map wins where the tracked beats land on onsets clearly more often than
+    // the grid's (a drift, a change of tempo or a jump moves the song off the grid); counted on
+    // the onset envelope, which neither placed its beats by.
+    const std::vector<double> steady_frames = grid_frames(grid, frames.front(), frames.back());
+    const bool tracked_better =
+        tracked.ok() && onset_share(env.flux, steady_frames) < 0.75 * onset_share(env.flux, frames);
+    if (!tracked_better) {
+      Result<BeatAnalysis> steady =
+          map_from_beats(steady_frames, periods, env, fine, signal, options, true);
+      if (steady.ok()) return steady;
+    }
+  }
+  return tracked;
 }
 
 std::string beat_list(const BeatAnalysis& analysis) {

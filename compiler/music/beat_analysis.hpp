@@ -29,6 +29,8 @@ struct BeatOptions {
 struct BeatAnalysis {
   TempoMap map;
   double confidence = 0;
+  // The onsets' median distance from where the map puts their beats, in seconds.
+  double spread_s = 0;
   // The tracked beats from the first onset to the last, each on its onset where it has one.
   std::vector<double> beats_s;
   // Each of those beats' place in its bar, 1 (the bar's first beat) to the meter's beats.
