@@ -7,7 +7,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libyaml-cpp-dev libcli11-dev libfmt-dev libsqlite3-dev libgtest-dev libgmock-dev libhidapi-dev
   libsndfile1-dev libpulse-dev pulseaudio pulseaudio-utils
-  python3 python3-yaml python3-jsonschema
+  python3 python3-yaml python3-jsonschema python3-mir-eval
   dpkg-dev file groff-base zsh fish pre-commit git
   chromium python3-pil eslint
 )
