@@ -48,6 +48,11 @@ class SongReader {
   virtual ~SongReader() = default;
   // The whole song, or an Error naming the path and what is wrong with it.
   virtual Result<SongSamples> read(const std::string& path) = 0;
+  // The song encoded small enough to embed in a page (Ogg Vorbis, mono), for a file too large
+  // to embed as it is; an Error saying why not. None by default: a reader that only decodes.
+  virtual Result<std::string> compressed(const std::string& path) {
+    return make_error(path + ": no encoder was given to make a smaller copy");
+  }
 };
 
 // Owns the text of every file read in one compilation so diagnostics can quote source lines.

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
@@ -24,6 +26,49 @@ bool ShowOutput::ok(bool strict) const {
     if (!p.output.program) return false;
   }
   return !performers.empty();
+}
+
+const Song* song_of(const CompileOutput& compiled) {
+  if (const ServoProgram* p = compiled.servo_program(); p && p->timeline.song) {
+    return &*p->timeline.song;
+  }
+  if (const RaspblockProgram* p = compiled.raspblock_program(); p && p->timeline.song) {
+    return &*p->timeline.song;
+  }
+  return nullptr;
+}
+
+ShowSong show_song(const ShowOutput& show) {
+  ShowSong r;
+  for (const Performer& p : show.performers) {
+    const Song* mine = song_of(p.output);
+    if (mine == nullptr) continue;
+    if (r.song == nullptr) {
+      r.song = mine;
+      r.first = &p;
+    } else if (!same_song(*mine, *r.song)) {
+      r.other_song = mine;
+      r.other = &p;
+      return r;
+    }
+  }
+  return r;
+}
+
+std::string different_songs_text(const ShowSong& found) {
+  const auto at = [](const Song& s) {
+    return fmt::format("{} at {:.3f} s", s.file, s.downbeat.value() / 1000);
+  };
+  return "performers '" + found.first->name + "' and '" + found.other->name +
+         "' dance to different songs or downbeats (" + at(*found.song) + ", " +
+         at(*found.other_song) + ")";
+}
+
+std::string no_one_song(const ShowOutput& show, const ShowSong& found) {
+  if (found.other != nullptr) return different_songs_text(found) + "; a show plays one song";
+  if (found.song != nullptr) return "";
+  return "no performer of show " + show.name +
+         " has a `music:` block, so there is no song to play (docs/music.md)";
 }
 
 bool is_show_text(const std::string& text) {
@@ -98,6 +143,11 @@ ShowOutput load_show(const std::string& path, FileReader& files, const CompileOp
                      "cannot read performer '" + p.name + "': " + *p.output.read_error);
     }
     show.performers.push_back(std::move(p));
+  }
+  if (const ShowSong found = show_song(show); found.other != nullptr) {
+    reporter.warning(found.other->at, different_songs_text(found) +
+                                          "; a show plays one song, so `seqc show "
+                                          "--music` would refuse it");
   }
   return show;
 }

@@ -43,7 +43,32 @@ struct ShowOutput {
 // (load.hpp tells the two kinds of file apart with it).
 bool is_show_text(const std::string& text);
 
+// Loading also warns, at the later performer's entry, when two performers' `music:` blocks name
+// different songs or downbeats (show_song): a show plays one song, so `seqc show --music`
+// refuses it, and the check says it before.
 ShowOutput load_show(const std::string& path, FileReader& files,
                      const CompileOptions& options = {});
+
+// The song of a compiled file's `music:` block; nullptr when it has none (or no program).
+const Song* song_of(const CompileOutput& compiled);
+
+// The one song of a show's performers: `song` and the first performer naming it (`first`). When
+// a later performer names another song or downbeat (same_song), the show has no one song: that
+// performer is `other` and its song `other_song`. Without any `music:` block all are nullptr.
+struct ShowSong {
+  const Song* song = nullptr;
+  const Song* other_song = nullptr;
+  const Performer* first = nullptr;
+  const Performer* other = nullptr;
+};
+ShowSong show_song(const ShowOutput& show);
+
+// "performers 'arm' and 'car' dance to different songs or downbeats (song.wav at 0.750 s,
+// other.wav at 0.800 s)", for a ShowSong with `other`.
+std::string different_songs_text(const ShowSong& found);
+
+// Why `show` has no one song to play with it (different_songs_text, "; a show plays one song",
+// or that no performer has a `music:` block); "" when `found` (its show_song) is one.
+std::string no_one_song(const ShowOutput& show, const ShowSong& found);
 
 }  // namespace seqc::compiler

@@ -257,12 +257,16 @@ std::string preview_page(const std::string& title, const std::vector<std::string
     data += (i ? "," : "") + part;
   }
   data += "]";
-  if (song != nullptr) data += ",\"song\":{\"downbeat\":" + num(song->downbeat_s) + "}";
+  const bool plays = song != nullptr && song->missing.empty();
+  if (plays) data += ",\"song\":{\"downbeat\":" + num(song->downbeat_s) + "}";
   data += "}";
-  const std::string audio = song != nullptr
-                                ? "<audio id=\"song\" preload=\"auto\" src=\"data:" + song->mime +
-                                      ";base64," + base64(song->bytes) + "\"></audio>\n"
-                                : "";
+  std::string audio;
+  if (plays) {
+    audio = "<audio id=\"song\" preload=\"auto\" src=\"data:" + song->mime + ";base64," +
+            base64(song->bytes) + "\"></audio>\n";
+  } else if (song != nullptr) {
+    audio = "<p class=\"song-missing\">" + svg::escape(song->missing) + "</p>\n";
+  }
   std::string lanes;
   for (const PreviewPart& p : parts) lanes += "<div class=\"lanes\">\n" + p.lanes_svg + "</div>\n";
   const std::string escaped_title = svg::escape(title), end = num(end_ms), safe = script_safe(data);

@@ -50,12 +50,15 @@ struct PreviewPart {
   std::string lanes_svg;
 };
 
-// The song the page plays: the audio file's bytes as they are on disk, its MIME type
-// (audio_mime) and where the sequence's time 0 falls in it.
+// The song the page plays: the audio file's bytes (as they are on disk, or re-encoded when too
+// large to embed as they are), its MIME type (audio_mime) and where the sequence's time 0 falls
+// in it. When it could not be embedded, `missing` says why and how to fix it, and the page says
+// that where the player would be.
 struct PreviewSong {
   std::string bytes;
   std::string mime;
   double downbeat_s = 0;
+  std::string missing;
 };
 
 // The type a browser needs for an audio file, by its extension (.wav audio/wav, .flac

@@ -76,7 +76,7 @@ const ShowPart* show_song_part(const std::vector<ShowPart>& parts) {
       continue;
     }
     const compiler::Song& one = *song_of(*first->program);
-    if (song->file != one.file || song->downbeat != one.downbeat) return nullptr;
+    if (!same_song(*song, one)) return nullptr;
   }
   return first;
 }
@@ -128,8 +128,8 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 }
 
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
-                         const std::string& show, seqc::SongReader* songs,
-                         seqc::FileReader* files) {
+                         const std::string& show, seqc::SongReader* songs, seqc::FileReader* files,
+                         std::string* missing) {
   double end = 0;
   for (const ShowPart& p : parts) end = std::max(end, static_cast<double>(length_ms(*p.program)));
   // The show's one song: played with the page, drawn under the first performer dancing to it.
@@ -137,7 +137,10 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
   std::optional<PlotSong> picture;
   std::optional<PreviewSong> song;
   if (with_song != nullptr && songs != nullptr) picture = plot_song(*with_song->program, *songs);
-  if (with_song != nullptr && files != nullptr) song = preview_song(*with_song->program, *files);
+  if (with_song != nullptr && files != nullptr) {
+    song = preview_song(*with_song->program, *files, songs);
+    if (song && missing != nullptr) *missing = song->missing;
+  }
   std::vector<std::string> names;
   std::vector<PreviewPart> drawn;
   for (const ShowPart& p : parts) {
@@ -152,23 +155,36 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
       names, drawn, end, song ? &*song : nullptr);
 }
 
-std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files) {
+std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files,
+                                        seqc::SongReader* songs) {
   const compiler::Song* written = song_of(program);
   if (written == nullptr) return std::nullopt;
   const compiler::Song& song = *written;
   const std::string mime = audio_mime(song.file);
   if (mime.empty()) return std::nullopt;
+  const double downbeat_s = song.downbeat.value() / 1000.0;
   Result<std::string> bytes = files.read(song.file);
-  if (!bytes) return std::nullopt;
-  return PreviewSong{std::move(*bytes), mime, song.downbeat.value() / 1000.0};
+  if (bytes) return PreviewSong{std::move(*bytes), mime, downbeat_s, ""};
+  std::string why = bytes.error().message;
+  if (songs != nullptr) {
+    Result<std::string> small = songs->compressed(song.file);
+    if (small) return PreviewSong{std::move(*small), "audio/ogg", downbeat_s, ""};
+    why += "; " + small.error().message;
+  }
+  return PreviewSong{"", "", downbeat_s,
+                     "the song is not in this page (" + why +
+                         "): convert it to a smaller file, e.g. `ffmpeg -i " + song.file +
+                         " -ac 1 -q:a 3 song.ogg`, and name that in `music: file:`"};
 }
 
 std::string preview_program(const compiler::Program& program, const std::string& title,
-                            seqc::SongReader* songs, seqc::FileReader& files) {
+                            seqc::SongReader* songs, seqc::FileReader& files,
+                            std::string* missing) {
   const double end = static_cast<double>(length_ms(program));
   std::optional<PlotSong> picture;
   if (songs != nullptr) picture = plot_song(program, *songs);
-  const std::optional<PreviewSong> song = preview_song(program, files);
+  const std::optional<PreviewSong> song = preview_song(program, files, songs);
+  if (song && missing != nullptr) *missing = song->missing;
   auto part = preview_part(program, title, end, picture ? &*picture : nullptr);
   if (!part) return "";
   return preview_page(title, {""}, {std::move(*part)}, end, song ? &*song : nullptr);

@@ -73,19 +73,25 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 // longest part's, titled "show SHOW (N performers, one clock), TITLE" where N counts those parts.
 // The show's one song (show_song_part) is embedded to play through `files` and drawn under its
 // performer's lanes through `songs`, when given.
+// `missing`, when given, gets the song's PreviewSong::missing (for the command to warn).
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
                          const std::string& show, seqc::SongReader* songs = nullptr,
-                         seqc::FileReader* files = nullptr);
+                         seqc::FileReader* files = nullptr, std::string* missing = nullptr);
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
-// type a browser plays; nullopt without a song, when it cannot be read or is of another type.
-std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files);
+// type a browser plays; when `files` refuses them (a song over its size limit, which it checks
+// before reading) the song re-encoded small through `songs` (SongReader::compressed); when that
+// fails too, a song whose `missing` says why and how to fix it. nullopt without a song, or for
+// a type a browser may not play.
+std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files,
+                                        seqc::SongReader* songs = nullptr);
 
 // A single file's page (preview_page): its one part on its own time axis, titled `title`, with
 // its song drawn under the lanes (plot_song through `songs`, when given) and embedded to play
 // (preview_song through `files`); "" for a kind it cannot show.
 std::string preview_program(const compiler::Program& program, const std::string& title,
-                            seqc::SongReader* songs, seqc::FileReader& files);
+                            seqc::SongReader* songs, seqc::FileReader& files,
+                            std::string* missing = nullptr);
 
 struct Simulated {
   bool ok = false;  // false: a kind of program that cannot be simulated

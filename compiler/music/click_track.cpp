@@ -12,7 +12,7 @@ std::vector<float> mix_click_track(std::span<const float> song, double sample_ra
   for (std::size_t i = 0; i < song.size(); ++i) out[i] = 0.7f * song[i];
   const double duration = double(song.size()) / sample_rate;
   const auto length = static_cast<std::size_t>(0.03 * sample_rate);  // 30 ms, 5 ms decay
-  for (const MapBeat& beat : map_beats(map, 0.0, duration)) {
+  for (const MapBeat& beat : map_beats(as_printed(map), 0.0, duration)) {
     const double freq = beat.downbeat ? 1500.0 : 1000.0;
     const double level = beat.downbeat ? 0.5 : 0.3;
     const auto start = static_cast<std::size_t>(std::lround(beat.time_s * sample_rate));

@@ -10,7 +10,8 @@
 namespace seqc::music {
 
 // Same length and rate as `song`; the song at 70% so the clicks fit without clipping, and the
-// sum clamped to [-1, 1].
+// sum clamped to [-1, 1]. The clicks are on as_printed(map): the beats a file pasting the
+// printed `music:` block counts, so what is heard is what `seqc check` will compare.
 std::vector<float> mix_click_track(std::span<const float> song, double sample_rate,
                                    const TempoMap& map);
 

@@ -25,12 +25,19 @@ double median(std::vector<double> v) {
 
 std::string seconds(double ms) { return fmt::format("{:.3f} s", ms / 1000); }
 
-// Per bar (counted from 1) of `map`, how much later than the file's beat each detected beat
-// falls (ms; the song's beats in `beats_s`, audio time, with bar 1 beat 1 at `downbeat_ms`).
-std::map<long long, std::vector<double>> offsets_by_bar(const TempoMap& map,
-                                                        const std::vector<double>& beats_s,
-                                                        double downbeat_ms) {
-  std::map<long long, std::vector<double>> bars;
+// One detected beat against the file's: its beat (counted from 0) and bar (from 1) on the
+// file's map, and how much later than the file's beat it falls (ms).
+struct BeatOffset {
+  long long beat = 0;
+  long long bar = 0;
+  double ms = 0;
+};
+
+// Every detected beat of `beats_s` (audio time, with bar 1 beat 1 at `downbeat_ms`) against the
+// nearest beat of `map`, in time order.
+std::vector<BeatOffset> beat_offsets(const TempoMap& map, const std::vector<double>& beats_s,
+                                     double downbeat_ms) {
+  std::vector<BeatOffset> out;
   for (double b : beats_s) {
     const double t = b * 1000 - downbeat_ms;
     if (t < 0) continue;  // a pickup before bar 1: the file has no beats there
@@ -39,9 +46,53 @@ std::map<long long, std::vector<double>> offsets_by_bar(const TempoMap& map,
     const std::optional<ExactMs> planned = map.time_of_beat(ExactMs(k));
     if (!planned) continue;
     const auto bar = static_cast<long long>(std::floor(map.bar_of_beat(ExactMs(k)).value())) + 1;
-    bars[bar].push_back(t - planned->value());
+    out.push_back({k, bar, t - planned->value()});
   }
-  return bars;
+  return out;
+}
+
+// offset = intercept + slope * beat, by least squares, and the residuals' RMS beside the RMS
+// about the mean (what a constant offset leaves).
+struct LineFit {
+  double intercept = 0;
+  double slope = 0;
+  double rms_line = 0;
+  double rms_flat = 0;
+};
+
+LineFit fit_line(const std::vector<BeatOffset>& points) {
+  const double n = static_cast<double>(points.size());
+  double mk = 0, mo = 0;
+  for (const BeatOffset& p : points) {
+    mk += static_cast<double>(p.beat) / n;
+    mo += p.ms / n;
+  }
+  double skk = 0, sko = 0;
+  for (const BeatOffset& p : points) {
+    skk += (static_cast<double>(p.beat) - mk) * (static_cast<double>(p.beat) - mk);
+    sko += (static_cast<double>(p.beat) - mk) * (p.ms - mo);
+  }
+  LineFit f;
+  f.slope = skk > 0 ? sko / skk : 0;
+  f.intercept = mo - f.slope * mk;
+  double line = 0, flat = 0;
+  for (const BeatOffset& p : points) {
+    const double r = p.ms - (f.intercept + f.slope * static_cast<double>(p.beat));
+    line += r * r;
+    flat += (p.ms - mo) * (p.ms - mo);
+  }
+  f.rms_line = std::sqrt(line / n);
+  f.rms_flat = std::sqrt(flat / n);
+  return f;
+}
+
+// The song's tempo as the line to paste gives it: to the tenth a few dozen beats support,
+// without trailing zeros ("96", "96.5").
+std::string tempo_text(double bpm) {
+  std::string t = fmt::format("{:.1f}", bpm);
+  while (t.back() == '0') t.pop_back();
+  if (t.back() == '.') t.pop_back();
+  return t;
 }
 
 // The song's samples, or nullopt after an error at the `file:` value.
@@ -89,11 +140,15 @@ void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& 
     return;
   }
   // A bar disagrees when the median of its beats' offsets does (one stray beat does not make
-  // it); a disagreement is reported once, from its first bar, by the median over its bars, and
-  // only when it lasts two bars or more (a lone bar is the tracker's doubt, not the map's).
-  const auto bars = offsets_by_bar(map, analysis->beats_s, downbeat_ms);
+  // it); a disagreement is reported once, from its first bar, and only when it lasts two bars or
+  // more (a lone bar is the tracker's doubt, not the map's). An offset that grows steadily with
+  // the beat (a line through the offsets explains them) is the wrong tempo, said with the tempo
+  // the song has; one that does not is a constant offset, said by the median over its bars.
+  const std::vector<BeatOffset> offsets = beat_offsets(map, analysis->beats_s, downbeat_ms);
+  std::map<long long, std::vector<double>> bars;
+  for (const BeatOffset& o : offsets) bars[o.bar].push_back(o.ms);
   std::vector<std::pair<long long, double>> medians;
-  for (const auto& [bar, offsets] : bars) medians.emplace_back(bar, median(offsets));
+  for (const auto& [bar, ms] : bars) medians.emplace_back(bar, median(ms));
   for (std::size_t i = 0; i < medians.size();) {
     const double first = medians[i].second;
     if (std::abs(first) <= kSongBeatToleranceMs) {
@@ -107,11 +162,56 @@ void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& 
       run.push_back(medians[j].second);
       ++j;
     }
-    if (run.size() >= 2) {
-      const double by = median(run);
-      reporter.warning(song.at, fmt::format("from bar {} the file's beats run {} ms {} the song",
-                                            medians[i].first, std::llround(std::abs(by)),
-                                            by > 0 ? "ahead of" : "behind"));
+    if (run.size() < 2) {
+      i = j;
+      continue;
+    }
+    const long long from_bar = medians[i].first;
+    const long long to_bar = medians[j - 1].first;
+    std::vector<BeatOffset> points;
+    for (const BeatOffset& o : offsets) {
+      // A beat whose offset passed half a beat was counted to the next one: not on the line.
+      if (o.bar >= from_bar && o.bar <= to_bar && (o.ms > 0) == (first > 0)) points.push_back(o);
+    }
+    const LineFit fit = fit_line(points);
+    const double span = static_cast<double>(points.back().beat - points.front().beat);
+    if (std::abs(fit.slope) * span > kSongBeatToleranceMs && fit.rms_line < fit.rms_flat / 2) {
+      // The song's beat is the file's plus the slope; the stretch starts where the line
+      // crosses zero, on the bar line nearest it.
+      const double start_beat = std::max(0.0, -fit.intercept / fit.slope);
+      const ExactMs start = map.time_of_beat(ExactMs(std::llround(start_beat))).value_or(ExactMs{});
+      const double file_bpm = map.bpm_at(start);
+      const double song_bpm = 60000 / (60000 / file_bpm + fit.slope);
+      const long long bar = static_cast<long long>(std::llround(
+                                map.bar_of_beat(ExactMs::from_double(start_beat)).value())) +
+                            1;
+      const double at_first = fit.intercept + fit.slope * double(points.front().beat);
+      const double at_last = fit.intercept + fit.slope * double(points.back().beat);
+      const std::string paste =
+          bar <= 1 ? "tempo: " + tempo_text(song_bpm)
+                   : fmt::format("- {{bar: {}, tempo: {}}}", bar, tempo_text(song_bpm));
+      reporter.warning(
+          song.at,
+          fmt::format("{}the song runs at {:.1f} bpm; the file says {} (from bar {} its beats run "
+                      "{} by {} ms, growing to {} ms)",
+                      bar <= 1 ? "" : fmt::format("from bar {} ", bar), song_bpm,
+                      fmt::format("{:g}", file_bpm), from_bar, fit.slope > 0 ? "ahead" : "behind",
+                      std::llround(std::abs(at_first)), std::llround(std::abs(at_last))),
+          Reporter::Note{song.at, bar <= 1 ? "paste '" + paste + "' into the 'music:' block"
+                                           : "paste '" + paste + "' under 'changes:'"});
+      return;  // the later bars follow from the wrong tempo
+    }
+    const double by = median(run);
+    const std::string what =
+        fmt::format("the file's beats run {} ms {} the song from bar {}",
+                    std::llround(std::abs(by)), by > 0 ? "ahead of" : "behind", from_bar);
+    if (from_bar == medians.front().first) {
+      reporter.warning(song.at, what,
+                       Reporter::Note{song.at, fmt::format("paste 'downbeat: {:.3f}s' into the "
+                                                           "'music:' block",
+                                                           (downbeat_ms + by) / 1000)});
+    } else {
+      reporter.warning(song.at, what);
     }
     i = j;
   }

@@ -61,6 +61,18 @@ std::string music_block(const std::string& file, const TempoMap& map) {
   return out;
 }
 
+TempoMap as_printed(const TempoMap& map) {
+  TempoMap out = map;
+  for (TempoStretch& s : out.stretches) s.tempo = std::stod(tempo_text(s.tempo, s.decimals));
+  out.stretches.front().start_s = std::round(map.downbeat_s() * 1000) / 1000;
+  for (std::size_t i = 1; i < out.stretches.size(); ++i) {
+    const TempoStretch& before = out.stretches[i - 1];
+    out.stretches[i].start_s = before.start_s + double(out.stretches[i].bar - before.bar) *
+                                                    map.meter.beats * 60.0 / before.tempo;
+  }
+  return out;
+}
+
 std::vector<MapBeat> map_beats(const TempoMap& map, double from_s, double to_s) {
   std::vector<MapBeat> beats;
   const int per_bar = map.meter.beats;

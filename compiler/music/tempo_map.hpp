@@ -44,6 +44,12 @@ struct TempoMap {
 //       - {bar: 33, tempo: 132}
 std::string music_block(const std::string& file, const TempoMap& map);
 
+// The map as music_block prints it, and so as a choreography pasting that block counts it: the
+// downbeat to the millisecond, each tempo to its decimals, and each later stretch starting where
+// the bars before it end at those tempos (not where its own fit put it). The click track
+// (click_track.hpp) is mixed on this map.
+TempoMap as_printed(const TempoMap& map);
+
 // `tempo` with `decimals` decimals, trailing zeros dropped ("128", "127.96").
 std::string tempo_text(double tempo, int decimals);
 

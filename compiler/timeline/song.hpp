@@ -37,4 +37,10 @@ struct Song {
   Location file_at;                 // the `file:` value
 };
 
+// Whether two `music:` blocks name one song, as a show plays it: the same file with bar 1 beat 1
+// at the same instant of it (the tempo maps may differ: each performer counts its own beats).
+inline bool same_song(const Song& a, const Song& b) {
+  return a.file == b.file && a.downbeat == b.downbeat;
+}
+
 }  // namespace seqc::compiler

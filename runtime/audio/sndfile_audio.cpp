@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -29,9 +30,11 @@ struct CloseSndfile {
 using SndfilePtr = std::unique_ptr<SNDFILE, CloseSndfile>;
 
 // A growable file in memory for sf_open_virtual: libsndfile seeks back to patch the header.
+// Writing past `max_bytes` fails, so an encoder's output cannot outgrow what its caller allows.
 struct MemoryFile {
   std::string bytes;
   std::size_t at = 0;
+  std::size_t max_bytes = static_cast<std::size_t>(-1);
 };
 
 sf_count_t memory_length(void* user) {
@@ -61,6 +64,7 @@ sf_count_t memory_write(const void* ptr, sf_count_t count, void* user) {
   auto* m = static_cast<MemoryFile*>(user);
   if (count <= 0) return 0;
   const auto n = static_cast<std::size_t>(count);
+  if (m->at + n > m->max_bytes) return 0;
   if (m->bytes.size() < m->at + n) m->bytes.resize(m->at + n);
   std::memcpy(m->bytes.data() + m->at, ptr, n);
   m->at += n;
@@ -238,31 +242,68 @@ Result<MonoAudio> SndfileAudioReader::read(const std::string& path) {
   return decode(path, file.get(), info, limits_);
 }
 
-Status SndfileAudioWriter::write_wav(const std::string& path, const MonoAudio& audio) {
-  // Encoded in memory, then written by the one safe writer (io::write_file_safely): nothing is
-  // opened at a guessable name, a device stays a device, and a failed run leaves nothing behind.
+namespace {
+
+// `audio` encoded in memory as `format` (libsndfile's), at most `max_bytes`; `what` names it in
+// an error. `quality`, when given, is SFC_SET_VBR_ENCODING_QUALITY's (0-1, for Vorbis).
+Result<std::string> encode(const MonoAudio& audio, int format, std::optional<double> quality,
+                           std::size_t max_bytes, const std::string& what) {
   MemoryFile memory;
+  memory.max_bytes = max_bytes;
   SF_VIRTUAL_IO io{memory_length, memory_seek, memory_read, memory_write, memory_tell};
   SF_INFO info{};
   info.samplerate = static_cast<int>(std::lround(audio.sample_rate));
   info.channels = 1;
-  info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
+  info.format = format;
   {
     SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
-    if (!file) return make_error(path + ": cannot write: " + sf_strerror(nullptr));
+    if (!file) return make_error(what + ": cannot write: " + sf_strerror(nullptr));
     // Floats beyond [-1, 1] are clipped, not wrapped, when converted to 16 bits.
     sf_command(file.get(), SFC_SET_CLIPPING, nullptr, SF_TRUE);
+    if (quality) {
+      double q = *quality;
+      sf_command(file.get(), SFC_SET_VBR_ENCODING_QUALITY, &q, sizeof q);
+    }
     // In blocks: libsndfile 1.2.0's Vorbis encoder crashes on one very large write, and a
     // block at a time costs nothing for the other formats.
     constexpr std::size_t kBlock = 4096;
     for (std::size_t at = 0; at < audio.samples.size(); at += kBlock) {
       const auto frames = static_cast<sf_count_t>(std::min(kBlock, audio.samples.size() - at));
       if (sf_writef_float(file.get(), audio.samples.data() + at, frames) != frames) {
-        return make_error(path + ": cannot write: " + sf_strerror(file.get()));
+        if (memory.at + kBlock * 4 > max_bytes) {
+          return make_error(what + ": would be larger than " + std::to_string(max_bytes >> 20) +
+                            " MiB");
+        }
+        return make_error(what + ": cannot write: " + sf_strerror(file.get()));
       }
     }
-  }  // sf_close writes the final header sizes
-  return io::write_file_safely(path, memory.bytes);
+  }  // sf_close writes the final header sizes (and a Vorbis stream's last pages)
+  if (memory.bytes.empty()) return make_error(what + ": cannot write: nothing was encoded");
+  return std::move(memory.bytes);
+}
+
+}  // namespace
+
+Status SndfileAudioWriter::write_wav(const std::string& path, const MonoAudio& audio) {
+  // Encoded in memory, then written by the one safe writer (io::write_file_safely): nothing is
+  // opened at a guessable name, a device stays a device, and a failed run leaves nothing behind.
+  Result<std::string> bytes = encode(audio, SF_FORMAT_WAV | SF_FORMAT_PCM_16, std::nullopt,
+                                     static_cast<std::size_t>(-1), path);
+  if (!bytes) return bytes.error();
+  return io::write_file_safely(path, *bytes);
+}
+
+Result<std::string> encode_ogg_vorbis(const MonoAudio& audio, double quality,
+                                      std::size_t max_bytes) {
+  const int format = SF_FORMAT_OGG | SF_FORMAT_VORBIS;
+  SF_INFO info{};
+  info.samplerate = static_cast<int>(std::lround(audio.sample_rate));
+  info.channels = 1;
+  info.format = format;
+  if (sf_format_check(&info) == 0) {
+    return make_error("this libsndfile cannot write Ogg Vorbis (it was built without it)");
+  }
+  return encode(audio, format, quality, max_bytes, "the song as Ogg Vorbis");
 }
 
 }  // namespace seqc::audio

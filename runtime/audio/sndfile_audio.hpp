@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "runtime/audio/audio_files.hpp"
 
@@ -53,5 +54,12 @@ class SndfileAudioWriter final : public AudioWriter {
  public:
   Status write_wav(const std::string& path, const MonoAudio& audio) override;
 };
+
+// `audio` as an Ogg Vorbis stream in memory (mono, at its rate), for a page to play a song too
+// large to embed as it is: `quality` is libsndfile's VBR quality (0-1; 0.3 keeps ten minutes of
+// a 44.1 kHz song near 5 MB). An Error when this libsndfile cannot write Vorbis
+// (sf_format_check) or the stream would pass `max_bytes` (checked as it is written).
+Result<std::string> encode_ogg_vorbis(const MonoAudio& audio, double quality,
+                                      std::size_t max_bytes);
 
 }  // namespace seqc::audio

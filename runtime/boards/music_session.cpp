@@ -7,33 +7,6 @@
 
 namespace seqc::boards {
 
-const compiler::Song* song_of(const compiler::CompileOutput& compiled) {
-  if (const compiler::ServoProgram* p = compiled.servo_program(); p && p->timeline.song) {
-    return &*p->timeline.song;
-  }
-  if (const compiler::RaspblockProgram* p = compiled.raspblock_program(); p && p->timeline.song) {
-    return &*p->timeline.song;
-  }
-  return nullptr;
-}
-
-ShowSong show_song(const compiler::ShowOutput& show) {
-  ShowSong r;
-  for (const compiler::Performer& p : show.performers) {
-    const compiler::Song* mine = song_of(p.output);
-    if (mine == nullptr) continue;
-    if (r.song == nullptr) {
-      r.song = mine;
-      r.first = &p;
-    } else if (mine->file != r.song->file || !(mine->downbeat == r.song->downbeat)) {
-      r.other_song = mine;
-      r.other = &p;
-      return r;
-    }
-  }
-  return r;
-}
-
 MusicOpen open_music(const compiler::Song& song, io::Duration audio_offset,
                      audio::AudioReader* reader, audio::AudioOutputFactory* outputs,
                      MusicSession& out) {

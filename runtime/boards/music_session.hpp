@@ -44,19 +44,10 @@ class MusicSession {
   bool robot_in_emulated_time = false;
 };
 
-// The song of a compiled file's `music:` block; nullptr when it has none.
-const compiler::Song* song_of(const compiler::CompileOutput& compiled);
-
-// The one song of a show's performers: `song` and the first performer naming it (`first`). When
-// a later performer names another song or downbeat, the show has no one song: that performer is
-// `other` and its song `other_song`. Without any `music:` block all are nullptr.
-struct ShowSong {
-  const compiler::Song* song = nullptr;
-  const compiler::Song* other_song = nullptr;
-  const compiler::Performer* first = nullptr;
-  const compiler::Performer* other = nullptr;
-};
-ShowSong show_song(const compiler::ShowOutput& show);
+// A file's song and a show's one song are the compiler's (compiler/show.hpp).
+using compiler::show_song;
+using compiler::ShowSong;
+using compiler::song_of;
 
 // Why a song could not be made ready: no audio output was given, the file could not be
 // decoded, or the output refused to open. `message` is the lower layer's.

@@ -58,19 +58,37 @@ ResyncRun store_pieces(const Board& board, const Line& line, const compiler::Com
   return r;
 }
 
-void start_pieces(const Board& board, const Line& line,
-                  const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
-                  const upload::UploadOptions& options, ResyncRun& r) {
-  if (!r.stored()) return;
+std::optional<SyncedStart> start_pieces(const Board& board, const Line& line,
+                                        const std::vector<compiler::ResyncPiece>& pieces,
+                                        std::uint8_t first_group,
+                                        const upload::UploadOptions& options, ResyncRun& r,
+                                        MusicSession* music, io::Clock* host) {
+  if (!r.stored()) return std::nullopt;
   r.starts = resync_starts(board, pieces, first_group);
   if (options.may_run && !options.may_run(line.transport, line.clock)) {
     r.run_refused = true;
-    return;
+    return std::nullopt;
   }
   player::PlayOptions play;
   play.interrupted = line.interrupted;
   if (board.stop_frame != nullptr) play.safe_stop = board.stop_frame();
+  std::optional<LiveSongStart> song;
+  if (music != nullptr) {
+    if (Status started = start_music(*music); !started) {
+      r.song_error = started.error().message;
+      return std::nullopt;
+    }
+    // The first start (stop + run in one write) is timed whole, as a live play's first frame.
+    const double per_byte = line.transport.seconds_per_byte();
+    song = live_song_start(board, *music, r.starts.front().bytes.size(), per_byte,
+                           host != nullptr ? *host : line.clock, line.clock);
+    play.start_at = song->start.at;
+    play.early = song->start.early;
+    play.seconds_per_byte = per_byte;
+  }
   r.play = player::play(r.starts, line.transport, line.clock, play);
+  if (!song) return std::nullopt;
+  return synced_start(song->plan, song->wire, song->start.early, first_written(r.play));
 }
 
 ResyncRun store_and_start(const Board& board, const Line& line,

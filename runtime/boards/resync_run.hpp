@@ -3,17 +3,21 @@
 // the board's own uploader, then every piece started by the computer on the line's clock at its
 // host time (runtime/player: absolute deadlines). Each start is the board's stop frame followed by
 // its run frame in one write, so a piece still playing on a slow clock is cut short rather than the
-// next start ignored (the LSC-6 ignores a run of another group while one plays). Returns data only.
+// next start ignored (the LSC-6 ignores a run of another group while one plays). With `--music`
+// the song's downbeat as heard is the first start, and the rest follow on the same clock. Returns
+// data only.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "compiler/compile.hpp"
 #include "compiler/targets/servo_controller/resync.hpp"
 #include "runtime/boards/board.hpp"
+#include "runtime/boards/music_session.hpp"
 #include "runtime/player/player.hpp"
 #include "runtime/upload/uploader.hpp"
 
@@ -25,6 +29,7 @@ struct ResyncRun {
   std::vector<player::ScheduledFrame> starts;  // what was (or would have been) sent, and when
   player::PlayReport play;                     // set when every piece was stored
   bool run_refused = false;  // options.may_run said no after storing: nothing was started
+  std::string song_error;    // with a song: the output refused to start it; nothing was started
   // How late the latest start was written (0 before any start).
   io::Duration latest_start() const;
 };
@@ -43,9 +48,19 @@ ResyncRun store_pieces(const Board& board, const Line& line, const compiler::Com
 // Once r.stored() (else nothing): options.may_run (if set) is asked before the first start, as
 // an upload asks it before its run, then every piece is started at its time. Apart from the
 // storing, so a caller can keep time (`--realtime`) over the starts alone.
-void start_pieces(const Board& board, const Line& line,
-                  const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
-                  const upload::UploadOptions& options, ResyncRun& r);
+//
+// With `music` (open, not started: `--music`), once may_run agrees the song is started
+// (start_music; its refusal in r.song_error, and nothing is started) and the first start
+// finishes arriving, plus the board's start delay, on the song's downbeat as heard
+// (live_song_start; `host` is the clock the song is dated on); every later start is on the same
+// clock, its bar line's time after that, each written its own wire time early. Returns the first
+// start's timing against the song (for the report); nullopt without a song or when nothing was
+// started.
+std::optional<SyncedStart> start_pieces(const Board& board, const Line& line,
+                                        const std::vector<compiler::ResyncPiece>& pieces,
+                                        std::uint8_t first_group,
+                                        const upload::UploadOptions& options, ResyncRun& r,
+                                        MusicSession* music = nullptr, io::Clock* host = nullptr);
 
 // store_pieces, then start_pieces.
 ResyncRun store_and_start(const Board& board, const Line& line,

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/terminal_text.hpp"
 #include "compiler/formats/preview_html.hpp"
 #include "compiler/formats/program_views.hpp"
 #include "runtime/cli/board_text.hpp"
@@ -18,13 +19,13 @@ namespace {
 
 // Every performer on one time axis, titled with its file's name.
 std::string preview_performers(Context& ctx, const compiler::ShowOutput& show,
-                               const std::string& name) {
+                               const std::string& name, std::string& missing) {
   std::vector<compiler::ShowPart> parts;
   for (const compiler::Performer& p : show.performers) {
     const std::string file = std::filesystem::path(p.file).filename().string();
     parts.push_back({&*p.output.program, part_title(p.output, file, p.group), p.name});
   }
-  return compiler::preview_show(parts, name, show.name, ctx.songs, &ctx.files);
+  return compiler::preview_show(parts, name, show.name, ctx.songs, &ctx.files, &missing);
 }
 
 }  // namespace
@@ -50,15 +51,16 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result) {
     const Loaded loaded = load_and_report(ctx, o->file, o->strict);
     result.code = loaded.code;
     if (result.code != ExitCode::Ok) return;
-    std::string html;
+    std::string html, missing;
     if (loaded.file.is_show()) {
-      html = preview_performers(ctx, loaded.file.show(), name);
+      html = preview_performers(ctx, loaded.file.show(), name, missing);
     } else {
       const compiler::CompileOutput& output = loaded.file.program();
       // A file with `music:` brings its song: drawn under the lanes and played with the page.
       html = compiler::preview_program(*output.program, part_title(output, name, o->group),
-                                       ctx.songs, ctx.files);
+                                       ctx.songs, ctx.files, &missing);
     }
+    if (!missing.empty()) ctx.err << "seqc: warning: " << terminal_safe(missing) << "\n";
     result.code = write_output(ctx, o->output, html, loaded.file.inputs());
     if (result.code == ExitCode::Ok && o->output != "-") {
       summarize(ctx, o->output + ": " + std::to_string(html.size()) + " bytes");

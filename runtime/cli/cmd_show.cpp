@@ -147,22 +147,6 @@ ExitCode report_show(Context& ctx, const std::vector<Stage>& stages, const board
   return code;
 }
 
-// The performers' one song (boards::show_song); nullptr (said) when they name different ones
-// or none.
-const compiler::Song* show_song(Context& ctx, const compiler::ShowOutput& show) {
-  const boards::ShowSong found = boards::show_song(show);
-  if (found.other != nullptr) {
-    ctx.err << "seqc: error: --music: performers '" << terminal_safe(found.first->name) << "' and '"
-            << terminal_safe(found.other->name) << "' dance to different songs or downbeats ("
-            << terminal_safe(found.song->file) << ", " << terminal_safe(found.other_song->file)
-            << "); a show plays one song\n";
-  } else if (found.song == nullptr) {
-    ctx.err << "seqc: error: --music: no performer of show " << terminal_safe(show.name)
-            << " has a `music:` block, so there is no song to play (docs/music.md)\n";
-  }
-  return found.other != nullptr ? nullptr : found.song;
-}
-
 struct ShowArgs {
   std::string file;
   bool strict = false;
@@ -181,9 +165,12 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
   stop_cleanly_from_now(ctx);
   MusicSession music;
   if (music_args.music) {
-    const compiler::Song* song = show_song(ctx, show);
-    if (song == nullptr) return ExitCode::Usage;
-    if (const ExitCode e = open_music(ctx, *song, music_args, music); e != ExitCode::Ok) return e;
+    const compiler::ShowSong found = compiler::show_song(show);
+    const std::string why = compiler::no_one_song(show, found);
+    if (!why.empty()) return usage_error(ctx, "--music: " + terminal_safe(why));
+    if (const ExitCode e = open_music(ctx, *found.song, music_args, music); e != ExitCode::Ok) {
+      return e;
+    }
   }
 
   std::vector<Stage> stages(show.performers.size());
@@ -230,9 +217,8 @@ ExitCode run_show(Context& ctx, const ShowArgs& args) {
       boards::perform(performers, ctx.clock, ctx.interrupted, kReplyTimeout, start_at);
   realtime.reset();
   if (plan && report.error.empty() && ctx.verbosity >= 0) {
-    ctx.err << "seqc: music: downbeat heard at +"
-            << io::seconds_text(plan->downbeat_heard - plan->audio_started) << " (output latency "
-            << io::ms_text(plan->latency, 1) << "); each performer's start below is from it\n";
+    ctx.err << "seqc: " << heard_text(music, *plan)
+            << "; each performer's start below is from it\n";
   }
   const ExitCode code = report_show(ctx, stages, report);
   if (!music_args.music) return code;

@@ -100,20 +100,22 @@ std::optional<std::vector<compiler::ResyncPiece>> resync_pieces(
   return std::move(cut.pieces);
 }
 
-// --resync: the pieces stored one group each, then started by the computer at their bar lines.
+// --resync: the pieces stored one group each, then started by the computer at their bar lines;
+// with --music the first on the song's downbeat as heard, and the song played to its end.
 ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output,
                     const boards::Board& board, const std::vector<compiler::ResyncPiece>& pieces,
-                    const boards::Line& line, upload::UploadObserver* progress,
-                    upload::ProgressPrinter& printer, const upload::UploadOptions& options,
-                    const std::optional<boards::FirstMoveTooFast>& too_fast) {
+                    const boards::Line& line, upload::ProgressPrinter& printer,
+                    const upload::UploadOptions& options,
+                    const std::optional<boards::FirstMoveTooFast>& too_fast, MusicSession* music) {
   const std::size_t last = static_cast<std::size_t>(a.group) + pieces.size() - 1;
   const auto first_group = static_cast<std::uint8_t>(a.group);
   boards::ResyncRun r =
-      boards::store_pieces(board, line, output, pieces, first_group, options, progress);
+      boards::store_pieces(board, line, output, pieces, first_group, options, &printer);
   printer.finish();
+  std::optional<boards::SyncedStart> synced;
   if (r.stored()) {
     const auto realtime = realtime_stretch(ctx, a.realtime);
-    boards::start_pieces(board, line, pieces, first_group, options, r);
+    synced = boards::start_pieces(board, line, pieces, first_group, options, r, music, &ctx.clock);
   }
   if (!r.stored()) {
     const upload::UploadResult& failed = r.uploads.back();
@@ -131,20 +133,27 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
     ctx.err << "seqc: interrupted after starting " << plural(r.play.sent, "piece") << "\n";
     return ExitCode::Interrupted;
   }
-  if (r.play.end == player::PlayEnd::WriteFailed) {
-    return fail(ctx, ExitCode::DeviceFailure, r.play.error);
+  if (r.play.end == player::PlayEnd::WriteFailed || !r.song_error.empty()) {
+    return fail(ctx, r.song_error.empty() ? ExitCode::DeviceFailure : ExitCode::PortUnavailable,
+                r.song_error.empty() ? r.play.error : "--music: " + r.song_error);
   }
-  if (ctx.verbosity < 0) return ExitCode::Ok;
-  ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
-          << (a.resync == 1 ? " bar" : " bars") << " in groups " << a.group << "-" << last
-          << " and started each at its bar line (the latest " << io::ms_text(r.latest_start(), 1)
-          << " late)\n";
-  if (ctx.verbosity > 0) {
-    for (std::size_t k = 0; k < pieces.size(); ++k) {
-      ctx.err << "  group " << a.group + static_cast<int>(k) << ": "
-              << plural(pieces[k].keyframes.size(), "action") << " from "
-              << io::seconds_text(r.starts[k].at) << "\n";
-    }
+  if (ctx.verbosity >= 0) {
+    if (synced)
+      ctx.err << "seqc: " << sync_text(*music, *synced, std::string(board.run_name)) << "\n";
+    ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
+            << (a.resync == 1 ? " bar" : " bars") << " in groups " << a.group << "-" << last
+            << " and started each at its bar line (the latest " << io::ms_text(r.latest_start(), 1)
+            << " late)\n";
+  }
+  for (std::size_t k = 0; ctx.verbosity > 0 && k < pieces.size(); ++k) {
+    ctx.err << "  group " << a.group + static_cast<int>(k) << ": "
+            << plural(pieces[k].keyframes.size(), "action") << " from "
+            << io::seconds_text(r.starts[k].at) << "\n";
+  }
+  if (music != nullptr && !boards::play_song_out(*music, ctx.clock, ctx.interrupted)) {
+    if (board.stop_frame != nullptr) (void)line.transport.write(board.stop_frame());
+    ctx.err << "seqc: interrupted: stopped the song and the piece playing\n";
+    return ExitCode::Interrupted;
   }
   return ExitCode::Ok;
 }
@@ -200,10 +209,8 @@ ExitCode run_to_music(Context& ctx, const UploadArgs& a, const boards::Board& bo
 }
 
 ExitCode run_upload(Context& ctx, const UploadArgs& a) {
-  if (a.resync > 0 && (!a.run || a.dry_run || a.music.music)) {
-    return usage_error(ctx,
-                       "--resync needs --run (the computer starts each piece), and no --dry-run "
-                       "or --music");
+  if (a.resync > 0 && (!a.run || a.dry_run)) {
+    return usage_error(ctx, "--resync needs --run (the computer starts each piece), not --dry-run");
   }
   Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock);
   if (c.code != ExitCode::Ok) return c.code;
@@ -268,9 +275,10 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
             << transport->describe() << " (" << board.dialect->name << " dialect)\n";
   }
   const boards::Line& line = *link.line;
+  music.robot_in_emulated_time = port.own_clock();
   if (pieces)
-    return run_resync(ctx, a, c.output, board, *pieces, line, &progress, progress, options,
-                      too_fast);
+    return run_resync(ctx, a, c.output, board, *pieces, line, progress, options, too_fast,
+                      a.music.music ? &music : nullptr);
   const upload::UploadResult r = boards::upload(board, line, plan, options, &progress);
   progress.finish();
 
@@ -301,7 +309,6 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
     if (const auto fast = boards::run_too_fast(board, line, c.output, a.force)) {
       return not_started(*fast);
     }
-    music.robot_in_emulated_time = port.own_clock();
     return run_to_music(ctx, a, board, line, music);
   }
   if (ctx.verbosity < 0) return ExitCode::Ok;  // --quiet: the exit status says it

@@ -99,9 +99,9 @@ Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongChec
     Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid);
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
-  compiler::Loaded file = compiler::load(
-      path, ctx.files,
-      {compile_options(ctx, strict, song, clock_ppm, over_hid), compiler::CompileOptions{strict}});
+  compiler::Loaded file = compiler::load(path, ctx.files,
+                                         {compile_options(ctx, strict, song, clock_ppm, over_hid),
+                                          compile_options(ctx, strict, song, 0, false)});
   const ExitCode code =
       file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
   return {std::move(file), code};

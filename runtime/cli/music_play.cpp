@@ -93,11 +93,9 @@ bool start_music(Context& ctx, MusicSession& music) {
   return true;
 }
 
-std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
-                      const std::string& command) {
-  const audio::StartPlan& p = start.plan;
-  const io::Duration heard = p.downbeat_heard - p.audio_started;
-  std::string text = "music: downbeat heard at +" + io::seconds_text(heard) + " (output latency " +
+std::string heard_text(const MusicSession& music, const audio::StartPlan& p) {
+  std::string text = "music: downbeat heard at +" +
+                     io::seconds_text(p.downbeat_heard - p.audio_started) + " (output latency " +
                      io::ms_text(p.latency, 1);
   if (music.audio_offset != io::Duration{0}) {
     const double ms = std::chrono::duration<double, std::milli>(music.audio_offset).count();
@@ -108,14 +106,19 @@ std::string sync_text(const MusicSession& music, const boards::SyncedStart& star
   if (music.started && music.started->lead_in > io::Duration{0}) {
     text += ", after " + io::seconds_text(music.started->lead_in) + " of silence";
   }
-  text += "); ";
+  return text + ")";
+}
+
+std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
+                      const std::string& command) {
+  std::string text = heard_text(music, start.plan) + "; ";
   if (!start.written) return text + command + " was not sent";
   if (music.robot_in_emulated_time) {
     return text + command +
            " went to the in-process emulator, which keeps no real time: no start skew is measured";
   }
   text += "robot started " + relative_text(start.skew) + " (" + command + " written " +
-          io::ms_text(*start.written - p.write_at, 2) + " after its time, " +
+          io::ms_text(*start.written - start.plan.write_at, 2) + " after its time, " +
           io::ms_text(start.wire, 2) + " on the wire";
   if (start.board_delay != io::Duration{0}) {
     text += ", board start delay " + io::ms_text(start.board_delay, 1);

@@ -48,10 +48,12 @@ ExitCode open_music(Context& ctx, const compiler::CompileOutput& compiled, const
 // Starts the song; false (said on ctx.err) when the output refuses.
 bool start_music(Context& ctx, MusicSession& music);
 
-// "music: downbeat heard at +0.820 s (output latency 50.0 ms, --audio-offset 20 ms); robot
-// started 0.02 ms after it (GroupRun written 0.01 ms after its time, 7.29 ms on the wire)"; for
-// a robot in emulated time, that `command` went to the in-process emulator and no skew is
-// measured.
+// "music: downbeat heard at +0.820 s (output latency 50.0 ms, --audio-offset 20 ms, after 0.300 s
+// of silence)", the lead-in said when one was played: every song-playing command's report opens
+// so. sync_text adds "; robot started 0.02 ms after it (GroupRun written 0.01 ms after its time,
+// 7.29 ms on the wire)", or, for a robot in emulated time, that `command` went to the in-process
+// emulator and no skew is measured.
+std::string heard_text(const MusicSession& music, const audio::StartPlan& plan);
 std::string sync_text(const MusicSession& music, const boards::SyncedStart& start,
                       const std::string& command);
 

@@ -228,5 +228,37 @@ TEST(DeviceMusic, MusicNeedsRunOnUpload) {
   EXPECT_EQ(h.received(), "");
 }
 
+// --resync with --music: the song's downbeat as heard anchors the first piece's start, and every
+// later start is on the same clock at its bar line after it. Two bars at 120 bpm in 4/4 (2 s
+// each), cut every bar: groups 0 and 1. Each start is one write of GroupStop (55 55 02 07) and
+// GroupRun; it finishes arriving when its time comes.
+TEST(DeviceMusic, ResyncStartsTheFirstPieceOnTheDownbeatAndTheRestOnItsClock) {
+  MusicHarness h;
+  h.files.add("bars.yaml",
+              "robot: xarm\nmusic:\n  file: song.wav\n  downbeat: 0.750s\n  tempo: 120\n"
+              "  meter: 4/4\nsequence:\n  - move: {base: 600}\n    time: 1bar\n"
+              "  - move: {base: 400}\n    time: 1bar\n");
+  const RunResult r = h.run({"upload", "bars.yaml", "--port", "emu:xarm", "--run", "--resync", "1",
+                             "--music", "--force", "--audio-offset", "20"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // 50 ms of latency + the downbeat at 750 ms + 20 ms of offset = 820 ms after the song's start:
+  // GroupRun 0 finishes arriving then, and GroupRun 1 one bar (2000 ms) later.
+  const auto first = h.arrival_ms("55 55 05 06 00 01 00");
+  const auto second = h.arrival_ms("55 55 05 06 01 01 00");
+  ASSERT_TRUE(first.has_value() && second.has_value()) << r.err;
+  EXPECT_NEAR(*first, 820.0, 1e-5);
+  EXPECT_NEAR(*second, 2820.0, 1e-5);
+  // The start is 11 bytes at 9600 baud: 11.458333 ms on the wire.
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.820 s (output latency 50.0 ms, "
+                       "--audio-offset 20 ms); robot started on it (GroupRun written 0.00 ms "
+                       "after its time, 11.46 ms on the wire)\n"
+                       "seqc: stored 2 pieces of 1 bar in groups 0-1 and started each at its bar "
+                       "line"),
+            std::string::npos)
+      << r.err;
+  ASSERT_NE(h.speakers.last(), nullptr);
+  EXPECT_TRUE(h.speakers.last()->stopped());
+}
+
 }  // namespace
 }  // namespace seqc::cli::test

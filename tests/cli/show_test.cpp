@@ -109,6 +109,27 @@ TEST(Show, WithMusicEveryoneStartsOnTheDownbeatAsHeard) {
   EXPECT_TRUE(speakers.last()->stopped());
 }
 
+// A downbeat sooner than the song's start can be timed (0.2 s) gets a lead-in of silence; the show
+// says it in the same words as `upload --run --music` and `play --music` (heard_text).
+TEST(Show, WithMusicSaysTheLeadInOfSilence) {
+  DeviceHarness h;
+  QuietSongs songs;
+  audio::ManualAudioOutputFactory speakers(h.clock, std::chrono::milliseconds(50));
+  h.audio_files = &songs;
+  h.audio_output = &speakers;
+  h.files.add("solo.yaml", "show: solo\nperformers:\n  arm: {file: arm.yaml, port: emu:xarm}\n");
+  h.files.add("arm.yaml",
+              "robot: xarm\nmusic:\n  file: song.wav\n  downbeat: 0.200s\n  tempo: 120\n"
+              "  meter: 4/4\nsequence:\n  - move: {base: 400}\n    time: 1b\n");
+  const RunResult r = h.run({"show", "solo.yaml", "--music"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // 0.3 s of silence, 50 ms of latency, the downbeat 0.2 s into the song: heard at 0.550 s.
+  EXPECT_NE(r.err.find("seqc: music: downbeat heard at +0.550 s (output latency 50.0 ms, after "
+                       "0.300 s of silence); each performer's start below is from it\n"),
+            std::string::npos)
+      << r.err;
+}
+
 // A stop signal during the uploads is an interruption like any other (exit 130), not a failing
 // device: nothing was stored and nothing started.
 TEST(Show, InterruptedDuringItsUploadsExits130) {

@@ -218,5 +218,52 @@ TEST(ProgramViews, AFilesPageIsItsOnePartOnItsOwnTimeAxis) {
   EXPECT_EQ(plot_program(*out.program, options, nullptr), plot_program(*out.program, options));
 }
 
+// A song the file reader refuses (over its size limit): embedded as the SongReader's smaller copy
+// when it has one; else the page and `missing` say why and how to fix it, and nothing plays.
+class BigSong final : public seqc::FileReader {
+ public:
+  Result<std::string> read(const std::string& path) override {
+    if (path == "try.yaml") return std::string(kSongDance);
+    return make_error(path + ": file is too large (over 16 MiB)");
+  }
+  static constexpr const char* kSongDance =
+      "robot: xarm\nmusic:\n  file: long.wav\n  downbeat: 0.500s\n  tempo: 120\n"
+      "  meter: 4/4\nsequence:\n  - move: {base: 700}\n    time: 1b\n";
+};
+class Encoder final : public seqc::SongReader {
+ public:
+  bool can = true;
+  Result<seqc::SongSamples> read(const std::string& path) override {
+    return make_error(path + ": not decoded here");
+  }
+  Result<std::string> compressed(const std::string& path) override {
+    if (!can) return make_error(path + ": cannot encode");
+    return std::string("OggS");
+  }
+};
+
+TEST(ProgramViews, ASongTooLargeToEmbedIsEmbeddedSmallerOrSaidMissing) {
+  BigSong files;
+  const compiler::CompileOutput out = compiler::compile_file("try.yaml", files);
+  ASSERT_TRUE(out.program);
+  Encoder encoder;
+  std::string missing = "unset";
+  const std::string page = preview_program(*out.program, "try.yaml", &encoder, files, &missing);
+  EXPECT_EQ(missing, "");
+  EXPECT_NE(
+      page.find("<audio id=\"song\" preload=\"auto\" src=\"data:audio/ogg;base64,T2dnUw==\">"),
+      std::string::npos);
+
+  encoder.can = false;
+  const std::string without = preview_program(*out.program, "try.yaml", &encoder, files, &missing);
+  EXPECT_EQ(missing,
+            "the song is not in this page (long.wav: file is too large (over 16 MiB); long.wav: "
+            "cannot encode): convert it to a smaller file, e.g. `ffmpeg -i long.wav -ac 1 -q:a 3 "
+            "song.ogg`, and name that in `music: file:`");
+  EXPECT_EQ(without.find("<audio id=\"song\""), std::string::npos);
+  EXPECT_NE(without.find("<p class=\"song-missing\">the song is not in this page (long.wav: "),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace seqc::compiler

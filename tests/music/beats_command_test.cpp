@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+
+#include "compiler/compile.hpp"
 
 #include "runtime/cli/beats_command.hpp"
 #include "runtime/io/clock.hpp"
@@ -160,6 +164,83 @@ TEST(BeatsCommand, BeatsOutWritesEachBeatAndItsPlaceInTheBar) {
             std::string::npos)
       << again.err.str();
   std::filesystem::remove_all(dir);
+
+// A choreography and its song from memory, for the round trip below.
+class OneDance final : public seqc::FileReader {
+ public:
+  std::map<std::string, std::string> texts;
+  testing::Song song;
+  Result<std::string> read(const std::string& path) override {
+    auto it = texts.find(path);
+    if (it == texts.end()) return make_error(path + ": not here");
+    return it->second;
+  }
+};
+class DanceSongs final : public seqc::SongReader {
+ public:
+  explicit DanceSongs(OneDance& d) : d_(d) {}
+  Result<seqc::SongSamples> read(const std::string&) override {
+    return seqc::SongSamples{d_.song.samples, d_.song.sample_rate};
+  }
+
+ private:
+  OneDance& d_;
+};
+
+// The line of `block` after "KEY: ", without its unit ("0.610s" -> 0.610).
+double value_of(const std::string& block, const std::string& key) {
+  const auto at = block.find("  " + key + ": ");
+  return std::stod(block.substr(at + key.size() + 4));
+}
+
+TEST(BeatsCommand, TheClickTrackIsThePrintedMapAndTheCheckFindsNoDriftOnIt) {
+  // A song at 123 bpm from 0.61 s, 24 bars. `seqc beats` prints a block; every click of its
+  // click track starts on that block's beats (downbeat + k x 60 / tempo, reckoned here from
+  // the printed text), and a choreography with that block checks quietly against the song.
+  testing::SongSpec spec;
+  spec.tempo = 123;
+  spec.lead_in_s = 0.61;
+  spec.bars = 24;
+  OneDance dance;
+  dance.song = testing::make_song(spec);
+  FakeReader reader(audio::MonoAudio{dance.song.samples, dance.song.sample_rate});
+  FakeWriter writer;
+  CommandRun run;
+  BeatsRequest request{"music/song.wav", std::nullopt, std::nullopt, "click.wav"};
+  ASSERT_EQ(run_beats(run.ctx, request, reader, writer), ExitCode::Ok) << run.err.str();
+  const std::string block = run.out.str();
+  ASSERT_EQ(block.find("changes"), std::string::npos) << block;
+  const double downbeat = value_of(block, "downbeat");
+  const double period = 60 / value_of(block, "tempo");
+
+  // The clicks alone: the mix less the song at 70%; each click's first sample above 0.01.
+  const double rate = dance.song.sample_rate;
+  std::vector<double> onsets;
+  std::size_t quiet_until = 0;
+  for (std::size_t i = 0; i < writer.written.samples.size(); ++i) {
+    const double click = writer.written.samples[i] - 0.7 * dance.song.samples[i];
+    if (i >= quiet_until && std::abs(click) > 0.01) {
+      onsets.push_back(double(i) / rate);
+      quiet_until = i + static_cast<std::size_t>(0.1 * rate);
+    }
+  }
+  ASSERT_GT(onsets.size(), 24u * 4);
+  for (double t : onsets) {
+    const double k = std::round((t - downbeat) / period);
+    EXPECT_NEAR(t, downbeat + k * period, 2.5 / rate) << "click at " << t << " s";
+  }
+
+  dance.texts["main.yaml"] = "robot: xarm\n" + block +
+                             "sequence:\n  - move: home\n    time: 1bar\n"
+                             "  - move: {base: 600}\n    time: 20bar\n";
+  DanceSongs songs(dance);
+  compiler::CompileOptions options;
+  options.songs = &songs;
+  const compiler::CompileOutput out = compiler::compile_file("main.yaml", dance, options);
+  EXPECT_TRUE(out.program.has_value());
+  std::vector<std::string> said;
+  for (const seqc::Diagnostic& d : out.diagnostics.all()) said.push_back(d.message);
+  EXPECT_EQ(said, std::vector<std::string>{});
 }
 
 }  // namespace
