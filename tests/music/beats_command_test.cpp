@@ -164,6 +164,7 @@ TEST(BeatsCommand, BeatsOutWritesEachBeatAndItsPlaceInTheBar) {
             std::string::npos)
       << again.err.str();
   std::filesystem::remove_all(dir);
+}
 
 // A choreography and its song from memory, for the round trip below.
 class OneDance final : public seqc::FileReader {
@@ -206,7 +207,7 @@ TEST(BeatsCommand, TheClickTrackIsThePrintedMapAndTheCheckFindsNoDriftOnIt) {
   FakeReader reader(audio::MonoAudio{dance.song.samples, dance.song.sample_rate});
   FakeWriter writer;
   CommandRun run;
-  BeatsRequest request{"music/song.wav", std::nullopt, std::nullopt, "click.wav"};
+  BeatsRequest request{"music/song.wav", std::nullopt, std::nullopt, "click.wav", std::nullopt};
   ASSERT_EQ(run_beats(run.ctx, request, reader, writer), ExitCode::Ok) << run.err.str();
   const std::string block = run.out.str();
   ASSERT_EQ(block.find("changes"), std::string::npos) << block;
