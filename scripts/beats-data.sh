@@ -3,7 +3,10 @@
 # hydrogen and lmms packages ship, rendered with the package's own command-line renderer to
 # DIR/NAME.wav, and its truth read from the project file (scripts/beats-truth.py) into
 # DIR/NAME.truth (TIME<TAB>POS a line, 1 = downbeat) and DIR/NAME.json (bpm, meter, project,
-# licence). The truth is the composers' grid, not anything seqc computed.
+# licence); and the rock and metal band recordings of Debian's fretsonfire-songs-muldjord and
+# -sectoid packages, linked as DIR/fof-NAME.ogg with their truth from the note charts their
+# makers wrote for them (scripts/beats-truth-charts.py). The truth is the composers' grid, not
+# anything seqc computed.
 #
 #   scripts/beats-data.sh [DIR]        DIR defaults to build/beats-data in the source tree
 #
@@ -15,7 +18,7 @@ set -u
 root=$(cd "$(dirname "$0")/.." && pwd) || exit 1
 dir=${1:-$root/build/beats-data}
 timeout_s=${BEATS_RENDER_TIMEOUT:-600}
-packages=(hydrogen lmms python3-mir-eval)
+packages=(hydrogen lmms python3-mir-eval fretsonfire-songs-muldjord fretsonfire-songs-sectoid)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -86,6 +89,9 @@ for kind in hydrogen lmms; do
     "${seconds[$kind]}"
 done
 "$python" "$truth" write "$dir" || { echo "beats-data: $truth write failed" >&2; exit 1; }
+# The band recordings need no render: their truth comes from the charts their makers wrote.
+"$python" "$root/scripts/beats-truth-charts.py" "$dir" | sed 's/^/beats-data: /' ||
+  { echo "beats-data: beats-truth-charts.py failed" >&2; exit 1; }
 truths=("$dir"/*.truth)
 [[ -e ${truths[0]} ]] || truths=()
 echo "beats-data: ${#truths[@]} songs with truth in $dir" \

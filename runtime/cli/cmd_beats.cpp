@@ -42,8 +42,7 @@ ExitCode run_beats(Context& ctx, const BeatsRequest& request, audio::AudioReader
     if (Status written = writer.write_wav(*request.click, mixed); !written) {
       return fail(ctx, ExitCode::FileError, written.error().message);
     }
-    summarize(ctx, "wrote " + *request.click +
-                       " (the song with a click on every beat, higher on "
+    summarize(ctx, "wrote " + *request.click + " (the song with a click on every beat, higher on " +
                        "each bar's first)");
   }
   return ExitCode::Ok;

@@ -126,12 +126,22 @@ def tempo_verdict(tempo, bpm):
     return error, "off"
 
 
-def score_song(mir_beat, np, seqc, data, name):
+def audio_path(data, name):
+    """DIR/NAME.wav (a render) or DIR/NAME.ogg (a band recording, linked by
+    scripts/beats-truth-charts.py)."""
     wav = os.path.join(data, name + ".wav")
+    ogg = os.path.join(data, name + ".ogg")
+    return ogg if not os.path.exists(wav) and os.path.exists(ogg) else wav
+
+
+def score_song(mir_beat, np, seqc, data, name):
+    wav = audio_path(data, name)
     meta = json.load(open(os.path.join(data, name + ".json")))
     truth = read_beats(os.path.join(data, name + ".truth"))
+    # A recording that is not WAV (the band recordings, Ogg Vorbis) has its length in its JSON.
+    seconds = meta["seconds"] if "seconds" in meta else wav_seconds(wav)
     row = {"song": name, "bpm": meta["bpm"], "meter": meta["meter"],
-           "seconds": wav_seconds(wav), "status": "ok"}
+           "seconds": seconds, "status": "ok"}
     with tempfile.TemporaryDirectory(prefix="seqc-beats-score-") as tmp:
         out = os.path.join(tmp, name + ".beats")
         status, stdout, stderr, wall = run_seqc(seqc, wav, out)
@@ -278,7 +288,8 @@ def main(argv):
     for set_name in chosen:
         rows = []
         for name in sets[set_name]:
-            files = [os.path.join(args.data, name + ext) for ext in (".wav", ".truth", ".json")]
+            files = [audio_path(args.data, name)] + [os.path.join(args.data, name + ext)
+                                                     for ext in (".truth", ".json")]
             if not all(os.path.exists(f) for f in files):
                 absent.append(name)
                 continue
