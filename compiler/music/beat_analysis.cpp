@@ -26,6 +26,7 @@ struct Beat {
   double rise = 0;         // how much the amplitude rose at the onset
   double strength = 0;     // the onset envelope's peak near the beat (unit: its RMS)
   double accent = 0;       // how strongly the beat is marked (bar lines are, in most music)
+  double texture = 0;      // how much the sound changes there, over its mean: picks the phase
 };
 
 double mean(const std::vector<double>& x, long long from, long long to) {
@@ -183,6 +184,44 @@ std::vector<double> chord_changes(const std::vector<Beat>& beats, const OnsetEnv
   return change;
 }
 
+// How much the sound changes at each beat: the distance between the mean band levels of the
+// `per_bar` beats from it and of the `per_bar` beats before it. Instruments enter and leave,
+// sections begin and end, on bar lines; a bar cut anywhere else straddles the change and halves it.
+std::vector<double> texture_changes(const std::vector<Beat>& beats, const OnsetEnvelope& env,
+                                    int per_bar) {
+  const std::size_t n = beats.size();
+  const std::size_t bands = env.levels.empty() ? 0 : env.levels.front().size();
+  std::vector<std::vector<double>> per_beat(n, std::vector<double>(bands, 0.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto from = static_cast<std::size_t>(std::max(0L, std::lround(beats[i].frame)));
+    const auto to =
+        i + 1 < n ? static_cast<std::size_t>(std::lround(beats[i + 1].frame)) : from + 1;
+    std::size_t count = 0;
+    for (std::size_t f = from; f < to && f < env.levels.size(); ++f, ++count) {
+      for (std::size_t b = 0; b < bands; ++b) per_beat[i][b] += env.levels[f][b];
+    }
+    if (count > 0) {
+      for (double& v : per_beat[i]) v /= double(count);
+    }
+  }
+  const auto span = static_cast<std::size_t>(per_bar);
+  std::vector<double> change(n, 0.0);
+  for (std::size_t i = span; i + span <= n; ++i) {
+    double sum = 0;
+    for (std::size_t b = 0; b < bands; ++b) {
+      double after = 0, before = 0;
+      for (std::size_t k = 0; k < span; ++k) {
+        after += per_beat[i + k][b];
+        before += per_beat[i - 1 - k][b];
+      }
+      const double d = (after - before) / double(span);
+      sum += d * d;
+    }
+    change[i] = std::sqrt(sum);
+  }
+  return change;
+}
+
 // Least squares t = a + b * i over the beats in [from, to) that have onsets.
 struct LineFit {
   double a = 0, b = 0;
@@ -285,6 +324,14 @@ BarPhase bar_phase(const std::vector<Beat>& beats, std::optional<int> given) {
       best = {m, top};
     }
   }
+  // The phase of that meter with the change of sound counted too: where instruments enter and
+  // leave tells which beat of the bar is the first, not how long the bar is (a sound that
+  // changes at one beat changes back two beats later).
+  std::vector<double> marked(static_cast<std::size_t>(best.beats), 0.0);
+  for (std::size_t i = 0; i < beats.size(); ++i) {
+    marked[i % static_cast<std::size_t>(best.beats)] += beats[i].accent + 2 * beats[i].texture;
+  }
+  best.phase = static_cast<int>(std::max_element(marked.begin(), marked.end()) - marked.begin());
   return best;
 }
 
@@ -516,17 +563,20 @@ Result<BeatAnalysis> map_from_beats(const std::vector<double>& frames,
       if (b.fine && b.rise < typical / 30) b.has_onset = false;
     }
   }
-  // A bar's first beat is usually where the chord changes, with the bass note and the kick,
-  // and the loudest: each cue over its mean, the low band's onset and the chord change counting
-  // twice as much as the loudness.
+  // A bar's first beat is usually where the chord changes and instruments enter or leave, with
+  // the bass note and the kick, and the loudest: each cue over its mean, the low band's onset,
+  // the chord change and the change of sound counting twice as much as the loudness.
   const std::vector<double> changes = chord_changes(beats, env);
-  double change_sum = 0, strength_sum = 0;
+  const std::vector<double> textures = texture_changes(beats, env, 2);
+  double change_sum = 0, strength_sum = 0, texture_sum = 0;
   for (std::size_t i = 0; i < beats.size(); ++i) {
     change_sum += changes[i];
     strength_sum += beats[i].strength;
+    texture_sum += textures[i];
   }
   for (std::size_t i = 0; i < beats.size(); ++i) {
     const double n = double(beats.size());
+    beats[i].texture = texture_sum > 0 ? n * textures[i] / texture_sum : 0.0;
     beats[i].accent = (low_sum > 0 ? n * lows[i] / low_sum : 0.0) +
                       (change_sum > 0 ? n * changes[i] / change_sum : 0.0) +
                       0.5 * (rise_sum > 0 ? n * std::max(0.0, beats[i].rise) / rise_sum : 0.0) +

@@ -103,6 +103,7 @@ OnsetEnvelope onset_envelope(const AnalysisSignal& signal) {
   std::vector<double> raw(frames, 0.0);
   env.low.assign(frames, 0.0);
   env.chroma.assign(frames, {});
+  env.levels.assign(frames, {});
   for (std::size_t f = 0; f < frames; ++f) {
     band_levels(signal, static_cast<long long>(f * env.hop), window, fft, band, bands, frame, mags,
                 cur);
@@ -115,6 +116,7 @@ OnsetEnvelope onset_envelope(const AnalysisSignal& signal) {
     if (total > 0) {
       for (float& c : env.chroma[f]) c = float(c / total);
     }
+    env.levels[f].assign(cur.begin(), cur.end());
     if (f > 0) {
       double flux = 0, low = 0;
       for (std::size_t b = 0; b < bands; ++b) {

@@ -29,6 +29,9 @@ struct OnsetEnvelope {
   // The energy of each pitch class (200 Hz - 2 kHz, where chords are), summed to 1 per frame:
   // a chord change moves it, a drum hit barely does.
   std::vector<std::array<float, 12>> chroma;
+  // Each frame's log energy per third-octave band (the same levels the flux differences): where
+  // instruments enter or leave, which in most music is on a bar line, these change.
+  std::vector<std::vector<float>> levels;
   std::size_t hop = 0;     // analysis samples per frame
   std::size_t window = 0;  // analysis samples per FFT
   double frame_rate = 0;   // frames per second
