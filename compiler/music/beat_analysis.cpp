@@ -329,7 +329,7 @@ BarPhase bar_phase(const std::vector<Beat>& beats, std::optional<int> given) {
   // changes at one beat changes back two beats later).
   std::vector<double> marked(static_cast<std::size_t>(best.beats), 0.0);
   for (std::size_t i = 0; i < beats.size(); ++i) {
-    marked[i % static_cast<std::size_t>(best.beats)] += beats[i].accent + 2 * beats[i].texture;
+    marked[i % static_cast<std::size_t>(best.beats)] += beats[i].accent + beats[i].texture;
   }
   best.phase = static_cast<int>(std::max_element(marked.begin(), marked.end()) - marked.begin());
   return best;
