@@ -17,7 +17,7 @@ const std::vector<Row>& rows() {
   static const std::vector<Row> table = {
       {{"yaml-syntax", "Invalid YAML", "The file is not well-formed YAML."},
        {"invalid YAML", "is not supported", "map key", "map keys", "file is ", "nesting", "alias",
-        "anchor", "not valid UTF-8", "NUL", "not a text file"}},
+        "anchor", "merge key", "not valid UTF-8", "NUL", "not a text file"}},
       {{"duplicate-key", "Duplicate key", "A key appears twice in the same map."},
        {"duplicate key", "first defined here"}},
       {{"unknown-key", "Unknown key", "A key the language does not define at this place."},

@@ -66,6 +66,7 @@ CompileOutput compile_file(const std::string& path, FileReader& files,
   CompileOutput out;
   FileLoader loader(files, out.sources, out.diagnostics);
   Reporter reporter(out.diagnostics);
+  reporter.set_alias_uses(&loader.alias_uses());
   auto main = loader.load(path);
   if (!main) {
     out.read_error = main.error().message;

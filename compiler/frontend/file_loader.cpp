@@ -23,6 +23,7 @@ Result<const LoadedFile*> FileLoader::load(const std::string& path) {
   file->path = path;
   file->file = sources_.add(path, std::move(*text));
   file->root = load_yaml(sources_, file->file, diags_);
+  if (file->root) alias_uses_.add(*file->root);
   const LoadedFile* result = file.get();
   files_.emplace(path, std::move(file));
   return result;

@@ -36,12 +36,15 @@ class FileLoader {
   // with a 'sequence' key), its lines are withheld from diagnostics (SourceManager): an include
   // can name any readable file, and a secret's first line must not be quoted in a report.
   Result<const LoadedFile*> load_included(const std::string& path);
+  // Where the aliases of every file loaded so far put copies, for "used here" notes.
+  const AliasUses& alias_uses() const { return alias_uses_; }
 
  private:
   FileReader& reader_;
   SourceManager& sources_;
   Diagnostics& diags_;
   std::map<std::string, std::unique_ptr<LoadedFile>> files_;
+  AliasUses alias_uses_;
 };
 
 // Whether the file parsed as a choreography file: a map with a 'sequence' key.

@@ -21,6 +21,7 @@ void Reporter::report(Severity severity, Location at, std::string message,
   } else {
     diags_.warning(at, std::move(message));
   }
+  note_alias_uses(at);
   if (note) diags_.note(note->at, std::move(note->message));
   for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) {
     if (it->with_values) diags_.note(it->note.at, it->note.message);
@@ -50,7 +51,14 @@ void Reporter::error_with_notes(Location at, std::string message, const std::vec
   if (!seen_.insert(std::move(key)).second) return;
   ++errors_;
   diags_.error(at, std::move(message));
+  note_alias_uses(at);
   for (const Note& n : notes) diags_.note(n.at, n.message);
+}
+
+// A mistake said at an anchored node (or inside it) was copied to each alias: say where.
+void Reporter::note_alias_uses(Location at) {
+  if (alias_uses_ == nullptr) return;
+  for (const Location& site : alias_uses_->sites(at)) diags_.note(site, "used here");
 }
 
 void Reporter::unknown(Location at, std::string_view what, std::string_view word,

@@ -1,6 +1,7 @@
 // How the language front end reports mistakes: through Diagnostics, once per place and message
 // (a pose used in a loop is wrong once, not once per iteration), with a note for every
-// performance of a section with parameters the mistake is inside (its values explain it), for a
+// performance of a section with parameters the mistake is inside (its values explain it), a
+// "used here" note at every alias that copied the node the mistake is said at, for a
 // warning inside a plain section a note at the `- section:` step that performed it, and an
 // "included from here" note for every include that led to the file the mistake is in. An error
 // that stops the walk (a budget passed) names the whole chain: every performance and include.
@@ -45,6 +46,9 @@ class Reporter {
   // The include sites (outermost first) of the file being lowered.
   void push_include(Location site) { includes_.push_back(site); }
   void pop_include() { includes_.pop_back(); }
+  // Where aliases copied nodes (kept by the caller, who outlives this reporter); without it, no
+  // "used here" notes.
+  void set_alias_uses(const AliasUses* uses) { alias_uses_ = uses; }
   const std::vector<Location>& include_sites() const { return includes_; }
   void set_include_sites(std::vector<Location> sites) { includes_ = std::move(sites); }
   // The `- section:` steps performing the steps being lowered (outermost first): a warning
@@ -84,6 +88,7 @@ class Reporter {
 
  private:
   void report(Severity severity, Location at, std::string message, std::optional<Note> note);
+  void note_alias_uses(Location at);
 
   Diagnostics& diags_;
   std::vector<Location> includes_;
@@ -94,6 +99,7 @@ class Reporter {
     bool with_values = false;
   };
   std::vector<Performance> performing_;
+  const AliasUses* alias_uses_ = nullptr;
   std::size_t errors_ = 0;
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };

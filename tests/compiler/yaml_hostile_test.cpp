@@ -107,20 +107,24 @@ TEST(YamlHostile, ByteOrderMarkIsSkippedAndColumnsStillCountIt) {
 }
 
 TEST(YamlHostile, AnchorsAndAliases) {
-  EXPECT_EQ(load_hostile("anchor.yaml").rendered,
-            "anchor.yaml:1:7: error: anchors and aliases are not supported\n"
-            "    1 | base: &b {x: 1}\n"
-            "      |       ^\n");
+  // Aliases are copies (yaml_anchors_test.cpp has the details); these are the hostile ones.
+  const auto anchor = load_hostile("anchor.yaml");
+  EXPECT_TRUE(anchor.ok);
+  EXPECT_EQ(anchor.rendered, "");
   EXPECT_EQ(load_hostile("alias_undefined.yaml").rendered,
-            "alias_undefined.yaml:1:4: error: anchors and aliases are not supported\n"
+            "alias_undefined.yaml:1:4: error: undefined alias '*nothing' (no anchor '&nothing' "
+            "before it)\n"
             "    1 | a: *nothing\n"
             "      |    ^\n");
   EXPECT_EQ(first_line(load_hostile("cycle.yaml").rendered),
-            "cycle.yaml:1:1: error: anchors and aliases are not supported\n");
+            "cycle.yaml:1:5: error: alias '*a' is inside the node it refers to (a node cannot "
+            "contain itself)\n");
+  // Ten levels of three aliases expand to 3^10 = 59,049 "lol"s: within the budget, so read.
   const auto laughs = load_hostile("billion_laughs.yaml");
-  EXPECT_FALSE(laughs.ok);
-  EXPECT_EQ(first_line(laughs.rendered),
-            "billion_laughs.yaml:1:4: error: anchors and aliases are not supported\n");
+  EXPECT_TRUE(laughs.ok);
+  EXPECT_EQ(laughs.rendered, "");
+  std::printf("[ measured ] billion_laughs.yaml (59,049 leaves) read in %.3f ms\n",
+              laughs.milliseconds);
 }
 
 TEST(YamlHostile, SecondDocument) {
@@ -233,15 +237,17 @@ TEST(YamlHostile, TenThousandOpenBrackets) {
   std::printf("[ measured ] 10,000 '[' rejected in %.3f ms\n", r.milliseconds);
 }
 
-TEST(YamlHostile, AliasBombIsRejectedAtTheFirstAnchorOrAlias) {
-  // 100,000 aliases of one anchor: stops at the anchor, before any alias is looked at.
+TEST(YamlHostile, AliasBombIsRejectedAtTheAliasThatPassesTheBudget) {
+  // 100,000 aliases of a 3-node anchor: 87,381 fit in the 262,144 nodes aliases may copy; the
+  // next, at column 7 + 4 * 87,381, is refused before it is copied.
   std::string bomb = "base: &a [x, y]\nall: [";
   for (int i = 0; i < 100000; ++i) bomb += i == 0 ? "*a" : ", *a";
   bomb += "]\n";
   auto r = load("bomb.yaml", bomb);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(first_line(r.rendered),
-            "bomb.yaml:1:7: error: anchors and aliases are not supported\n");
+            "bomb.yaml:2:349531: error: aliases expand to more than 262144 nodes (a YAML "
+            "\"billion laughs\"?)\n");
   std::printf("[ measured ] 100,000-alias bomb (%zu bytes) rejected in %.3f ms\n", bomb.size(),
               r.milliseconds);
 
@@ -252,7 +258,7 @@ TEST(YamlHostile, AliasBombIsRejectedAtTheFirstAnchorOrAlias) {
   r = load("aliases.yaml", aliases);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(first_line(r.rendered),
-            "aliases.yaml:1:7: error: anchors and aliases are not supported\n");
+            "aliases.yaml:1:7: error: undefined alias '*a' (no anchor '&a' before it)\n");
 }
 
 TEST(YamlHostile, OversizedFileIsRejectedWithoutParsing) {

@@ -6,6 +6,15 @@
 // nothing is built that this file does not build itself, and the handler can stop the parse at
 // the first event it dislikes by throwing Abort, which yaml-cpp unwinds like its own errors.
 //
+// Anchors and aliases: an alias is a copy of its anchored node (so the tree stays a tree), and
+// the copy's size and depth are known before it is made: a copy that would take the nodes
+// copied in all past YamlLimits::max_alias_nodes, or nest past max_depth, stops the parse at
+// that alias, having copied nothing for it. yaml-cpp registers an anchor before the node it
+// names is read, so an alias inside its own anchored node does reach the handler: that is an
+// error (a cycle), not a copy. Merge keys ('<<', YAML 1.1) are applied when their map ends: the
+// map's own keys win, then the merged maps in the order they are listed; the merged entries go
+// where the '<<' was.
+//
 // What yaml-cpp 0.7.0's event parser does with hostile input, and the guard against each, was
 // found by experiment; the findings (numbered, and cited by number below) are in
 // docs/yaml-loader.md.
@@ -28,9 +37,12 @@
 #include <yaml-cpp/mark.h>
 #include <yaml-cpp/parser.h>
 
+#include <algorithm>
+#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "compiler/frontend/yaml/yaml_prescan.hpp"
 
@@ -93,6 +105,10 @@ class TreeBuilder final : public YAML::EventHandler {
 
   std::optional<YamlNode> take_root() { return std::move(root_); }
 
+  std::size_t offset(const YAML::Mark& m) const {
+    return m.pos < 0 ? text_.size() : static_cast<std::size_t>(m.pos) + bom_;
+  }
+
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (documents_++ == 0) return;
     const std::size_t pos = offset(mark);
@@ -103,14 +119,54 @@ class TreeBuilder final : public YAML::EventHandler {
   }
   void OnDocumentEnd() override {}
 
-  void OnAnchor(const YAML::Mark& mark, const std::string& /*name*/) override {
-    fail(location(mark), "anchors and aliases are not supported");
-  }
-  void OnAlias(const YAML::Mark& mark, YAML::anchor_t /*anchor*/) override {
-    fail(location(mark), "anchors and aliases are not supported");
+  // yaml-cpp calls this just before the event of the node the anchor names.
+  void OnAnchor(const YAML::Mark& mark, const std::string& name) override {
+    pending_anchor_ = name;
+    pending_anchor_at_ = location(mark);
   }
 
-  void OnNull(const YAML::Mark& mark, YAML::anchor_t /*anchor*/) override {
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t id) override {
+    const Location at = location(mark);
+    // yaml-cpp throws for a name no anchor defined (see undefined_alias_message); an id it
+    // never gave to a node event is not expected, and is the same mistake.
+    if (id == YAML::NullAnchor || id > anchors_.size()) {
+      fail(at, undefined_alias_message(offset(mark)));
+    }
+    const Anchor& anchor = anchors_[id - 1];
+    if (!anchor.node) {
+      diags_.error(at, "alias '*" + shorten(anchor.name) +
+                           "' is inside the node it refers to (a node cannot contain itself)");
+      diags_.note(anchor.at, "anchor '&" + shorten(anchor.name) + "' is here");
+      throw Abort{};
+    }
+    if (anchor.nodes > limits_.max_alias_nodes - aliased_nodes_) {
+      fail(at, "aliases expand to more than " + std::to_string(limits_.max_alias_nodes) +
+                   " nodes (a YAML \"billion laughs\"?)");
+    }
+    if (stack_.size() + anchor.depth > limits_.max_depth) {
+      fail(at, "nesting is deeper than " + std::to_string(limits_.max_depth) + " levels");
+    }
+    aliased_nodes_ += anchor.nodes;
+    YamlNode copy = *anchor.node;
+    mark_used(copy, at);
+    complete(std::move(copy));
+  }
+
+  // "undefined alias '*x' ...", for the alias whose '*' is at text_[pos].
+  std::string undefined_alias_message(std::size_t pos) const {
+    std::size_t end = pos + 1;
+    while (end < text_.size() && text_[end] != ' ' && text_[end] != '\t' && text_[end] != '\n' &&
+           text_[end] != '\r' && text_[end] != ',' && text_[end] != '[' && text_[end] != ']' &&
+           text_[end] != '{' && text_[end] != '}') {
+      ++end;
+    }
+    const std::string name = shorten(
+        text_.substr(std::min(pos + 1, text_.size()), end - std::min(pos + 1, text_.size())));
+    return "undefined alias '*" + name + "' (no anchor '&" + name + "' before it)";
+  }
+
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    begin_anchor(anchor);
     count_node(mark);
     const std::size_t pos = offset(mark);
     if (pos < text_.size() && text_[pos] == '!') {  // finding 4: a tag OnNull does not report
@@ -124,23 +180,27 @@ class TreeBuilder final : public YAML::EventHandler {
     }
     YamlNode node;
     node.location = location(mark);
+    end_anchor(anchor, node);
     complete(std::move(node));
   }
 
-  void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t /*anchor*/,
+  void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                 const std::string& value) override {
-    scalar(mark, tag, value);
+    begin_anchor(anchor);
+    scalar(mark, tag, anchor, value);
   }
 
-  void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t /*anchor*/,
+  void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                        YAML::EmitterStyle::value /*style*/) override {
-    open(mark, tag, YamlNode::Kind::Sequence);
+    begin_anchor(anchor);
+    open(mark, tag, YamlNode::Kind::Sequence, anchor);
   }
   void OnSequenceEnd() override { close(); }
 
-  void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t /*anchor*/,
+  void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                   YAML::EmitterStyle::value /*style*/) override {
-    open(mark, tag, YamlNode::Kind::Map);
+    begin_anchor(anchor);
+    open(mark, tag, YamlNode::Kind::Map, anchor);
   }
   void OnMapEnd() override { close(); }
 
@@ -153,7 +213,123 @@ class TreeBuilder final : public YAML::EventHandler {
     // big ones (a hostile file) get key_index, so neither copies a key.
     std::vector<std::size_t> key_hashes;
     std::unordered_multimap<std::size_t, std::size_t> key_index;  // hash -> entry
+    YAML::anchor_t anchor = YAML::NullAnchor;  // the anchor naming this node, if any
+    // A merge key: where it was, where its entries go, and the maps it merges in list order.
+    std::optional<Location> merge_key;
+    std::size_t merge_at = 0;
+    std::vector<YamlNode> merge_sources;
   };
+
+  // An anchored node, kept as a copy for the aliases to it; `node` is empty while it is built.
+  struct Anchor {
+    std::string name;
+    Location at;
+    std::optional<YamlNode> node;
+    std::size_t nodes = 0;  // in the subtree, keys included (as count_node counts them)
+    std::size_t depth = 0;  // sequences and maps nested in the subtree, itself included
+  };
+
+  void begin_anchor(YAML::anchor_t id) {
+    if (id == YAML::NullAnchor) return;
+    if (anchors_.size() < id) anchors_.resize(id);
+    anchors_[id - 1] = Anchor{std::move(pending_anchor_), pending_anchor_at_, std::nullopt, 0, 0};
+    pending_anchor_.clear();
+  }
+
+  void end_anchor(YAML::anchor_t id, const YamlNode& node) {
+    if (id == YAML::NullAnchor) return;
+    Anchor& anchor = anchors_[id - 1];
+    anchor.nodes = count_nodes(node);
+    anchor.depth = nesting(node);
+    anchor.node = node;
+  }
+
+  static std::size_t count_nodes(const YamlNode& n) {
+    std::size_t total = 1;
+    for (const YamlNode& item : n.items) total += count_nodes(item);
+    for (const YamlEntry& e : n.entries) total += count_nodes(e.first) + count_nodes(e.second);
+    return total;
+  }
+
+  static std::size_t nesting(const YamlNode& n) {
+    if (n.kind != YamlNode::Kind::Sequence && n.kind != YamlNode::Kind::Map) return 0;
+    std::size_t deepest = 0;
+    for (const YamlNode& item : n.items) deepest = std::max(deepest, nesting(item));
+    for (const YamlEntry& e : n.entries) {
+      deepest = std::max({deepest, nesting(e.first), nesting(e.second)});
+    }
+    return deepest + 1;
+  }
+
+  // Nodes inside an earlier copy keep the alias that copied them there (the innermost).
+  static void mark_used(YamlNode& n, Location alias) {
+    if (n.used_at.line == 0) n.used_at = alias;
+    for (YamlNode& item : n.items) mark_used(item, alias);
+    for (YamlEntry& e : n.entries) {
+      mark_used(e.first, alias);
+      mark_used(e.second, alias);
+    }
+  }
+
+  static std::string_view merge_kind(const YamlNode& n) {
+    switch (n.kind) {
+      case YamlNode::Kind::Null:
+        return "empty";
+      case YamlNode::Kind::Scalar:
+        return "a single value";
+      case YamlNode::Kind::Sequence:
+        return "a list";
+      case YamlNode::Kind::Map:
+        return "a map";
+    }
+    return "a value";
+  }
+
+  // The value of a merge key '<<': a map, or a list of maps.
+  void add_merge(Frame& top, const YamlNode& key, YamlNode value) {
+    if (top.merge_key) {
+      diags_.error(key.location, "duplicate key '<<'");
+      diags_.note(*top.merge_key, "first defined here");
+      return;
+    }
+    top.merge_key = key.location;
+    top.merge_at = top.node.entries.size();
+    if (value.is_map()) {
+      top.merge_sources.push_back(std::move(value));
+      return;
+    }
+    if (!value.is_sequence()) {
+      diags_.error(value.location, "the merge key '<<' takes a map or a list of maps, not " +
+                                       std::string(merge_kind(value)));
+      return;
+    }
+    for (YamlNode& item : value.items) {
+      if (item.is_map()) {
+        top.merge_sources.push_back(std::move(item));
+      } else {
+        diags_.error(item.location, "the merge key '<<' takes a list of maps; this item is " +
+                                        std::string(merge_kind(item)));
+      }
+    }
+  }
+
+  // The merged maps' entries whose keys the map does not have, earlier maps first, at the '<<'.
+  void apply_merge(Frame& f) {
+    std::vector<YamlEntry> merged;
+    std::unordered_set<std::string> taken;
+    for (YamlNode& source : f.merge_sources) {
+      for (YamlEntry& e : source.entries) {
+        const std::size_t hash = std::hash<std::string_view>{}(e.first.scalar);
+        if (find_key(f, hash, e.first.scalar) != nullptr) continue;
+        if (!taken.insert(e.first.scalar).second) continue;
+        merged.push_back(std::move(e));
+      }
+    }
+    f.merge_sources.clear();
+    auto& entries = f.node.entries;
+    entries.insert(entries.begin() + static_cast<std::ptrdiff_t>(f.merge_at),
+                   std::make_move_iterator(merged.begin()), std::make_move_iterator(merged.end()));
+  }
 
   static constexpr std::size_t kScannedKeys = 32;
 
@@ -176,7 +352,8 @@ class TreeBuilder final : public YAML::EventHandler {
     return nullptr;
   }
 
-  void scalar(const YAML::Mark& mark, const std::string& tag, std::string_view value) {
+  void scalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+              std::string_view value) {
     count_node(mark);
     check_tag(mark, tag);
     const std::size_t pos = offset(mark);
@@ -189,16 +366,13 @@ class TreeBuilder final : public YAML::EventHandler {
     node.location = location(mark);
     node.scalar = value;
     node.quoted = tag == "!";
+    end_anchor(anchor, node);
     complete(std::move(node));
   }
 
   [[noreturn]] void fail(Location at, std::string message) {
     diags_.error(at, std::move(message));
     throw Abort{};
-  }
-
-  std::size_t offset(const YAML::Mark& m) const {
-    return m.pos < 0 ? text_.size() : static_cast<std::size_t>(m.pos) + bom_;
   }
 
   void count_node(const YAML::Mark& mark) {
@@ -213,7 +387,8 @@ class TreeBuilder final : public YAML::EventHandler {
     diags_.error(location(mark), "tag '" + shorten(tag_as_written(tag)) + "' is not supported");
   }
 
-  void open(const YAML::Mark& mark, const std::string& tag, YamlNode::Kind kind) {
+  void open(const YAML::Mark& mark, const std::string& tag, YamlNode::Kind kind,
+            YAML::anchor_t anchor) {
     count_node(mark);
     check_tag(mark, tag);
     if (stack_.size() >= limits_.max_depth) {
@@ -223,12 +398,17 @@ class TreeBuilder final : public YAML::EventHandler {
     Frame f;
     f.node.kind = kind;
     f.node.location = location(mark);
+    f.anchor = anchor;
     stack_.push_back(std::move(f));
   }
 
   void close() {
-    YamlNode node = std::move(stack_.back().node);
+    Frame& top = stack_.back();
+    if (!top.merge_sources.empty()) apply_merge(top);
+    YamlNode node = std::move(top.node);
+    const YAML::anchor_t anchor = top.anchor;
     stack_.pop_back();
+    end_anchor(anchor, node);
     complete(std::move(node));
   }
 
@@ -257,6 +437,10 @@ class TreeBuilder final : public YAML::EventHandler {
     YamlNode key = std::move(*top.key);
     top.key.reset();
     if (!top.key_usable) return;
+    if (!key.quoted && key.scalar == "<<") {
+      add_merge(top, key, std::move(node));
+      return;
+    }
     const std::size_t hash = std::hash<std::string_view>{}(key.scalar);
     if (const YamlNode* first = find_key(top, hash, key.scalar)) {
       diags_.error(key.location, "duplicate key '" + shorten(key.scalar) + "'");
@@ -276,13 +460,18 @@ class TreeBuilder final : public YAML::EventHandler {
   std::vector<Frame> stack_;
   std::optional<YamlNode> root_;
   std::size_t nodes_ = 0;
+  std::size_t aliased_nodes_ = 0;  // copied by aliases, in all
+  std::vector<Anchor> anchors_;    // by yaml-cpp's anchor id, from 1
+  std::string pending_anchor_;     // named by OnAnchor for the next node event
+  Location pending_anchor_at_;
   int documents_ = 0;
 };
 
 // yaml-cpp's own messages are terse but accurate; two are rephrased in this loader's terms.
-std::string parser_message(const YAML::Exception& e, const YamlLimits& limits) {
-  if (e.msg == "the referenced anchor is not defined") {
-    return "anchors and aliases are not supported";
+std::string parser_message(const YAML::Exception& e, const YamlLimits& limits,
+                           const TreeBuilder& builder) {
+  if (e.msg == YAML::ErrorMsg::UNKNOWN_ANCHOR && e.mark.pos >= 0) {
+    return builder.undefined_alias_message(builder.offset(e.mark));
   }
   if (dynamic_cast<const YAML::DeepRecursion*>(&e) != nullptr) {
     return "nesting is deeper than " + std::to_string(limits.max_depth) + " levels";
@@ -291,6 +480,27 @@ std::string parser_message(const YAML::Exception& e, const YamlLimits& limits) {
 }
 
 }  // namespace
+
+void AliasUses::add(const YamlNode& root) {
+  const auto walk = [this](const auto& self, const YamlNode& n) -> void {
+    if (n.used_at.line != 0) {
+      auto& list = sites_[std::make_tuple(n.location.file, n.location.line, n.location.column)];
+      if (std::find(list.begin(), list.end(), n.used_at) == list.end()) list.push_back(n.used_at);
+    }
+    for (const YamlNode& item : n.items) self(self, item);
+    for (const YamlEntry& e : n.entries) {
+      self(self, e.first);
+      self(self, e.second);
+    }
+  };
+  walk(walk, root);
+}
+
+const std::vector<Location>& AliasUses::sites(Location at) const {
+  static const std::vector<Location> kNone;
+  const auto it = sites_.find(std::make_tuple(at.file, at.line, at.column));
+  return it == sites_.end() ? kNone : it->second;
+}
 
 std::string too_large_message(std::uint64_t bytes, std::size_t limit) {
   return "file is " + std::to_string(bytes) + " bytes; the limit is " + std::to_string(limit) +
@@ -340,7 +550,7 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
         return std::nullopt;
       }
     }
-    diags.error(builder.location(e.mark), parser_message(e, limits));
+    diags.error(builder.location(e.mark), parser_message(e, limits, builder));
     return std::nullopt;
   }
   std::optional<YamlNode> root = builder.take_root();
