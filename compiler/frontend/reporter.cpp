@@ -97,18 +97,4 @@ bool Reporter::check_keys(const YamlNode& map, std::span<const std::string_view>
   return ok;
 }
 
-std::string_view kind_name(const YamlNode& node) {
-  switch (node.kind) {
-    case YamlNode::Kind::Null:
-      return "empty";
-    case YamlNode::Kind::Scalar:
-      return "a single value";
-    case YamlNode::Kind::Sequence:
-      return "a list";
-    case YamlNode::Kind::Map:
-      return "a map";
-  }
-  return "a value";
-}
-
 }  // namespace seqc::compiler

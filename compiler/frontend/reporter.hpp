@@ -104,7 +104,4 @@ class Reporter {
   std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t, std::string>> seen_;
 };
 
-// "a list", "a map", "a value" for "must be ..." messages.
-std::string_view kind_name(const YamlNode& node);
-
 }  // namespace seqc::compiler

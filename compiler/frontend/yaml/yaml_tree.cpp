@@ -271,20 +271,6 @@ class TreeBuilder final : public YAML::EventHandler {
     }
   }
 
-  static std::string_view merge_kind(const YamlNode& n) {
-    switch (n.kind) {
-      case YamlNode::Kind::Null:
-        return "empty";
-      case YamlNode::Kind::Scalar:
-        return "a single value";
-      case YamlNode::Kind::Sequence:
-        return "a list";
-      case YamlNode::Kind::Map:
-        return "a map";
-    }
-    return "a value";
-  }
-
   // The value of a merge key '<<': a map, or a list of maps.
   void add_merge(Frame& top, const YamlNode& key, YamlNode value) {
     if (top.merge_key) {
@@ -300,7 +286,7 @@ class TreeBuilder final : public YAML::EventHandler {
     }
     if (!value.is_sequence()) {
       diags_.error(value.location, "the merge key '<<' takes a map or a list of maps, not " +
-                                       std::string(merge_kind(value)));
+                                       std::string(kind_name(value)));
       return;
     }
     for (YamlNode& item : value.items) {
@@ -308,7 +294,7 @@ class TreeBuilder final : public YAML::EventHandler {
         top.merge_sources.push_back(std::move(item));
       } else {
         diags_.error(item.location, "the merge key '<<' takes a list of maps; this item is " +
-                                        std::string(merge_kind(item)));
+                                        std::string(kind_name(item)));
       }
     }
   }
@@ -559,6 +545,20 @@ std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t fi
     root->location = Location{file, 1, 1};
   }
   return root;
+}
+
+std::string_view kind_name(const YamlNode& node) {
+  switch (node.kind) {
+    case YamlNode::Kind::Null:
+      return "empty";
+    case YamlNode::Kind::Scalar:
+      return "a single value";
+    case YamlNode::Kind::Sequence:
+      return "a list";
+    case YamlNode::Kind::Map:
+      return "a map";
+  }
+  return "a value";
 }
 
 }  // namespace seqc::compiler

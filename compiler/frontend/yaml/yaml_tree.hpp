@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -78,5 +79,8 @@ std::string too_large_message(std::uint64_t bytes, std::size_t limit);
 // returns nullopt when the tree cannot be trusted.
 std::optional<YamlNode> load_yaml(const SourceManager& sources, std::uint32_t file,
                                   Diagnostics& diags, const YamlLimits& limits = {});
+
+// "empty", "a single value", "a list", "a map": what a node is, for "..., not a list" messages.
+std::string_view kind_name(const YamlNode& node);
 
 }  // namespace seqc::compiler
