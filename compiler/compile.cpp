@@ -4,6 +4,7 @@
 // no fitting); the music stage checks the dance against its song.
 #include "compiler/compile.hpp"
 
+#include "base/units.hpp"
 #include "compiler/fitting/fitter.hpp"
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/profiles.hpp"
@@ -11,6 +12,7 @@
 #include "compiler/frontend/robot_section.hpp"
 #include "compiler/music/song_check.hpp"
 #include "compiler/targets/raspblock/raspblock_lowering.hpp"
+#include "compiler/targets/servo_controller/chain.hpp"
 #include "compiler/targets/servo_controller/hid_actions.hpp"
 #include "compiler/targets/servo_controller/servo_lowering.hpp"
 
@@ -27,6 +29,29 @@ void check_music(const Timeline& timeline, const CompileOptions& options, Report
   } else if (timeline.song_file) {
     check_song_readable(*timeline.song_file, *options.songs, reporter);
   }
+}
+
+// A dance over one group's capacity, cut as `upload --run` will cut it: the groups' bars, or
+// why they cannot be stored.
+void check_chain(ServoProgram& program, std::int32_t clock_ppm, Location sequence_at,
+                 Reporter& reporter) {
+  auto cut = chain_groups(program, program.group_capacity, clock_ppm);
+  if (!cut) {
+    reporter.error(sequence_at, "this dance cannot be cut into groups: " + cut.error().message);
+    return;
+  }
+  if (cut->pieces.size() > program.groups) {
+    const ResyncPiece& first_out = cut->pieces[program.groups];
+    const std::int64_t bar = cut->bars[program.groups];
+    reporter.error(sequence_at,
+                   "this dance needs " + std::to_string(cut->pieces.size()) +
+                       " groups, and the board stores " + std::to_string(program.groups) +
+                       " from the first one; group " + std::to_string(program.groups + 1) +
+                       " would start at " + format_seconds(first_out.board_start_ms) +
+                       (bar > 0 ? " (bar " + std::to_string(bar) + ")" : std::string()));
+    return;
+  }
+  program.group_bars = std::move(cut->bars);
 }
 
 }  // namespace
@@ -46,18 +71,26 @@ std::vector<std::string> CompileOutput::inputs() const {
 
 ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoader& loader,
                            Reporter& reporter, const CompileOptions& options) {
-  ServoWalk walk = walk_servo_file(robot, file, loader, reporter);
+  const std::size_t stored = stored_groups(robot.profile);
+  const std::size_t groups =
+      options.chain && options.first_group < stored ? stored - options.first_group : 1;
+  ServoWalk walk = walk_servo_file(robot, file, loader, reporter, groups);
   if (!ready_to_fit(walk, robot, reporter)) {
     ServoProgram unfitted;
     unfitted.robot = robot.info;
     unfitted.timeline.song_file = walk.timeline.song_file;
     unfitted.group_capacity = walk.capacity;
+    unfitted.groups = walk.groups;
     return unfitted;
   }
   const FitResult fit = fit_timeline_on_board(
       walk.timeline, servo_fit_options(robot, options.free_end_points), options.clock_ppm);
+  const std::optional<Location> sequence_at = walk.sequence_at;
   ServoProgram program = servo_program(robot, std::move(walk), fit, options.clock_ppm, reporter);
   if (options.over_hid) check_hid_actions(program, reporter);
+  if (program.keyframes.size() > program.group_capacity && reporter.errors_reported() == 0) {
+    check_chain(program, options.clock_ppm, sequence_at.value_or(Location{}), reporter);
+  }
   return program;
 }
 

@@ -39,6 +39,11 @@ struct CompileOptions {
   // GroupDownload frame must fit one 64-byte report, so an action naming more servos than one
   // frame holds there is an error at its step (compiler/targets/servo_controller/hid_actions.hpp).
   bool over_hid = false;
+  // The dance may take consecutive groups, first_group and on up to the last the board stores
+  // (compiler/targets/servo_controller/chain.hpp), when the computer starts each (`upload --run`)
+  // or only looks (check, simulate, plot, preview); false: one group, as `compile` writes.
+  bool chain = false;
+  std::uint8_t first_group = 0;
 };
 
 struct CompileOutput {

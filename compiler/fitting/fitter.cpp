@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <iterator>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -411,15 +412,27 @@ class Fitter {
       fit_range(in, curved, 0, in.n);
       return;
     }
-    const FitResult before = result_;
+    // Only this stretch's part of the result is set aside between the two fits: copying all of
+    // it per stretch would make a dance's cost the square of its actions.
+    const std::size_t actions_before = result_.actions.size();
+    const std::size_t shortfalls_before = result_.shortfalls.size();
+    const FitResult worst_before = worst_only(result_);
     const std::vector<std::optional<int>> pos_before = pos_;
     restarted_ = false;
     free_ = true;
     fit_range(in, curved, 0, in.n);
     if (!restarted_) return;
-    FitResult with_free = std::move(result_);
+    FitResult with_free = worst_only(result_);
+    with_free.actions.assign(std::make_move_iterator(result_.actions.begin() +
+                                                     static_cast<std::ptrdiff_t>(actions_before)),
+                             std::make_move_iterator(result_.actions.end()));
+    with_free.shortfalls.assign(
+        result_.shortfalls.begin() + static_cast<std::ptrdiff_t>(shortfalls_before),
+        result_.shortfalls.end());
+    result_.actions.resize(actions_before);
+    result_.shortfalls.resize(shortfalls_before);
+    set_worst(result_, worst_before);
     std::vector<std::optional<int>> pos_free = std::move(pos_);
-    result_ = before;
     pos_ = pos_before;
     free_ = false;
     fit_range(in, curved, 0, in.n);
@@ -429,18 +442,19 @@ class Fitter {
     // less: fewer shortfalls decide, then fewer actions. So an action more than the on-curve fit
     // is only ever spent on a smaller worst miss, never on more misses of the same size, and a
     // miss the on-curve fit avoids is never made.
-    const std::size_t earlier = before.shortfalls.size();
-    auto worst_miss = [earlier](const FitResult& r) {
+    auto worst_miss = [](auto from, auto to) {
       double most = 0;
-      for (std::size_t i = earlier; i < r.shortfalls.size(); ++i) {
-        most = std::max(most, r.shortfalls[i].error);
-      }
+      for (auto it = from; it != to; ++it) most = std::max(most, it->error);
       return most;
     };
-    const double free_worst = worst_miss(with_free), on_worst = worst_miss(result_);
-    const std::size_t free_actions = with_free.actions.size(), on_actions = result_.actions.size();
+    const double free_worst = worst_miss(with_free.shortfalls.begin(), with_free.shortfalls.end());
+    const double on_worst =
+        worst_miss(result_.shortfalls.begin() + static_cast<std::ptrdiff_t>(shortfalls_before),
+                   result_.shortfalls.end());
+    const std::size_t free_actions = with_free.actions.size();
+    const std::size_t on_actions = result_.actions.size() - actions_before;
     const auto free_count = std::make_pair(with_free.shortfalls.size(), free_actions);
-    const auto on_count = std::make_pair(result_.shortfalls.size(), on_actions);
+    const auto on_count = std::make_pair(result_.shortfalls.size() - shortfalls_before, on_actions);
     bool keep_free = free_count < on_count;  // a trade of actions against the worst miss
     if (free_worst <= on_worst + 1e-6 && free_actions <= on_actions) {
       keep_free = free_actions < on_actions || free_count < on_count;  // no worse in both
@@ -448,9 +462,27 @@ class Fitter {
       keep_free = false;  // the on-curve fit is no worse in both
     }
     if (keep_free) {
-      result_ = std::move(with_free);
+      result_.actions.resize(actions_before);
+      result_.shortfalls.resize(shortfalls_before);
+      std::move(with_free.actions.begin(), with_free.actions.end(),
+                std::back_inserter(result_.actions));
+      result_.shortfalls.insert(result_.shortfalls.end(), with_free.shortfalls.begin(),
+                                with_free.shortfalls.end());
+      set_worst(result_, with_free);
       pos_ = std::move(pos_free);
     }
+  }
+
+  // A result's worst error and where it is, without its actions and shortfalls.
+  static FitResult worst_only(const FitResult& r) {
+    FitResult w;
+    set_worst(w, r);
+    return w;
+  }
+  static void set_worst(FitResult& to, const FitResult& from) {
+    to.max_error = from.max_error;
+    to.max_error_at_ms = from.max_error_at_ms;
+    to.max_error_servo = from.max_error_servo;
   }
 
   // Fits [first, last] of the stretch (ms from its start; both ends pinned on the rounded

@@ -1,6 +1,7 @@
 #include "compiler/frontend/profiles.hpp"
 
 #include "base/units.hpp"
+#include "protocol/lsc/lsc_messages.hpp"
 #include "protocol/lsc6/lsc6_messages.hpp"
 
 namespace seqc::compiler {
@@ -153,6 +154,10 @@ RobotInfo robot_from_profile(const RobotProfile& profile) {
 
 std::size_t group_capacity(const RobotProfile* profile) {
   return profile != nullptr ? profile->max_actions : lsc::kMaxActions;
+}
+
+std::size_t stored_groups(const RobotProfile* profile) {
+  return profile != nullptr && profile->board == "lsc6" ? lsc6::kGroups : lsc::kAllGroups;
 }
 
 std::string group_capacity_text(const RobotProfile* profile) {

@@ -66,6 +66,9 @@ RobotInfo robot_from_profile(const RobotProfile& profile);
 // the end of the message for a sequence that needs one more: "a group holds at most 1,020 (4
 // blocks of 255), and this step makes action 1,021".
 std::size_t group_capacity(const RobotProfile* profile);
+// How many groups the profile's board stores, numbered from 0: the xArm family's group byte
+// runs 0-254 (255 names every group), the LSC-6's 0-255.
+std::size_t stored_groups(const RobotProfile* profile);
 std::string group_capacity_text(const RobotProfile* profile);
 
 }  // namespace seqc::compiler

@@ -28,7 +28,7 @@ void Reporter::report(Severity severity, Location at, std::string message,
   }
   if (severity == Severity::Warning) {
     for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) {
-      if (!it->with_values) diags_.note(it->note.at, it->note.message);
+      if (!it->with_values && !it->pass) diags_.note(it->note.at, it->note.message);
     }
   }
   for (auto it = includes_.rbegin(); it != includes_.rend(); ++it) {

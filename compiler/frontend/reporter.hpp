@@ -58,6 +58,15 @@ class Reporter {
     performing_.push_back({{site, "in section '" + name + "', performed here"}, false});
   }
   void pop_performance() { performing_.pop_back(); }
+  // A repeat's pass (counted from 1), named only by chain(): a warning inside a repeat is the
+  // same at every pass, but an error that stops the walk says which pass it reached.
+  void push_pass(Location repeat, long long pass, long long times) {
+    performing_.push_back({{repeat, "in pass " + std::to_string(pass) + " of " +
+                                        std::to_string(times) + " of this repeat"},
+                           false,
+                           true});
+  }
+  void pop_pass() { performing_.pop_back(); }
   // Everything that led to the steps being lowered, innermost first: each section's
   // performance (with its values, if any) and each include. An error that stops the walk
   // names the whole chain, also when it is reported once the walk has left it.
@@ -97,6 +106,7 @@ class Reporter {
   struct Performance {
     Note note;
     bool with_values = false;
+    bool pass = false;  // a repeat's pass: in chain() only
   };
   std::vector<Performance> performing_;
   const AliasUses* alias_uses_ = nullptr;

@@ -384,7 +384,9 @@ void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
     // The budget first: a walk stopped inside the last pass still has the passes left counted.
     if (!budget->before_pass(i) || halted()) break;
     const std::size_t errors_before = reporter_.errors_reported();
+    reporter_.push_pass(step.location, i + 1, repeat->times);
     run_steps(*repeat->body, "'do'");
+    reporter_.pop_pass();
     // A pass with mistakes would only repeat them in the passes after it (and nested repeats
     // would never end).
     if (reporter_.errors_reported() > errors_before || !budget->after_pass(i)) break;

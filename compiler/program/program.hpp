@@ -69,6 +69,12 @@ struct ServoProgram {
   // How many actions one stored group holds on the profile's board: the budget the lowering
   // kept keyframes within, set once there so that no reader works it out again.
   std::size_t group_capacity = 0;
+  // Groups it was allowed to take, one after another (CompileOptions::chain): keyframes may number
+  // up to group_capacity x groups, and compiler/targets/servo_controller/chain.hpp cuts them.
+  std::size_t groups = 1;
+  // A dance longer than one group (chain.hpp): the bar (from 1; 0 without bar lines) each of
+  // its groups starts on, in order; empty when one group holds it.
+  std::vector<std::int64_t> group_bars;
   // What the author meant, per servo (by index into robot.servos), before fitting.
   Timeline timeline;
   // The largest distance between the compiled motion and the intended curve, and where.

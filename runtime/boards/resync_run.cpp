@@ -27,6 +27,17 @@ std::vector<player::ScheduledFrame> resync_starts(const Board& board,
   return out;
 }
 
+Result<Plan> plan_for_piece(const Board& board, const compiler::CompileOutput& output,
+                            const compiler::ResyncPiece& piece, std::uint8_t group) {
+  compiler::CompileOutput one;
+  compiler::ServoProgram program;
+  if (const compiler::ServoProgram* dance = output.servo_program()) program.robot = dance->robot;
+  program.keyframes = piece.keyframes;
+  one.program = std::move(program);
+  one.board = output.board;
+  return plan_for(board, one, group);
+}
+
 ResyncRun store_pieces(const Board& board, const Line& line, const compiler::CompileOutput& output,
                        const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
                        const upload::UploadOptions& options, upload::UploadObserver* observer) {
@@ -34,14 +45,8 @@ ResyncRun store_pieces(const Board& board, const Line& line, const compiler::Com
   const compiler::ServoProgram* dance = output.servo_program();
   if (dance == nullptr) return r;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
-    compiler::CompileOutput one;
-    compiler::ServoProgram program;
-    program.robot = dance->robot;
-    program.keyframes = pieces[k].keyframes;
-    one.program = std::move(program);
-    one.board = output.board;
     const auto group = static_cast<std::uint8_t>(first_group + k);
-    auto plan = plan_for(board, one, group);
+    auto plan = plan_for_piece(board, output, pieces[k], group);
     if (!plan) {
       upload::UploadResult failed;
       failed.status = upload::UploadStatus::BadPlan;
@@ -93,8 +98,9 @@ std::optional<SyncedStart> start_pieces(const Board& board, const Line& line,
 
 ResyncRun store_and_start(const Board& board, const Line& line,
                           const compiler::CompileOutput& output,
-                          const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
-                          const upload::UploadOptions& options, upload::UploadObserver* observer) {
+                          const std::vector<compiler::ResyncPiece>& pieces,
+                          std::uint8_t first_group, const upload::UploadOptions& options,
+                          upload::UploadObserver* observer) {
   ResyncRun r = store_pieces(board, line, output, pieces, first_group, options, observer);
   start_pieces(board, line, pieces, first_group, options, r);
   return r;

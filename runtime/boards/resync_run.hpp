@@ -39,6 +39,10 @@ std::vector<player::ScheduledFrame> resync_starts(const Board& board,
                                                   const std::vector<compiler::ResyncPiece>& pieces,
                                                   std::uint8_t first_group);
 
+// One piece's group as the board stores it (the dance's robot, the piece's actions).
+Result<Plan> plan_for_piece(const Board& board, const compiler::CompileOutput& output,
+                            const compiler::ResyncPiece& piece, std::uint8_t group);
+
 // Requires board.plan, board.upload, board.run_frame. `output` is the compiled dance (its robot
 // is kept for every piece). Stops at the first piece that does not store.
 ResyncRun store_pieces(const Board& board, const Line& line, const compiler::CompileOutput& output,
@@ -65,7 +69,8 @@ std::optional<SyncedStart> start_pieces(const Board& board, const Line& line,
 // store_pieces, then start_pieces.
 ResyncRun store_and_start(const Board& board, const Line& line,
                           const compiler::CompileOutput& output,
-                          const std::vector<compiler::ResyncPiece>& pieces, std::uint8_t first_group,
-                          const upload::UploadOptions& options, upload::UploadObserver* observer);
+                          const std::vector<compiler::ResyncPiece>& pieces,
+                          std::uint8_t first_group, const upload::UploadOptions& options,
+                          upload::UploadObserver* observer);
 
 }  // namespace seqc::boards

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "compiler/compile.hpp"
+#include "compiler/targets/servo_controller/chain.hpp"
 #include "compiler/targets/servo_controller/resync.hpp"
 #include "runtime/boards/board.hpp"
 #include "runtime/boards/first_move.hpp"
@@ -42,15 +43,26 @@ upload::UploadOptions upload_options(const UploadRequest& request, const Board& 
                                      const std::atomic<bool>* interrupted,
                                      std::optional<FirstMoveTooFast>& too_fast);
 
-// `--resync BARS`: the dance cut every `bars` bars (compiler::split_at_bars, times pre-scaled by
-// `clock_ppm`), piece k for group first_group + k. Before any port opens.
+// The pieces of a run the computer starts one by one, before any port opens: `--resync BARS`
+// cuts the dance every `bars` bars (compiler::split_at_bars); a dance over one group's capacity
+// without it is cut into the fewest groups, each starting exactly on a bar line
+// (compiler::chain_groups). Times pre-scaled by `clock_ppm`; piece k for group first_group + k.
 struct ResyncCut {
   std::vector<compiler::ResyncPiece> pieces;
-  std::string error;           // not empty: the dance cannot be cut there, and there are no pieces
-  std::size_t last_group = 0;  // the last piece's group; above 254 the pieces do not fit
-  bool fits() const { return error.empty() && last_group <= 254; }
+  std::vector<std::int64_t> bars;  // chained: the bar each piece starts on (0: none)
+  std::string error;               // not empty: it cannot be cut so (worded), and no pieces
+  std::size_t last_group = 0;      // the last piece's group
+  bool chained = false;            // cut for the capacity, not every BARS bars
+  bool fits() const { return error.empty(); }
 };
+// bars 0: the chain (only for a dance longer than one group).
 ResyncCut cut_for_resync(const compiler::ServoProgram& program, std::uint32_t bars,
                          std::int32_t clock_ppm, std::uint8_t first_group);
+
+// "4 pieces of 8 bars", or chained "3 groups starting on bars 1, 129 and 257" (bars: --resync's).
+std::string pieces_text(const ResyncCut& cut, std::uint32_t bars);
+
+// Whether `program` needs more than one group.
+bool needs_chain(const compiler::ServoProgram& program);
 
 }  // namespace seqc::boards

@@ -90,9 +90,14 @@ std::string summary(const Unit& u, bool strict) {
                       p->tip_error_at_ms / 1000.0);
       fit = p->fit_error > 0 ? units + " and " + tip : tip;
     }
-    return fmt::format("{}: {}/{} actions, {:.3f} s, fit within {}{}\n", label, p->keyframes.size(),
-                       p->group_capacity, static_cast<double>(p->duration_ms()) / 1000.0, fit,
-                       warned);
+    // A longer dance: the groups `upload --run` stores and starts one after another.
+    const std::string actions =
+        p->group_bars.empty()
+            ? fmt::format("{}/{} actions", p->keyframes.size(), p->group_capacity)
+            : fmt::format("{} actions in {} groups of at most {} (the board stores {})",
+                          p->keyframes.size(), p->group_bars.size(), p->group_capacity, p->groups);
+    return fmt::format("{}: {}, {:.3f} s, fit within {}{}\n", label, actions,
+                       static_cast<double>(p->duration_ms()) / 1000.0, fit, warned);
   }
   const std::size_t errors = d.error_count() + (strict ? d.warning_count() : 0);
   const std::size_t warnings = strict ? 0 : d.warning_count();

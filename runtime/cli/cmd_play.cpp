@@ -54,7 +54,8 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
       *cmd, opts->realtime,
       "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {
-    Compiled c = compile_and_report(ctx, opts->file, opts->strict);
+    Compiled c =
+        compile_and_report(ctx, opts->file, opts->strict, SongCheck::Skip, nullptr, false, true);
     result.code = c.code;
     if (!c.output.program) return;
     // The whole play: opening the port and the song are short beside it.

@@ -84,30 +84,15 @@ void report_failure(Context& ctx, const UploadArgs& a, const upload::UploadResul
   if (r.stop_sent) ctx.err << "seqc: sent GroupStop: no group is playing\n";
 }
 
-// --resync's pieces, or why the file cannot be cut (said on ctx.err): before any port opens.
-std::optional<std::vector<compiler::ResyncPiece>> resync_pieces(
-    Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output, std::int32_t ppm) {
-  boards::ResyncCut cut = boards::cut_for_resync(*output.servo_program(), a.resync, ppm,
-                                                 static_cast<std::uint8_t>(a.group));
-  if (!cut.error.empty()) {
-    ctx.err << "seqc: error: " << a.file << ": " << cut.error << "\n";
-  } else if (!cut.fits()) {
-    ctx.err << "seqc: error: " << a.file << ": " << plural(cut.pieces.size(), "piece") << " of "
-            << a.resync << (a.resync == 1 ? " bar" : " bars") << " need groups " << a.group << "-"
-            << cut.last_group << "; groups go up to 254 (give a lower --group or more bars)\n";
-  }
-  if (!cut.fits()) return std::nullopt;
-  return std::move(cut.pieces);
-}
-
 // --resync: the pieces stored one group each, then started by the computer at their bar lines;
 // with --music the first on the song's downbeat as heard, and the song played to its end.
 ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOutput& output,
-                    const boards::Board& board, const std::vector<compiler::ResyncPiece>& pieces,
+                    const boards::Board& board, const boards::ResyncCut& cut,
                     const boards::Line& line, upload::ProgressPrinter& printer,
                     const upload::UploadOptions& options,
                     const std::optional<boards::FirstMoveTooFast>& too_fast, MusicSession* music) {
-  const std::size_t last = static_cast<std::size_t>(a.group) + pieces.size() - 1;
+  const std::vector<compiler::ResyncPiece>& pieces = cut.pieces;
+  const std::size_t last = cut.last_group;
   const auto first_group = static_cast<std::uint8_t>(a.group);
   boards::ResyncRun r =
       boards::store_pieces(board, line, output, pieces, first_group, options, &printer);
@@ -140,10 +125,9 @@ ExitCode run_resync(Context& ctx, const UploadArgs& a, const compiler::CompileOu
   if (ctx.verbosity >= 0) {
     if (synced)
       ctx.err << "seqc: " << sync_text(*music, *synced, std::string(board.run_name)) << "\n";
-    ctx.err << "seqc: stored " << plural(pieces.size(), "piece") << " of " << a.resync
-            << (a.resync == 1 ? " bar" : " bars") << " in groups " << a.group << "-" << last
-            << " and started each at its bar line (the latest " << io::ms_text(r.latest_start(), 1)
-            << " late)\n";
+    ctx.err << "seqc: stored " << boards::pieces_text(cut, a.resync) << " in groups " << a.group
+            << "-" << last << " and started each at its bar line (the latest "
+            << io::ms_text(r.latest_start(), 1) << " late)\n";
   }
   for (std::size_t k = 0; ctx.verbosity > 0 && k < pieces.size(); ++k) {
     ctx.err << "  group " << a.group + static_cast<int>(k) << ": "
@@ -212,19 +196,22 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (a.resync > 0 && (!a.run || a.dry_run)) {
     return usage_error(ctx, "--resync needs --run (the computer starts each piece), not --dry-run");
   }
-  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock);
+  // With --run a dance longer than one group is stored as several, started by the computer.
+  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock, false,
+                                  a.run && !a.dry_run);
   if (c.code != ExitCode::Ok) return c.code;
   if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
   const boards::Board& board = boards::board_for(c.output);
   const auto group = static_cast<std::uint8_t>(a.group);
-  auto planned = boards::plan_for(board, c.output, group);
+  std::optional<boards::ResyncCut> pieces;
+  if (a.resync > 0 || boards::needs_chain(*c.output.servo_program())) {
+    pieces = boards::cut_for_resync(*c.output.servo_program(), a.resync, c.clock_ppm, group);
+    if (!pieces->fits()) return fail(ctx, ExitCode::InvalidInput, a.file + ": " + pieces->error);
+  }
+  auto planned = pieces ? boards::plan_for_piece(board, c.output, pieces->pieces.front(), group)
+                        : boards::plan_for(board, c.output, group);
   if (!planned) return fail(ctx, ExitCode::InvalidInput, a.file + ": " + planned.error().message);
   const boards::Plan& plan = *planned;
-  std::optional<std::vector<compiler::ResyncPiece>> pieces;
-  if (a.resync > 0) {
-    pieces = resync_pieces(ctx, a, c.output, c.clock_ppm);
-    if (!pieces) return ExitCode::InvalidInput;
-  }
   std::optional<boards::FirstMoveTooFast> too_fast;  // why may_run refused the run
   const upload::UploadOptions options = boards::upload_options(
       {group, a.retries, a.run, times_of(a), a.force, a.music.music, a.dry_run}, board, c.output,
@@ -271,8 +258,8 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
                                    ctx.terminal_columns);
   if (ctx.verbosity > 0) {
     ctx.err << "upload: " << plural(plan.actions, "action") << " into group " << a.group
-            << (pieces ? " and on, " + plural(pieces->size(), "piece") : std::string()) << " on "
-            << transport->describe() << " (" << board.dialect->name << " dialect)\n";
+            << (pieces ? " and on, " + plural(pieces->pieces.size(), "piece") : std::string())
+            << " on " << transport->describe() << " (" << board.dialect->name << " dialect)\n";
   }
   const boards::Line& line = *link.line;
   music.robot_in_emulated_time = port.own_clock();

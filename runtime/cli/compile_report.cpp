@@ -14,11 +14,12 @@ namespace seqc::cli {
 namespace {
 
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
-                                         std::int32_t clock_ppm, bool over_hid) {
+                                         std::int32_t clock_ppm, bool over_hid, bool chain) {
   return {.strict = strict,
           .songs = song == SongCheck::Decode ? ctx.songs : nullptr,
           .clock_ppm = clock_ppm,
-          .over_hid = over_hid};
+          .over_hid = over_hid,
+          .chain = chain};
 }
 
 ExitCode program_code(const compiler::CompileOutput& output) {
@@ -62,8 +63,9 @@ void add_link_port_option(CLI::App& cmd, std::string& port) {
 }
 
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                         std::int32_t clock_ppm, bool over_hid) {
-  const compiler::CompileOptions options = compile_options(ctx, strict, song, clock_ppm, over_hid);
+                         std::int32_t clock_ppm, bool over_hid, bool chain) {
+  const compiler::CompileOptions options =
+      compile_options(ctx, strict, song, clock_ppm, over_hid, chain);
   Compiled c;
   if (path == "-") {
     auto text = io::read_input(path, ctx.files, ctx.in, kStdinName);
@@ -82,12 +84,12 @@ Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, Son
 }
 
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                            const ClockScaleOptions* clock, bool over_hid) {
+                            const ClockScaleOptions* clock, bool over_hid, bool chain) {
   std::int32_t ppm = 0;
   if (clock != nullptr) {
     if (const ExitCode e = resolve_clock_ppm(ctx, *clock, ppm); e != ExitCode::Ok) return {{}, e};
   }
-  Compiled c = compile_quietly(ctx, path, strict, song, ppm, over_hid);
+  Compiled c = compile_quietly(ctx, path, strict, song, ppm, over_hid, chain);
   c.clock_ppm = ppm;
   report(ctx, c.output.read_error, c.output.diagnostics, c.output.sources, strict);
   return c;
@@ -96,12 +98,13 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
                     std::int32_t clock_ppm, bool over_hid) {
   if (path == "-") {
-    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid);
+    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid, true);
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
-  compiler::Loaded file = compiler::load(path, ctx.files,
-                                         {compile_options(ctx, strict, song, clock_ppm, over_hid),
-                                          compile_options(ctx, strict, song, 0, false)});
+  compiler::Loaded file =
+      compiler::load(path, ctx.files,
+                     {compile_options(ctx, strict, song, clock_ppm, over_hid, true),
+                      compile_options(ctx, strict, song, 0, false, false)});
   const ExitCode code =
       file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
   return {std::move(file), code};

@@ -64,17 +64,19 @@ enum class SongCheck { Skip, Decode };
 void add_link_port_option(CLI::App& cmd, std::string& port);
 
 // Compiles without printing anything (for --format json|sarif). clock_ppm: the board's clock
-// error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm).
+// error the stored group is pre-scaled for (compiler::CompileOptions::clock_ppm); chain: the
+// dance may take consecutive groups (CompileOptions::chain; loads and views always may).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
                          SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
-                         bool over_hid = false);
+                         bool over_hid = false, bool chain = false);
 // Compiles and prints the diagnostics (or the file error) on ctx.err. With `clock`, the ppm to
 // pre-scale for is resolved from --clock-ppm and --rig first (resolve_clock_ppm); when it cannot
 // be, nothing is compiled and code is its status. over_hid: the port is USB HID
 // (boards::port_over_hid), where every action must fit one report.
 Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
                             SongCheck song = SongCheck::Skip,
-                            const ClockScaleOptions* clock = nullptr, bool over_hid = false);
+                            const ClockScaleOptions* clock = nullptr, bool over_hid = false,
+                            bool chain = false);
 
 // A file given to a command that takes a choreography or a show (check, plot, simulate,
 // preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)

@@ -13,6 +13,15 @@ void GroupStore::store(std::uint8_t group, std::vector<lsc::GroupAction> actions
   if (group < kGroupCount) groups_[group] = std::move(actions);
 }
 
+bool GroupStore::room_for(std::uint8_t group, std::size_t actions) const {
+  if (group >= limits_.groups) return false;
+  std::size_t others = 0;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    if (g != group && groups_[g]) others += groups_[g]->size();
+  }
+  return others + actions <= limits_.flash_actions;
+}
+
 void GroupStore::erase(std::uint8_t group) { groups_[group].reset(); }
 
 void GroupStore::erase_all() {
@@ -46,9 +55,12 @@ bool GroupDownloader::accept(const lsc::Request& request, GroupStore& store) {
               m.block_counts.size() > lsc::kMaxBlocks) {
             return false;
           }
+          std::size_t announced = 0;
           for (auto n : m.block_counts) {
             if (n == 0) return false;
+            announced += n;
           }
+          if (!store.room_for(m.group, announced)) return false;
           store.erase(m.group);
           session_ = Session{};
           session_->group = m.group;

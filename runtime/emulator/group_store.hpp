@@ -1,5 +1,5 @@
-// The controller's action-group flash (groups 0..254, up to 1,020 actions each) and the
-// GroupDownload step 1-5 state machine that writes it.
+// The controller's action-group flash (groups 0..254, up to 1,020 actions each, within the
+// board's StoreLimits) and the GroupDownload step 1-5 state machine that writes it.
 //
 // The handshake is ENFORCED (layouts as group_download.hpp reads the document):
 //   step 1  starts a download: the group is erased at once (empty from then on) and the
@@ -28,8 +28,20 @@ namespace seqc::emu {
 
 inline constexpr std::size_t kGroupCount = 255;  // groups 0..254; 255 means "all"
 
+// How much a board stores: group numbers 0..groups-1, and at most flash_actions actions over
+// every group together. Step 1 of a group beyond either is refused (ack "01 01"), so a host
+// learns it before sending any action. The defaults hold every group the protocol numbers, each
+// full; a smaller board is modelled with `emu:xarm?groups=N,flash=M`.
+struct StoreLimits {
+  std::size_t groups = kGroupCount;
+  std::size_t flash_actions = kGroupCount * lsc::kMaxActions;
+};
+
 class GroupStore {
  public:
+  explicit GroupStore(StoreLimits limits = {}) : limits_(limits) {}
+  // Whether `actions` more actions fit in `group` (whatever the group holds now is rewritten).
+  bool room_for(std::uint8_t group, std::size_t actions) const;
   // nullopt = empty (never written, erased, or an interrupted download).
   const std::optional<std::vector<lsc::GroupAction>>& group(std::uint8_t group) const;
   void store(std::uint8_t group, std::vector<lsc::GroupAction> actions);
@@ -37,6 +49,7 @@ class GroupStore {
   void erase_all();
 
  private:
+  StoreLimits limits_;
   std::array<std::optional<std::vector<lsc::GroupAction>>, kGroupCount + 1> groups_{};
 };
 

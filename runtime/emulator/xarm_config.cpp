@@ -248,6 +248,18 @@ Status apply_emulator_options(std::string_view spec, XArmConfig& config) {
       config.baud = static_cast<std::uint32_t>(*baud);
       continue;
     }
+    if (item.starts_with("groups=") || item.starts_with("flash=")) {
+      const bool groups = item[0] == 'g';
+      const std::string_view key = groups ? "groups" : "flash";
+      const std::uint64_t most = groups ? kGroupCount : kGroupCount * lsc::kMaxActions;
+      auto n = parse_unsigned(key, std::string_view(item).substr(key.size() + 1));
+      if (!n || *n < 1 || *n > most) {
+        return make_error("'" + item + "': " + std::string(key) + " is 1 to " +
+                          std::to_string(most));
+      }
+      (groups ? config.store.groups : config.store.flash_actions) = *n;
+      continue;
+    }
     std::string& into = !item.empty() && item[0] >= '0' && item[0] <= '9' ? positions : faults;
     into += (into.empty() ? "" : ",") + item;
   }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "base/result.hpp"
+#include "runtime/emulator/group_store.hpp"
 #include "runtime/io/clock.hpp"
 
 namespace seqc::emu {
@@ -87,7 +88,9 @@ Result<ServoPositions> parse_positions(std::string_view spec);
 
 struct XArmConfig;
 // The options `--port emu:xarm?...` takes: the fault items of parse_faults, servo positions
-// (numeric keys: "1=300,drop=0.01") and baud=N (0 = unpaced). Applies them to `config`.
+// (numeric keys: "1=300,drop=0.01"), baud=N (0 = unpaced), and the flash's size: groups=N (group
+// numbers 0..N-1, 1-255) and flash=N (actions over every group, 1-260100). Applies them to
+// `config`.
 Status apply_emulator_options(std::string_view spec, XArmConfig& config);
 
 struct XArmConfig {
@@ -99,6 +102,7 @@ struct XArmConfig {
   io::Duration flash_write_time = std::chrono::milliseconds(2);   // step 4 busy time
   std::uint16_t battery_mv = 7500;
   XArmFaults faults;
+  StoreLimits store;  // how many groups and actions the flash holds
 
   // Bus servos attached: ids 1..servo_count (xArm: 6 bus servos, 0..1000, centre 500).
   std::size_t servo_count = 6;

@@ -27,6 +27,7 @@ XArmEmulator::XArmEmulator(XArmConfig config)
       framer_(config.faults.frame_gap),
       line_(config.baud),
       servos_(servo_config(config)),
+      store_(config.store),
       player_(config.faults.clock_ppm),
       speeds_(kGroupCount + 1, 100) {}
 

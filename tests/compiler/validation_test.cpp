@@ -27,10 +27,12 @@ TEST(Validation, ExactlyTheBudgetFits) {
 TEST(Validation, OneOverTheBudgetIsReportedWithTheCount) {
   auto out = compile_text(repeat_file(1020));
   EXPECT_FALSE(out.program);
-  EXPECT_EQ(messages(out),
-            std::vector<std::string>{"7:9 error: the sequence needs at least 1021/1020 actions; a "
-                                     "group holds at most 1,020 (4 "
-                                     "blocks of 255), and this step makes action 1,021"});
+  // Action 1,021 is pass 1,020's move, after 1 s and 1,019 moves of 20 ms: at 21.38 s.
+  EXPECT_EQ(messages(out), (std::vector<std::string>{
+                               "7:9 error: the sequence needs at least 1021/1020 actions; a group "
+                               "holds at most 1,020 (4 blocks of 255), and this step makes action "
+                               "1,021 at 21.38 s",
+                               "5:5 note: in pass 1020 of 1020 of this repeat"}));
 }
 
 TEST(Validation, HugeNestedRepeatsAreCountedNotExpanded) {

@@ -51,9 +51,10 @@ std::string chain(int n, const std::string& open, const std::string& close) {
          ": [{move: {claw: 600}, time: 20ms}]\nsequence:\n  - section: s0\n";
 }
 
+// Action 1,021 starts after the 1 s move and 1,019 moves of 20 ms: 1,000 + 20,380 ms = 21.38 s.
 const std::string kTooMany =
     "the sequence needs at least 1021/1020 actions; a group holds at most 1,020 (4 blocks of "
-    "255), and this step makes action 1,021";
+    "255), and this step makes action 1,021 at 21.38 s";
 
 TEST(WalkBudgets, ASectionFanOutStopsAtTheFirstActionOverTheGroup) {
   // 2^11 performances of a 20 ms move after one of 1 s: the 1,020th performance (the 1,019th

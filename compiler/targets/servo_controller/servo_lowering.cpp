@@ -43,8 +43,10 @@ const StepTable kServoSteps = {
     [](const std::string&, const std::string& reason) { return "cannot include it: " + reason; },
 };
 
-ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter)
+ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter,
+                             std::size_t groups)
     : StepWalker(loader, reporter, kServoSteps, robot.home_servos, robot.info.servos.size()),
+      groups_(std::max<std::size_t>(1, groups)),
       robot_(robot),
       pos_(robot.info.servos.size()) {}
 
@@ -68,6 +70,8 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   walk.over_budget_notes = over_budget_notes_;
   walk.sequence_at = sequence_at_;
   walk.capacity = capacity();
+  walk.groups = groups_;
+  walk.over_budget_time = over_budget_time_;
   for (const LineRecord& line : lines_) {
     ServoTipLine l{line.request, {}, line.path_at};
     std::copy_n(line.servos.begin(), 4, l.joints.begin());
@@ -78,19 +82,63 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
 }
 
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter) {
-  return ServoLowering(robot, loader, reporter).run(main);
+                          Reporter& reporter, std::size_t groups) {
+  return ServoLowering(robot, loader, reporter, groups).run(main);
 }
+
+namespace {
+
+// " at 8.5 s (bar 5 beat 2)": where the action that does not fit starts, on the music's count
+// when the file has bars.
+std::string when_text(const TempoMap& map, ExactMs t) {
+  std::string text =
+      " at " + format_seconds(static_cast<std::uint64_t>(std::max<std::int64_t>(0, t.round())));
+  if (map.meter_at(t) > 0 && map.bpm_at(t) > 0) {
+    const ExactMs beat = map.beat_at(t);
+    const ExactMs bar = map.bar_of_beat(beat);
+    const std::int64_t whole = bar.num() / bar.den();
+    const auto first = map.beat_of_bar(ExactMs(whole));
+    if (first) {
+      const ExactMs in_bar = beat - *first;
+      text += " (bar " + std::to_string(whole + 1) + " beat ";
+      if (in_bar.den() == 1) {
+        text += std::to_string(in_bar.num() + 1);
+      } else {
+        text += fmt::format("{:g}", std::floor((in_bar.value() + 1) * 100) / 100);
+      }
+      text += ")";
+    }
+  }
+  return text;
+}
+
+// "the sequence needs at least 1021/1020 actions; a group holds ..., and this step makes action
+// 1,021", or for a chained dance "the sequence needs at least 260,101 actions; the 255 groups it
+// may take (0-254) hold 260,100 (1,020 each), and this step makes action 260,101".
+std::string budget_text(const Robot& robot, std::size_t capacity, std::size_t groups,
+                        std::uint64_t needed, bool at_least) {
+  const std::string least = at_least ? "at least " : "";
+  if (groups <= 1) {
+    return "the sequence needs " + least + std::to_string(needed) + "/" + std::to_string(capacity) +
+           " actions; " + group_capacity_text(robot.profile);
+  }
+  const auto n = [](std::uint64_t v) { return format_grouped(static_cast<long long>(v)); };
+  const std::uint64_t total = std::uint64_t{capacity} * groups;
+  return "the sequence needs " + least + n(needed) + " actions; the " + n(groups) +
+         " groups it may take hold " + n(total) + " (" + n(capacity) +
+         " each), and this step makes action " + n(total + 1);
+}
+
+}  // namespace
 
 bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter) {
   if (walk.over_budget_at) {
     // The walk stopped there (its count includes the passes left of the repeats it was in),
     // whatever mistakes came before: the steps after it were never read.
-    reporter.error_with_notes(*walk.over_budget_at,
-                              "the sequence needs at least " + std::to_string(walk.min_actions) +
-                                  "/" + std::to_string(walk.capacity) + " actions; " +
-                                  group_capacity_text(robot.profile),
-                              walk.over_budget_notes);
+    std::string message = budget_text(robot, walk.capacity, walk.groups, walk.min_actions, true);
+    if (walk.over_budget_time)
+      message += when_text(walk.timeline.tempo_map, *walk.over_budget_time);
+    reporter.error_with_notes(*walk.over_budget_at, message, walk.over_budget_notes);
     return false;
   }
   return reporter.errors_reported() == 0;
@@ -190,15 +238,22 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
   ServoProgram program;
   program.robot = robot.info;
   program.group_capacity = walk.capacity;
+  program.groups = walk.groups;
   std::vector<FittedAction> actions = fit_result.actions;
   const std::uint64_t needed = std::max<std::uint64_t>(actions.size(), walk.min_actions);
-  if (needed > walk.capacity) {
-    const Location at =
-        actions.size() > walk.capacity ? actions[walk.capacity].source : actions.back().source;
-    reporter.error(at, "the sequence needs " + std::string(walk.truncated ? "at least " : "") +
-                           std::to_string(needed) + "/" + std::to_string(walk.capacity) +
-                           " actions; " + group_capacity_text(robot.profile));
-    actions.resize(std::min<std::size_t>(actions.size(), walk.capacity));
+  const std::uint64_t budget = std::uint64_t{walk.capacity} * walk.groups;
+  if (needed > budget) {
+    const bool past = actions.size() > budget;
+    const FittedAction& first_out = past ? actions[budget] : actions.back();
+    std::string message = budget_text(robot, walk.capacity, walk.groups, needed, walk.truncated);
+    if (past) {
+      // The action's start on the board's clock, back on the music's.
+      const ExactMs host = ExactMs(std::int64_t{first_out.start_ms}) /
+                           ExactMs::ratio(1000000 + std::int64_t{clock_ppm}, 1000000);
+      message += when_text(walk.timeline.tempo_map, host);
+    }
+    reporter.error(first_out.source, message);
+    actions.resize(std::min<std::size_t>(actions.size(), budget));
   } else if (actions.empty() && walk.sequence_at && reporter.errors_reported() == 0) {
     reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");
   }
@@ -363,7 +418,7 @@ bool ServoLowering::hold_until(ExactMs target, const YamlNode& at) {
 // budget, the passes left are counted, not expanded.
 class ServoRepeatBudget final : public StepWalker::RepeatBudget {
  public:
-  ServoRepeatBudget(std::uint64_t& min_actions, bool& truncated, std::size_t capacity,
+  ServoRepeatBudget(std::uint64_t& min_actions, bool& truncated, std::uint64_t capacity,
                     long long times)
       : min_actions_(min_actions), truncated_(truncated), capacity_(capacity), times_(times) {}
   bool before_pass(long long pass) override {
@@ -388,7 +443,7 @@ class ServoRepeatBudget final : public StepWalker::RepeatBudget {
  private:
   std::uint64_t& min_actions_;
   bool& truncated_;
-  std::size_t capacity_;
+  std::uint64_t capacity_;
   long long times_;
   std::uint64_t before_ = 0;
   std::uint64_t per_pass_ = 0;
@@ -396,7 +451,7 @@ class ServoRepeatBudget final : public StepWalker::RepeatBudget {
 
 std::unique_ptr<StepWalker::RepeatBudget> ServoLowering::repeat_budget(const YamlNode& /*step*/,
                                                                        long long times) {
-  return std::make_unique<ServoRepeatBudget>(min_actions_, truncated_, capacity(), times);
+  return std::make_unique<ServoRepeatBudget>(min_actions_, truncated_, budget(), times);
 }
 
 // The block needs as many actions as its busiest track; and when nothing had a position

@@ -45,12 +45,17 @@ struct ServoWalk {
   std::optional<Location> sequence_at;  // the main file's `sequence:`
   std::vector<ServoTipLine> lines;      // every `path: line` move, in the order walked
   std::size_t capacity = 0;             // actions one group holds on the robot's controller
+  // Groups the dance may take, one after another (compiler/targets/servo_controller/chain.hpp):
+  // the walk's budget is capacity x groups.
+  std::size_t groups = 1;
+  std::optional<ExactMs> over_budget_time;  // when the step at over_budget_at starts
 };
 
 // The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
 // whatever they are.
+// `groups`: how many consecutive groups the dance may take (1: the classic one group).
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter);
+                          Reporter& reporter, std::size_t groups = 1);
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more
@@ -62,7 +67,8 @@ bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter)
 FitOptions servo_fit_options(const Robot& robot, bool free_end_points);
 
 // The program from the walk and its fitted actions (fitted with servo_fit_options() on a board
-// `clock_ppm` fast). Keyframes stop at the group's capacity, which is an error.
+// `clock_ppm` fast). Keyframes stop at the capacity of the walk's groups, which is an error
+// naming the bar and time of the first action that does not fit.
 ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& fit,
                            std::int32_t clock_ppm, Reporter& reporter);
 

@@ -46,7 +46,7 @@ std::optional<FarEnd> far_end(const ServoInfo& info, int target);
 
 class ServoLowering final : public StepWalker {
  public:
-  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter);
+  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter, std::size_t groups = 1);
   ServoWalk run(const LoadedFile& main);
 
  private:
@@ -176,6 +176,10 @@ class ServoLowering final : public StepWalker {
 
   // Actions one group holds on the robot's controller.
   std::size_t capacity() const { return group_capacity(robot_.profile); }
+  // Actions the walk may make: every group the dance may take.
+  std::uint64_t budget() const { return std::uint64_t{capacity()} * groups_; }
+  std::size_t groups_ = 1;
+  std::optional<ExactMs> over_budget_time_;
 
   const Robot& robot_;
   std::vector<std::optional<int>> pos_;

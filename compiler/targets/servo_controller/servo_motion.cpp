@@ -360,8 +360,9 @@ bool ServoLowering::claim(std::size_t servo, Location at) {
 
 void ServoLowering::count_actions(std::uint64_t n, Location at) {
   min_actions_ = min_actions_ + n < min_actions_ ? UINT64_MAX : min_actions_ + n;
-  if (min_actions_ > capacity() && !over_budget_at_) {
+  if (min_actions_ > budget() && !over_budget_at_) {
     over_budget_at_ = at;
+    over_budget_time_ = now_;
     over_budget_notes_ = reporter_.chain();
   }
 }
