@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace seqc {
@@ -51,22 +52,120 @@ std::optional<double> parse_clock_ms(std::string_view text) {
   return time->unit == TimeUnit::Seconds ? time->amount * 1000 : time->amount;
 }
 
+namespace {
+
+// The unit of a time, or nullopt for text that names none.
+std::optional<TimeUnit> time_unit(std::string_view unit) {
+  if (unit == "ms") return TimeUnit::Milliseconds;
+  if (unit == "s") return TimeUnit::Seconds;
+  if (unit == "b") return TimeUnit::Beats;
+  if (unit == "bar" || unit == "bars") return TimeUnit::Bars;
+  return std::nullopt;
+}
+
+// "1b/3" and "(1/3)b" as the fraction they mean to be, "1/3b"; empty when the text is no such
+// misplaced fraction.
+std::string misplaced_fraction(std::string_view text) {
+  std::string bare;
+  for (char c : text) {
+    if (c != '(' && c != ')') bare += c;
+  }
+  const std::size_t slash = bare.find('/');
+  if (slash == std::string::npos) return "";
+  const std::string_view before = std::string_view(bare).substr(0, slash);
+  const std::string_view after = std::string_view(bare).substr(slash + 1);
+  const std::size_t n = number_length(before);
+  std::string candidate;
+  if (n > 0 && n < before.size() && time_unit(before.substr(n)) && !after.empty() &&
+      number_length(after) == after.size()) {
+    candidate = std::string(before.substr(0, n)) + "/" + std::string(after) +
+                std::string(before.substr(n));  // "1b/3"
+  } else if (bare != text) {
+    candidate = bare;  // "(1/3)b"
+  }
+  if (candidate.empty() || candidate == text) return "";
+  return candidate;
+}
+
+std::string not_a_time(std::string_view text) {
+  const std::string fraction = misplaced_fraction(text);
+  if (!fraction.empty()) {
+    return fmt::format(
+        "'{}' is not a time; a fraction is written whole over whole with the unit after it, "
+        "e.g. '{}'",
+        text, fraction);
+  }
+  return fmt::format("'{}' is not a time; write it like '500ms', '1.5s' or '2b' (beats)", text);
+}
+
+// The whole number `digits` when it is one no larger than `max`.
+std::optional<std::int64_t> whole_up_to(std::string_view digits, std::int64_t max) {
+  if (digits.empty() || number_length(digits) != digits.size()) return std::nullopt;
+  std::int64_t value = 0;
+  for (char c : digits) {
+    if (!is_digit(c)) return std::nullopt;
+    value = value * 10 + (c - '0');
+    if (value > max) return std::nullopt;
+  }
+  return value;
+}
+
+// "1/3b": numerator, slash, denominator, unit.
+Result<TimeValue> parse_fraction_time(std::string_view text, std::size_t slash) {
+  const std::string_view top = text.substr(0, slash);
+  const std::string_view rest = text.substr(slash + 1);
+  const std::size_t n = number_length(rest);
+  const std::string_view bottom = rest.substr(0, n);
+  const std::string_view unit_text = rest.substr(n);
+  if (top.empty() || number_length(top) != top.size() || n == 0) {
+    return make_error(not_a_time(text));
+  }
+  const std::optional<std::int64_t> num = whole_up_to(top, kMaxTimeNumerator);
+  const std::optional<std::int64_t> den = whole_up_to(bottom, kMaxTimeDenominator);
+  if (!num) {
+    return make_error(fmt::format(
+        "'{}': the numerator of a fraction must be a whole number up to {}; write longer times in "
+        "a larger unit",
+        text, format_grouped(kMaxTimeNumerator)));
+  }
+  if (!den || *den == 0) {
+    return make_error(fmt::format(
+        "'{}': the denominator of a fraction must be a whole number from 1 to {}, e.g. '1/3b'",
+        text, format_grouped(kMaxTimeDenominator)));
+  }
+  if (unit_text.empty()) {
+    return make_error(
+        fmt::format("time '{}' has no unit; write '{}b' (beats), '{}bar', '{}s' or '{}ms'", text,
+                    text, text, text, text));
+  }
+  const std::optional<TimeUnit> unit = time_unit(unit_text);
+  if (!unit) {
+    return make_error("unknown time unit '" + std::string(unit_text) + "' in '" +
+                      std::string(text) + "'; use ms, s, b (beats) or bar");
+  }
+  TimeValue v;
+  v.unit = *unit;
+  v.amount = static_cast<double>(*num) / static_cast<double>(*den);
+  v.numerator = *num;
+  v.denominator = *den;
+  return v;
+}
+
+}  // namespace
+
 Result<TimeValue> parse_time(std::string_view text) {
   const std::size_t n = number_length(text);
+  if (n > 0 && n < text.size() && text[n] == '/') return parse_fraction_time(text, n);
   double amount = 0;
-  if (n == 0 || !parse_decimal(text.substr(0, n), amount)) {
-    return make_error(
-        fmt::format("'{}' is not a time; write it like '500ms', '1.5s' or '2b' (beats)", text));
-  }
+  if (n == 0 || !parse_decimal(text.substr(0, n), amount)) return make_error(not_a_time(text));
   const std::string_view unit = text.substr(n);
   if (unit.empty()) {
     return make_error("time '" + std::string(text) + "' has no unit; write '" + std::string(text) +
                       "ms' or '" + std::string(text) + "s'");
   }
-  if (unit == "ms") return TimeValue{amount, TimeUnit::Milliseconds};
-  if (unit == "s") return TimeValue{amount, TimeUnit::Seconds};
-  if (unit == "b") return TimeValue{amount, TimeUnit::Beats};
-  if (unit == "bar" || unit == "bars") return TimeValue{amount, TimeUnit::Bars};
+  if (const std::optional<TimeUnit> u = time_unit(unit)) return TimeValue{amount, *u, 0, 0};
+  const std::string fraction = misplaced_fraction(text);
+  if (!fraction.empty()) return make_error(not_a_time(text));
   return make_error("unknown time unit '" + std::string(unit) + "' in '" + std::string(text) +
                     "'; use ms, s, b (beats) or bar");
 }

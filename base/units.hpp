@@ -1,5 +1,5 @@
-// The little value syntaxes of the language: times (500ms, 1.5s, 2b), positions (500, 90deg,
-// +50, -10deg) and speeds (400/s, 90deg/s). Each parser returns the parsed value or an error
+// The little value syntaxes of the language: times (500ms, 1.5s, 2b, 1/3b), positions (500,
+// 90deg, +50, -10deg) and speeds (400/s, 90deg/s). Each parser returns the parsed value or an error
 // message meant for a diagnostic at the value's location.
 #pragma once
 
@@ -17,9 +17,22 @@ enum class TimeUnit { Milliseconds, Seconds, Beats, Bars };
 struct TimeValue {
   double amount = 0;
   TimeUnit unit = TimeUnit::Milliseconds;
+  // A fraction written N/D ("1/3b") is exact: `amount` is only its nearest double, and a
+  // consumer that counts exactly reads numerator / denominator. 0 for a decimal ("1.5s"), whose
+  // `amount` is what was written.
+  std::int64_t numerator = 0;
+  std::int64_t denominator = 0;
 };
 
-// "500ms", "1.5s", "2b", "2bar". A bare number is an error whose message suggests the unit.
+// The largest numerator and denominator a fraction of a time may have: a denominator of 1000
+// splits a beat finer than any servo moves, and a numerator of 1,000,000 with it still spans
+// every sequence.
+inline constexpr std::int64_t kMaxTimeNumerator = 1000000;
+inline constexpr std::int64_t kMaxTimeDenominator = 1000;
+
+// "500ms", "1.5s", "2b", "2bar", and fractions of them "1/3b", "5/4b", "1/6bar", "1/3s". A bare
+// number or fraction is an error whose message suggests the unit; a fraction with its unit in
+// the wrong place ("1b/3", "(1/3)b") one that suggests "1/3b".
 Result<TimeValue> parse_time(std::string_view text);
 
 // A time on the clock, "500ms" or "1.5s", in milliseconds; nullopt for anything else, beats

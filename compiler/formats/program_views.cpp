@@ -39,8 +39,10 @@ std::optional<PlotSong> plot_song(const compiler::Program& program, seqc::SongRe
   out.sample_rate = decoded->sample_rate;
   out.downbeat_s = song.downbeat.value() / 1000.0;
   music::BeatOptions options;
-  options.tempo_hint = song.bpm;
-  if (song.beats_per_bar > 0) options.meter = music::Meter{song.beats_per_bar, 4};
+  options.tempo_hint = song.bpm();
+  if (song.meter.beats_per_bar > 0) {
+    options.meter = music::Meter{song.meter.beats_per_bar, song.meter.beat_unit};
+  }
   if (auto found = music::analyze_beats(decoded->samples, decoded->sample_rate, options)) {
     out.beats_s = std::move(found->beats_s);
   }

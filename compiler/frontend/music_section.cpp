@@ -36,12 +36,12 @@ std::optional<SongChange> parse_change(const YamlNode& item, Reporter& reporter)
     change.at = bar->location;
   }
   if (const YamlNode* t = item.find("tempo")) {
-    change.bpm = parse_tempo(*t, reporter);
-    ok = ok && change.bpm.has_value();
+    change.tempo = parse_tempo(*t, reporter);
+    ok = ok && change.tempo.has_value();
   }
   if (const YamlNode* m = item.find("meter")) {
-    change.beats_per_bar = parse_meter(*m, reporter);
-    ok = ok && change.beats_per_bar.has_value();
+    change.meter = parse_meter(*m, reporter);
+    ok = ok && change.meter.has_value();
   }
   if (item.find("tempo") == nullptr && item.find("meter") == nullptr) {
     reporter.error(item.location,
@@ -87,7 +87,7 @@ std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, cons
                      "seconds or milliseconds, e.g. 'downbeat: 0.750s'");
       ok = false;
     } else {
-      const ExactMs amount = ExactMs::from_double(t->amount);
+      const ExactMs amount = exact_amount(*t);
       song.downbeat = t->unit == TimeUnit::Seconds ? amount * ExactMs(1000) : amount;
     }
   }
@@ -102,14 +102,14 @@ std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, cons
     ok = false;
   }
   if (tempo != nullptr) {
-    const std::optional<double> bpm = parse_tempo(*tempo, reporter);
-    ok = ok && bpm.has_value();
-    song.bpm = bpm.value_or(0);
+    const std::optional<Tempo> written = parse_tempo(*tempo, reporter);
+    ok = ok && written.has_value();
+    song.tempo = written.value_or(Tempo{});
   }
   if (meter != nullptr) {
-    const std::optional<int> per_bar = parse_meter(*meter, reporter);
-    ok = ok && per_bar.has_value();
-    song.beats_per_bar = per_bar.value_or(0);
+    const std::optional<TimeSignature> written = parse_meter(*meter, reporter);
+    ok = ok && written.has_value();
+    song.meter = written.value_or(TimeSignature{});
   }
   if (const YamlNode* changes = music.find("changes")) {
     if (!changes->is_sequence()) {
@@ -146,14 +146,16 @@ std::optional<SongFile> music_file(const YamlNode& music, const std::string& pat
 }
 
 TempoMap song_tempo_map(const Song& song) {
-  TempoMap map(song.bpm, song.beats_per_bar);
+  TempoMap map(song.tempo, song.meter);
   for (const SongChange& c : song.changes) {
     // The map is exact and every tempo is positive, so each bar line has a time.
     const std::optional<ExactMs> beat = map.beat_of_bar(ExactMs(c.bar - 1));
     const std::optional<ExactMs> at = beat ? map.time_of_beat(*beat) : std::nullopt;
     if (!at) break;
-    if (c.bpm) map.set_tempo(*at, *c.bpm);
-    if (c.beats_per_bar) map.set_meter(*at, *c.beats_per_bar);
+    // The meter first: a tempo beside it counts the new meter's beat, and a meter alone keeps
+    // each note's length.
+    if (c.meter) map.set_meter(*at, *c.meter);
+    if (c.tempo) map.set_tempo(*at, *c.tempo);
   }
   return map;
 }

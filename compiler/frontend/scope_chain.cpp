@@ -1,6 +1,8 @@
 #include "compiler/frontend/scope_chain.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <string_view>
 
 #include "base/units.hpp"
 #include "compiler/frontend/music_section.hpp"
@@ -11,8 +13,50 @@ namespace {
 
 // What a broken `music:` block's unreadable tempo or meter counts as while the steps are checked:
 // any value would do, as the file already has an error and makes no program.
-constexpr double kStandInTempo = 120;
-constexpr int kStandInBeatsPerBar = 4;
+constexpr Tempo kStandInTempo{120, 0, 0};
+constexpr TimeSignature kStandInMeter{4, 4};
+
+// A note name of a tempo, as a fraction of a whole note.
+struct NoteName {
+  std::string_view name;
+  std::int64_t den;
+};
+constexpr NoteName kNoteNames[] = {
+    {"whole", 1}, {"half", 2}, {"quarter", 4}, {"eighth", 8}, {"sixteenth", 16}};
+
+// "3/8", "quarter", "dotted quarter" as num/den of a whole note; false for anything else.
+bool parse_tempo_note(std::string_view text, std::int64_t& num, std::int64_t& den) {
+  const auto trim = [](std::string_view t) {
+    while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
+    while (!t.empty() && t.back() == ' ') t.remove_suffix(1);
+    return t;
+  };
+  text = trim(text);
+  const std::size_t slash = text.find('/');
+  if (slash != std::string_view::npos) {
+    double n = 0, d = 0;
+    if (!parse_decimal(text.substr(0, slash), n) || !parse_decimal(text.substr(slash + 1), d) ||
+        n != std::floor(n) || n < 1 || n > 32 ||
+        (d != 1 && d != 2 && d != 4 && d != 8 && d != 16 && d != 32)) {
+      return false;
+    }
+    num = static_cast<std::int64_t>(n);
+    den = static_cast<std::int64_t>(d);
+    return true;
+  }
+  bool dotted = false;
+  if (text.substr(0, 7) == "dotted ") {
+    dotted = true;
+    text = trim(text.substr(7));
+  }
+  for (const NoteName& note : kNoteNames) {
+    if (text != note.name) continue;
+    num = dotted ? 3 : 1;
+    den = dotted ? note.den * 2 : note.den;
+    return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -39,8 +83,8 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
       }
     }
     if (scope->song) {
-      scope->tempo = scope->song->bpm;
-      scope->beats_per_bar = scope->song->beats_per_bar;
+      scope->tempo = scope->song->tempo;
+      scope->meter = scope->song->meter;
     } else if (music->second.is_map()) {
       // A broken block still counts beats by the tempo and meter it gives, so its mistakes are
       // not followed by one "no tempo" per step (the reporter says each mistake once); a tempo
@@ -49,13 +93,13 @@ std::pair<FileScope&, bool> ScopeChain::open(const LoadedFile& f, Reporter& repo
       const YamlNode* m = music->second.find("meter");
       scope->tempo =
           t != nullptr ? parse_tempo(*t, reporter).value_or(kStandInTempo) : kStandInTempo;
-      scope->beats_per_bar = m != nullptr ? parse_meter(*m, reporter).value_or(kStandInBeatsPerBar)
-                                          : kStandInBeatsPerBar;
+      scope->meter =
+          m != nullptr ? parse_meter(*m, reporter).value_or(kStandInMeter) : kStandInMeter;
     }
   } else {
     if (const YamlNode* t = f.root->find("tempo")) scope->tempo = parse_tempo(*t, reporter);
     if (const YamlNode* m = f.root->find("meter")) {
-      scope->beats_per_bar = parse_meter(*m, reporter);
+      scope->meter = parse_meter(*m, reporter);
     }
   }
   FileScope& ref = *scope;
@@ -70,16 +114,20 @@ std::optional<std::uint32_t> ScopeChain::resolution_ms() const {
   return std::nullopt;
 }
 
-std::optional<double> ScopeChain::tempo() const {
+std::optional<Tempo> ScopeChain::tempo() const {
+  // While a song plays its map is the only one: an included file's own tempo is for checking
+  // that file alone.
+  if (!chain_.empty() && chain_.front()->song) return chain_.front()->tempo;
   for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
     if ((*it)->tempo) return (*it)->tempo;
   }
   return std::nullopt;
 }
 
-std::optional<int> ScopeChain::beats_per_bar() const {
+std::optional<TimeSignature> ScopeChain::meter() const {
+  if (!chain_.empty() && chain_.front()->song) return chain_.front()->meter;
   for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
-    if ((*it)->beats_per_bar) return (*it)->beats_per_bar;
+    if ((*it)->meter) return (*it)->meter;
   }
   return std::nullopt;
 }
@@ -107,27 +155,26 @@ const YamlNode* ScopeChain::find_section(const YamlNode& name, Reporter& reporte
 }
 
 std::optional<ExactMs> ScopeChain::exact_ms(const YamlNode& node, std::string_view what,
-                                            std::optional<double> tempo_override,
                                             Reporter& reporter) const {
   const std::optional<TimeValue> t = parse_time_node(node, what, reporter);
   if (!t) return std::nullopt;
-  ExactMs ms = ExactMs::from_double(t->amount);
+  ExactMs ms = exact_amount(*t);
   if (t->unit == TimeUnit::Seconds) ms = ms * ExactMs(1000);
   if (t->unit == TimeUnit::Beats || t->unit == TimeUnit::Bars) {
-    const std::optional<double> tempo = tempo_override ? tempo_override : this->tempo();
+    const std::optional<Tempo> tempo = this->tempo();
     if (!tempo) {
       report_no_tempo(node, reporter);
       return std::nullopt;
     }
+    const std::optional<TimeSignature> bar = meter();
     if (t->unit == TimeUnit::Bars) {
-      const std::optional<int> bar = beats_per_bar();
       if (!bar) {
         report_no_meter(node, reporter);
         return std::nullopt;
       }
-      ms = ms * ExactMs(*bar);
+      ms = ms * ExactMs(bar->beats_per_bar);
     }
-    ms = ms * ExactMs(60000) / ExactMs::from_double(*tempo);
+    ms = ms * beat_ms(*tempo, bar ? bar->beat_unit : 4);
   }
   return ms;
 }
@@ -135,7 +182,7 @@ std::optional<ExactMs> ScopeChain::exact_ms(const YamlNode& node, std::string_vi
 std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::string_view what,
                                                  std::uint64_t max_ms, std::string_view too_long,
                                                  Reporter& reporter) const {
-  auto exact = exact_ms(node, what, std::nullopt, reporter);
+  auto exact = exact_ms(node, what, reporter);
   if (!exact) return std::nullopt;
   const double ms = exact->value();
   if (ms > static_cast<double>(max_ms)) {
@@ -301,19 +348,38 @@ void report_no_meter(const YamlNode& node, Reporter& reporter) {
                                     "'meter: 4/4' at the top of the file");
 }
 
-std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter) {
+std::optional<Tempo> parse_tempo(const YamlNode& node, Reporter& reporter) {
   std::string_view text = node.is_scalar() ? std::string_view(node.scalar) : "";
-  if (text.size() > 3 && text.substr(text.size() - 3) == "bpm") text.remove_suffix(3);
-  double bpm = 0;
-  if (!node.is_scalar() || !parse_decimal(text, bpm) || bpm < 1 || bpm > 1000) {
+  const std::size_t equals = text.find('=');
+  Tempo tempo;
+  std::string_view number = text;
+  if (equals != std::string_view::npos) {
+    if (!parse_tempo_note(text.substr(0, equals), tempo.note_num, tempo.note_den)) {
+      reporter.error(node.location,
+                     "'tempo: " + node.scalar +
+                         "': before '=' goes the note the tempo counts, a fraction of a whole "
+                         "note or its name (whole, half, quarter, eighth, sixteenth, optionally "
+                         "'dotted'), e.g. 'tempo: 3/8 = 60' or 'tempo: dotted quarter = 60'");
+      return std::nullopt;
+    }
+    number = text.substr(equals + 1);
+    while (!number.empty() && number.front() == ' ') number.remove_prefix(1);
+  }
+  if (number.size() > 3 && number.substr(number.size() - 3) == "bpm") number.remove_suffix(3);
+  if (!node.is_scalar() || !parse_decimal(number, tempo.per_minute) || tempo.per_minute < 1 ||
+      tempo.per_minute > 1000) {
     reporter.error(node.location,
-                   "'tempo' must be beats per minute between 1 and 1000, e.g. 'tempo: 120'");
+                   equals != std::string_view::npos
+                       ? "'tempo: " + node.scalar +
+                             "': after '=' goes how many of that note a minute, between 1 and "
+                             "1000, e.g. 'tempo: dotted quarter = 60'"
+                       : "'tempo' must be beats per minute between 1 and 1000, e.g. 'tempo: 120'");
     return std::nullopt;
   }
-  return bpm;
+  return tempo;
 }
 
-std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter) {
+std::optional<TimeSignature> parse_meter(const YamlNode& node, Reporter& reporter) {
   const std::string text = node.is_scalar() ? node.scalar : "";
   const auto slash = text.find('/');
   double beats = 0, unit = 0;
@@ -328,7 +394,7 @@ std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter) {
                    "or 'meter: 6/8'");
     return std::nullopt;
   }
-  return static_cast<int>(beats);
+  return TimeSignature{static_cast<int>(beats), static_cast<int>(unit)};
 }
 
 }  // namespace seqc::compiler

@@ -21,6 +21,7 @@
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/song.hpp"
+#include "compiler/timeline/tempo_map.hpp"
 
 namespace seqc::compiler {
 
@@ -33,8 +34,8 @@ struct Pose {
 struct FileScope {
   const LoadedFile* file = nullptr;
   std::map<std::string, Pose, std::less<>> poses;
-  std::optional<double> tempo;
-  std::optional<int> beats_per_bar;   // 'meter: 3/4' -> 3
+  std::optional<Tempo> tempo;
+  std::optional<TimeSignature> meter;
   std::optional<Song> song;           // `music:`: its tempo and meter at bar 1 are the above
   std::optional<SongFile> song_file;  // `music:`'s audio file, also when the block has mistakes
   std::optional<std::uint32_t> resolution_ms;
@@ -57,18 +58,19 @@ class ScopeChain {
 
   // The innermost resolution, tempo, meter and tolerance set by a running file, if any.
   std::optional<std::uint32_t> resolution_ms() const;
-  std::optional<double> tempo() const;
-  std::optional<int> beats_per_bar() const;
+  std::optional<Tempo> tempo() const;
+  std::optional<TimeSignature> meter() const;
   std::optional<double> tolerance() const;
 
   // The section `name` from the innermost running file that defines it; nullptr after
   // reporting an unknown name with "did you mean".
   const YamlNode* find_section(const YamlNode& name, Reporter& reporter) const;
 
-  // `node` as exact milliseconds: 500ms, 1.5s, beats at `tempo_override` or else the innermost
-  // file's tempo, bars at the innermost meter. nullopt after reporting.
+  // `node` as exact milliseconds: 500ms, 1.5s, 1/3s, beats at the innermost file's tempo (a
+  // beat being the innermost meter's note value), bars at the innermost meter. nullopt after
+  // reporting.
   std::optional<ExactMs> exact_ms(const YamlNode& node, std::string_view what,
-                                  std::optional<double> tempo_override, Reporter& reporter) const;
+                                  Reporter& reporter) const;
 
   // `node` in milliseconds (500ms, 1.5s, or beats at the innermost tempo). Above `max_ms` the
   // message is "'<value>' " + `too_long`. nullopt after reporting.
@@ -134,11 +136,12 @@ std::optional<TimeValue> parse_time_node(const YamlNode& node, std::string_view 
 void report_no_tempo(const YamlNode& node, Reporter& reporter);
 void report_no_meter(const YamlNode& node, Reporter& reporter);
 
-// Parses a file's 'tempo': beats per minute, 1-1000, optionally written with "bpm".
-std::optional<double> parse_tempo(const YamlNode& node, Reporter& reporter);
+// Parses a 'tempo': beats of the meter a minute, 1-1000, optionally written with "bpm"
+// ('tempo: 120'), or notes of a named value a minute: a fraction of a whole note ('3/8 = 60')
+// or a note name, optionally dotted ('dotted quarter = 60', 'eighth = 180').
+std::optional<Tempo> parse_tempo(const YamlNode& node, Reporter& reporter);
 
-// Parses 'meter: 3/4' into beats per bar (1-32; the lower number, the beat's note value, must
-// be 1, 2, 4, 8, 16 or 32 and does not change how long a beat lasts).
-std::optional<int> parse_meter(const YamlNode& node, Reporter& reporter);
+// Parses 'meter: 6/8': beats per bar (1-32) over the beat's note value (1, 2, 4, 8, 16 or 32).
+std::optional<TimeSignature> parse_meter(const YamlNode& node, Reporter& reporter);
 
 }  // namespace seqc::compiler

@@ -83,7 +83,7 @@ std::optional<ExactMs> musical_time(const TempoMap& map, const YamlNode& node,
     report_no_meter(node, reporter);
     return std::nullopt;
   }
-  const std::optional<ExactMs> end = map.after(from, ExactMs::from_double(t->amount), t->unit);
+  const std::optional<ExactMs> end = map.after(from, exact_amount(*t), t->unit);
   if (!end) report_no_tempo(node, reporter);  // a stretch on the way has none
   return end;
 }
@@ -154,10 +154,11 @@ std::optional<ExactMs> at_target(const TempoMap& map, const YamlNode& at_node, E
   return target;
 }
 
-bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, std::string_view what,
-                  Reporter& reporter) {
+bool change_meter(TempoMap& map, ExactMs now, TimeSignature meter, Location at,
+                  std::string_view what, Reporter& reporter) {
   const int current = map.meter_at(now);
-  if (current > 0 && map.bpm_at(now) > 0 && beats_per_bar != current) {
+  if (current > 0 && map.bpm_at(now) > 0 &&
+      (meter.beats_per_bar != current || meter.beat_unit != map.beat_unit_at(now))) {
     if (const std::optional<TempoMap::BarOffset> off = map.off_bar_line(now)) {
       reporter.error(at, std::string(what) + " must fall on a bar line, but here it is " +
                              beats_text(off->beats) + " into bar " + std::to_string(off->bar + 1) +
@@ -166,7 +167,7 @@ bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, st
       return false;
     }
   }
-  map.set_meter(now, beats_per_bar);
+  map.set_meter(now, meter);
   return true;
 }
 
@@ -236,23 +237,25 @@ void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const Yaml
   if (is_main) {
     timeline_.song = scope.song;
     timeline_.song_file = scope.song_file;
-    music = scope.song ? song_tempo_map(*scope.song)
-                       : TempoMap(scope.tempo.value_or(0), scope.beats_per_bar.value_or(0));
+    music = scope.song
+                ? song_tempo_map(*scope.song)
+                : TempoMap(scope.tempo.value_or(Tempo{}), scope.meter.value_or(TimeSignature{}));
   } else {
     check_included_music(root);
   }
   // An included file's own tempo and meter hold while its steps run (not while a song plays:
-  // its map is the only one).
-  const double outer_bpm = music.bpm_at(now_);
-  const int outer_meter = music.meter_at(now_);
-  const bool own_tempo = !is_main && !timeline_.song && scope.tempo && *scope.tempo != outer_bpm;
-  bool own_meter =
-      !is_main && !timeline_.song && scope.beats_per_bar && *scope.beats_per_bar != outer_meter;
-  if (own_tempo) music.set_tempo(now_, *scope.tempo);
+  // its map is the only one). The meter first, so that the file's tempo counts its own beat.
+  const ExactMs outer_beat = music.beat_ms_at(now_);
+  const TimeSignature outer_meter{music.meter_at(now_), music.beat_unit_at(now_)};
+  const bool own_music = !is_main && !timeline_.song;
+  bool own_meter = own_music && scope.meter && *scope.meter != outer_meter;
   if (own_meter) {
     const YamlNode& meter = *root.find("meter");
-    own_meter = change_meter(*scope.beats_per_bar, meter.location, "'meter: " + meter.scalar + "'");
+    own_meter = change_meter(*scope.meter, meter.location, "'meter: " + meter.scalar + "'");
   }
+  const bool own_tempo = own_music && scope.tempo &&
+                         beat_ms(*scope.tempo, music.beat_unit_at(now_)) != music.beat_ms_at(now_);
+  if (own_tempo) music.set_tempo(now_, *scope.tempo);
   scopes_.push(scope);
   run_steps(sequence, "'sequence'");
   scopes_.pop();
@@ -260,7 +263,7 @@ void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const Yaml
     change_meter(outer_meter, reporter_.include_sites().back(),
                  "the including file's meter, resuming after this include,");
   }
-  if (own_tempo) music.set_tempo(now_, outer_bpm);
+  if (own_tempo) music.set_beat_ms(now_, outer_beat);
 }
 
 void StepWalker::run_steps(const YamlNode& list, std::string_view what) {
@@ -351,8 +354,8 @@ std::optional<ExactMs> StepWalker::musical_time(const YamlNode& node, std::strin
   return compiler::musical_time(timeline_.tempo_map, node, what, from, reporter_);
 }
 
-bool StepWalker::change_meter(int beats_per_bar, Location at, std::string_view what) {
-  return compiler::change_meter(timeline_.tempo_map, now_, beats_per_bar, at, what, reporter_);
+bool StepWalker::change_meter(TimeSignature meter, Location at, std::string_view what) {
+  return compiler::change_meter(timeline_.tempo_map, now_, meter, at, what, reporter_);
 }
 
 bool StepWalker::open_block(Location at, std::string_view verb) {
@@ -462,10 +465,6 @@ void StepWalker::check_included_music(const YamlNode& root) {
                     "'music' belongs in the main file: the song plays from its "
                     "first step");
   }
-  if (!timeline_.song) return;
-  for (std::string_view key : {"tempo", "meter"}) {
-    if (const YamlNode* v = root.find(key)) song_owns(*v, key);
-  }
 }
 
 bool StepWalker::song_owns(const YamlNode& value, std::string_view key) {
@@ -482,8 +481,8 @@ bool StepWalker::song_owns(const YamlNode& value, std::string_view key) {
 void StepWalker::tempo_step(const YamlNode& value) {
   if (song_owns(value, "tempo")) return;
   if (!claims_.outside_tracks(value, "tempo", reporter_)) return;
-  if (auto bpm = parse_tempo(value, reporter_)) {
-    timeline_.tempo_map.set_tempo(now_, *bpm);
+  if (auto tempo = parse_tempo(value, reporter_)) {
+    timeline_.tempo_map.set_tempo(now_, *tempo);
     timeline_.markers.push_back({now_, "tempo " + value.scalar, value.location});
   }
 }
@@ -491,7 +490,7 @@ void StepWalker::tempo_step(const YamlNode& value) {
 void StepWalker::meter_step(const YamlNode& value) {
   if (song_owns(value, "meter")) return;
   if (!claims_.outside_tracks(value, "meter", reporter_)) return;
-  const std::optional<int> meter = parse_meter(value, reporter_);
+  const std::optional<TimeSignature> meter = parse_meter(value, reporter_);
   if (meter && change_meter(*meter, value.location, "'meter: " + value.scalar + "'")) {
     timeline_.markers.push_back({now_, "meter " + value.scalar, value.location});
   }

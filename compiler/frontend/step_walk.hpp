@@ -64,9 +64,9 @@ std::optional<ExactMs> at_target(const TempoMap& map, const YamlNode& at_node, E
                                  ExactMs list_start, Reporter& reporter);
 
 // Sets the meter from `now` on after checking that `now` is on a bar line (`what` names the
-// change for the message); false after reporting.
-bool change_meter(TempoMap& map, ExactMs now, int beats_per_bar, Location at, std::string_view what,
-                  Reporter& reporter);
+// change for the message); false after reporting. Each note keeps its length (tempo_map.hpp).
+bool change_meter(TempoMap& map, ExactMs now, TimeSignature meter, Location at,
+                  std::string_view what, Reporter& reporter);
 
 // The running `together` blocks (outermost first) and which of their tracks owns each output.
 // An output is a number the front end chooses (a servo, or a unit such as the car's gimbal);
@@ -182,7 +182,7 @@ class StepWalker {
   bool apply_at(const YamlNode& step);
   // `node` (a time) after `from`, through the tempo map; nullopt after reporting.
   std::optional<ExactMs> musical_time(const YamlNode& node, std::string_view what, ExactMs from);
-  bool change_meter(int beats_per_bar, Location at, std::string_view what);
+  bool change_meter(TimeSignature meter, Location at, std::string_view what);
   // Counts a block (`verb`, written at `at`) whose steps run inside the running ones; false
   // after reporting one nested more than kMaxBlockDepth deep (the walk then stops). Each true
   // is followed by close_block() once the block's steps have run.
@@ -213,7 +213,8 @@ class StepWalker {
   void tempo_step(const YamlNode& value);
   // With a song (`music:`), a tempo or meter anywhere else is an error: true after reporting.
   bool song_owns(const YamlNode& value, std::string_view key);
-  // An included file may not bring a song, nor a tempo or meter while one plays.
+  // An included file may not bring a song (its own tempo and meter are for checking it alone
+  // and give way to the song's map while one plays).
   void check_included_music(const YamlNode& root);
   void meter_step(const YamlNode& value);
 

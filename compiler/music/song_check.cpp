@@ -130,8 +130,8 @@ void check_song(const Song& song, const TempoMap& map, ExactMs end, SongReader& 
   }
 
   music::BeatOptions options;
-  options.meter = music::Meter{song.beats_per_bar, 4};
-  options.tempo_hint = song.bpm;
+  options.meter = music::Meter{song.meter.beats_per_bar, song.meter.beat_unit};
+  options.tempo_hint = song.bpm();
   const Result<music::BeatAnalysis> analysis =
       music::analyze_beats(std::span<const float>(audio->samples), audio->sample_rate, options);
   if (!analysis) {

@@ -9,12 +9,32 @@ ExactMs ms_per_beat(double bpm) {
 
 }  // namespace
 
-TempoMap::TempoMap(double bpm, int beats_per_bar) {
+ExactMs beat_ms(const Tempo& tempo, int beat_unit) {
+  if (tempo.per_minute <= 0) return ExactMs(0);
+  const ExactMs note = ms_per_beat(tempo.per_minute);
+  if (tempo.note_num <= 0 || tempo.note_den <= 0) return note;
+  // A note of num/den of a whole lasts `note`, so a whole lasts note * den / num and a beat
+  // (1/beat_unit of a whole) that divided by beat_unit.
+  return note * ExactMs(tempo.note_den) / ExactMs(tempo.note_num * beat_unit);
+}
+
+ExactMs exact_amount(const TimeValue& t) {
+  if (t.denominator > 0) return ExactMs::ratio(t.numerator, t.denominator);
+  return ExactMs::from_double(t.amount);
+}
+
+TempoMap::TempoMap(double bpm, int beats_per_bar, int beat_unit) {
   Change start;
   start.bpm = bpm;
   start.ms_per_beat = ms_per_beat(bpm);
   start.beats_per_bar = beats_per_bar;
+  start.beat_unit = beat_unit;
   changes_.push_back(start);
+}
+
+TempoMap::TempoMap(const Tempo& tempo, const TimeSignature& meter)
+    : TempoMap(tempo.per_minute, meter.beats_per_bar, meter.beat_unit) {
+  if (tempo.note_num > 0) set_beat_ms(ExactMs(0), beat_ms(tempo, meter.beat_unit));
 }
 
 const TempoMap::Change& TempoMap::in_force(ExactMs t) const {
@@ -41,9 +61,32 @@ void TempoMap::set_tempo(ExactMs at, double bpm) {
   c.ms_per_beat = ms_per_beat(bpm);
 }
 
-void TempoMap::set_meter(ExactMs at, int beats_per_bar) {
-  if (meter_at(at) == beats_per_bar) return;
-  change_at(at).beats_per_bar = beats_per_bar;
+void TempoMap::set_tempo(ExactMs at, const Tempo& tempo) {
+  if (tempo.note_num <= 0) {
+    set_tempo(at, tempo.per_minute);
+    return;
+  }
+  set_beat_ms(at, beat_ms(tempo, beat_unit_at(at)));
+}
+
+void TempoMap::set_beat_ms(ExactMs at, ExactMs ms_per_beat) {
+  if (in_force(at).ms_per_beat == ms_per_beat) return;
+  Change& c = change_at(at);
+  c.ms_per_beat = ms_per_beat;
+  c.bpm = ms_per_beat > ExactMs(0) ? (ExactMs(60000) / ms_per_beat).value() : 0;
+}
+
+void TempoMap::set_meter(ExactMs at, int beats_per_bar, int beat_unit) {
+  const Change& now = in_force(at);
+  if (now.beats_per_bar == beats_per_bar && now.beat_unit == beat_unit) return;
+  Change& c = change_at(at);
+  if (c.beat_unit != beat_unit && c.bpm > 0) {
+    // Each note keeps its length: a beat half as long comes twice as often.
+    c.ms_per_beat = c.ms_per_beat * ExactMs(c.beat_unit) / ExactMs(beat_unit);
+    c.bpm = c.bpm * beat_unit / c.beat_unit;
+  }
+  c.beats_per_bar = beats_per_bar;
+  c.beat_unit = beat_unit;
 }
 
 ExactMs TempoMap::beat_at(ExactMs t) const {

@@ -6,7 +6,15 @@
 //
 // Everything is exact: beats and bars are counted in the same rational type as milliseconds
 // (ExactMs), so a beat at 110 bpm is 6000/11 ms and bar 9 lands on the same instant however the
-// tempo changed before it. Where no tempo is set the beat clock stands still (no beat passes);
+// tempo changed before it.
+//
+// A beat is the note value the meter's lower number names (a quarter in 3/4, an eighth in 6/8;
+// a quarter where no meter is set), and a tempo counts those beats. A meter change keeps every
+// note value's length, as a score, a DAW and MIDI do: 3/4 at 90 bpm then 6/8 makes the eighth
+// 180 bpm, so both bars last 2 s. A tempo given with its own note ("dotted quarter = 60") is
+// turned into beats of the meter in force when it is set.
+//
+// Where no tempo is set the beat clock stands still (no beat passes);
 // where no meter is set the bar clock does. Bar and beat counts start at 0 here: "bar 1 beat 1"
 // of a musician is beat 0, the start of the sequence.
 //
@@ -25,6 +33,28 @@
 
 namespace seqc::compiler {
 
+// A tempo as written: `per_minute` notes a minute, each note `note_num`/`note_den` of a whole
+// note (3/8 for a dotted quarter); a note of 0/0 counts the beat of the meter in force.
+struct Tempo {
+  double per_minute = 0;
+  std::int64_t note_num = 0;
+  std::int64_t note_den = 0;
+  friend bool operator==(const Tempo&, const Tempo&) = default;
+};
+
+// A meter as written, 6/8: beats a bar over the note value of a beat.
+struct TimeSignature {
+  int beats_per_bar = 0;
+  int beat_unit = 4;
+  friend bool operator==(const TimeSignature&, const TimeSignature&) = default;
+};
+
+// How long a beat lasts at `tempo` where a beat is a 1/`beat_unit` note; 0 for no tempo.
+ExactMs beat_ms(const Tempo& tempo, int beat_unit);
+
+// The amount of a written time, exact: a fraction as written (1/3), a decimal to 1e-6.
+ExactMs exact_amount(const TimeValue& t);
+
 class TempoMap {
  public:
   struct Change {
@@ -34,18 +64,30 @@ class TempoMap {
     double bpm = 0;         // 0: no tempo from here
     ExactMs ms_per_beat;    // 60000 / bpm, exact (0 when no tempo)
     int beats_per_bar = 0;  // 0: no meter from here
+    int beat_unit = 4;      // the note value a beat counts: 4 a quarter, 8 an eighth
   };
 
   TempoMap() { changes_.push_back({}); }
-  // The tempo and meter in force at the start (0: none).
-  TempoMap(double bpm, int beats_per_bar);
+  // The tempo and meter in force at the start (0: none); `bpm` counts 1/`beat_unit` notes.
+  TempoMap(double bpm, int beats_per_bar, int beat_unit = 4);
+  TempoMap(const Tempo& tempo, const TimeSignature& meter);
 
-  // From `at` (no earlier than the last change) on, `bpm` beats per minute / `beats_per_bar`.
+  // From `at` (no earlier than the last change) on: `bpm` beats of the meter in force a minute,
+  // `tempo` as written, or a beat of `ms_per_beat`.
   void set_tempo(ExactMs at, double bpm);
-  void set_meter(ExactMs at, int beats_per_bar);
+  void set_tempo(ExactMs at, const Tempo& tempo);
+  void set_beat_ms(ExactMs at, ExactMs ms_per_beat);
+  // From `at` on, `beats_per_bar` beats of 1/`beat_unit` notes a bar; a note keeps its length,
+  // so a new beat unit changes the beats a minute.
+  void set_meter(ExactMs at, int beats_per_bar, int beat_unit = 4);
+  void set_meter(ExactMs at, const TimeSignature& meter) {
+    set_meter(at, meter.beats_per_bar, meter.beat_unit);
+  }
 
   double bpm_at(ExactMs t) const { return in_force(t).bpm; }
+  ExactMs beat_ms_at(ExactMs t) const { return in_force(t).ms_per_beat; }
   int meter_at(ExactMs t) const { return in_force(t).beats_per_bar; }
+  int beat_unit_at(ExactMs t) const { return in_force(t).beat_unit; }
   // Beats (bars) counted from the start of the sequence until `t`.
   ExactMs beat_at(ExactMs t) const;
   ExactMs bar_at(ExactMs t) const { return bar_of_beat(beat_at(t)); }

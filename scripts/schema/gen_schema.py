@@ -68,8 +68,17 @@ def ref(name):
 MS_20 = r"0*(?:[2-9][0-9]|[1-9][0-9]{2,})(?:\.[0-9]+)?ms|0*19\.[5-9][0-9]*ms"
 S_20 = r"0*[1-9][0-9]*(?:\.[0-9]+)?s|0+\.(?:[1-9][0-9]*|0[2-9][0-9]*|019[5-9][0-9]*)s"
 BEATS = r"0*(?:[1-9][0-9]*(?:\.[0-9]+)?|0\.[0-9]*[1-9][0-9]*)(?:b|bars?)"
+# An exact fraction, whole over whole with the unit after it (1/3b): a numerator up to
+# 1,000,000 and a denominator from 1 to 1,000. The schema lets a step's fraction of a second
+# through without the 20 ms floor (seqc checks it).
+FRACTION = r"0*(?:[0-9]{1,6}|1000000)/0*(?:[1-9][0-9]{0,2}|1000)"
 TIME_HELP = ("a time with its unit: `500ms`, `1.5s`, `2b` (beats; needs `tempo`) or `2bar` "
-             "(bars; needs `meter`). A bare number is an error")
+             "(bars; needs `meter`), or an exact fraction of one: `1/3b`, `1/6bar`, `1/3s`. A bare "
+             "number is an error")
+# A tempo's note: a fraction of a whole note (3/8) or its name, optionally dotted.
+TEMPO_NOTE = (r"(?:0*(?:[1-9]|[12][0-9]|3[0-2])/0*(?:1|2|4|8|16|32)|"
+              r"(?:dotted +)?(?:whole|half|quarter|eighth|sixteenth))")
+TEMPO_NUMBER = r"0*(?:[1-9][0-9]{0,2}(?:\.[0-9]+)?|1000(?:\.0+)?)(?:bpm)?"
 
 definitions = {
     "profile": doc("Robot profile", "A built-in profile: " + "; ".join(
@@ -79,18 +88,19 @@ definitions = {
                      patternErrorMessage="a servo name is letters, digits and _, not starting "
                                          "with a digit"),
     "servoTime": string("Time", TIME_HELP + "; at least `20ms` (one controller action).",
-                        f"^(?:{MS_20}|{S_20}|{BEATS})$",
+                        f"^(?:{MS_20}|{S_20}|{BEATS}|{FRACTION}(?:s|b|bars?))$",
                         "a time of at least 20ms with its unit: 500ms, 1.5s, 2b or 1bar (a bare "
                         "number is an error)"),
-    "time": string("Time", TIME_HELP + ".", f"^{NUM}(ms|s|b|bars?)$",
+    "time": string("Time", TIME_HELP + ".", f"^(?:{NUM}|{FRACTION})(ms|s|b|bars?)$",
                    "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "carTime": string("Time", "`500ms`, `1.5s`, `2b` (beats at `tempo`) or `2bar` (bars; needs "
-                      "`meter`).", f"^{NUM}(ms|s|b|bars?)$",
+                      "`meter`), or an exact fraction of one (`1/3b`).",
+                      f"^(?:{NUM}|{FRACTION})(ms|s|b|bars?)$",
                       "a time with its unit: 500ms, 1.5s, 2b or 1bar (a bare number is an error)"),
     "at": string("Start at", "Start this step exactly this long after the start of the list "
                  "that holds it (`at: 4bar`), or at a bar of the sequence counted from 1 "
                  "(`at: bar 9`, `at: bar 9 beat 2.5`); the gap before it is a hold.",
-                 rf"^(?:{NUM}(ms|s|b|bars?)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
+                 rf"^(?:(?:{NUM}|{FRACTION})(ms|s|b|bars?)|bar +[1-9][0-9]*(?: +beat +{NUM})?)$",
                  "a time with its unit (500ms, 1.5s, 2b or 1bar) or a position (bar 9, "
                  "bar 9 beat 3)"),
     "position": doc("Position", "Device units (`500`), degrees (`90deg`), relative to where the "
@@ -109,12 +119,17 @@ definitions = {
                      "Default 1.", type=["number", "string"], exclusiveMinimum=0,
                      pattern=r"^(?:[0-9]*[1-9][0-9]*(?:\.[0-9]+)?|[0-9]+\.[0-9]*[1-9][0-9]*)(deg)?$",
                      patternErrorMessage="a positive distance: 1 (device units) or 0.5deg"),
-    "tempo": doc("Tempo", "Beats per minute, 1-1000 (`tempo: 120`, `tempo: 120bpm`), for times "
-                 "written in beats.", type=["number", "string"], minimum=1, maximum=1000,
-                 pattern=r"^0*(?:[1-9][0-9]{0,2}(?:\.[0-9]+)?|1000(?:\.0+)?)(bpm)?$",
-                 patternErrorMessage="beats per minute between 1 and 1000: 120 or 120bpm"),
+    "tempo": doc("Tempo", "Beats of the meter per minute, 1-1000 (`tempo: 120`, `tempo: 120bpm`; "
+                 "in 6/8 a beat is an eighth), for times written in beats; or a named note per "
+                 "minute: `tempo: 3/8 = 60`, `tempo: dotted quarter = 60` (whole, half, quarter, "
+                 "eighth, sixteenth, optionally dotted).", type=["number", "string"], minimum=1,
+                 maximum=1000,
+                 pattern=rf"^(?:{TEMPO_NOTE} *= *)?{TEMPO_NUMBER}$",
+                 patternErrorMessage="beats per minute between 1 and 1000 (120 or 120bpm), or a "
+                                     "note per minute (3/8 = 60, dotted quarter = 60)"),
     "meter": doc("Meter", "Beats per bar over the beat's note value (`3/4`, `6/8`): enables the "
-                 "unit `bar`; as a step it changes the meter from there (on a bar line).",
+                 "unit `bar`; as a step it changes the meter from there (on a bar line), each "
+                 "note keeping its length.",
                  type="string", pattern=r"^0*[1-9][0-9]*/(1|2|4|8|16|32|64)$",
                  patternErrorMessage="beats per bar over a note value: 3/4, 4/4 or 6/8"),
     "ease": doc("Easing", "The shape of the move: `linear`; `in`, `out`, `in-out` (quadratic; "

@@ -105,5 +105,60 @@ TEST(TempoMapBarLine, AfterAMeterChangeAndAt110Bpm) {
   EXPECT_EQ(waltz.off_bar_line(ExactMs::ratio(18000, 11)), std::nullopt);
 }
 
+// Note values: 90 bpm in 3/4 is a quarter of 2000/3 ms (a bar 2000 ms); 6/8 after it keeps the
+// eighth at 1000/3 ms (180 bpm), so its bar of six is 2000 ms too.
+TEST(TempoMapNotes, AMeterChangeKeepsEachNotesLength) {
+  TempoMap map(90, 3, 4);
+  map.set_meter(ExactMs(4000), 6, 8);  // bar 3
+  EXPECT_EQ(map.bpm_at(ExactMs(4000)), 180);
+  EXPECT_EQ(map.beat_ms_at(ExactMs(4000)), ExactMs::ratio(1000, 3));
+  EXPECT_EQ(map.time_of_bar(ExactMs(2)), ExactMs(4000));
+  EXPECT_EQ(map.time_of_bar(ExactMs(3)), ExactMs(6000));
+  EXPECT_EQ(map.time_of_bar_beat(ExactMs(3), ExactMs(3)), ExactMs(7000));
+  // Back to 3/4: the quarter is 2000/3 ms again.
+  map.set_meter(ExactMs(6000), 3, 4);
+  EXPECT_EQ(map.beat_ms_at(ExactMs(6000)), ExactMs::ratio(2000, 3));
+  EXPECT_EQ(map.time_of_bar(ExactMs(4)), ExactMs(8000));
+}
+
+TEST(TempoMapNotes, ATempoWithItsNote) {
+  // A dotted quarter (3/8) at 60 lasts 1000 ms: in 6/8 an eighth is a third of it.
+  EXPECT_EQ(beat_ms(Tempo{60, 3, 8}, 8), ExactMs::ratio(1000, 3));
+  // In 4/4 a quarter is two thirds of it.
+  EXPECT_EQ(beat_ms(Tempo{60, 3, 8}, 4), ExactMs::ratio(2000, 3));
+  // A half at 60 is 1000 ms: a quarter 500 ms. A plain number counts the meter's beat.
+  EXPECT_EQ(beat_ms(Tempo{60, 1, 2}, 4), ExactMs(500));
+  EXPECT_EQ(beat_ms(Tempo{120, 0, 0}, 8), ExactMs(500));
+  TempoMap map(Tempo{60, 3, 8}, TimeSignature{6, 8});
+  EXPECT_EQ(map.bpm_at(ExactMs(0)), 180);
+  EXPECT_EQ(map.time_of_bar(ExactMs(1)), ExactMs(2000));
+  map.set_tempo(ExactMs(2000), Tempo{30, 3, 8});  // a dotted quarter of 2 s
+  EXPECT_EQ(map.time_of_bar(ExactMs(2)), ExactMs(6000));
+}
+
+TEST(TempoMapNotes, ThirdsAndSixthsAreExact) {
+  const TempoMap map(120, 4);
+  const ExactMs third = ExactMs::ratio(1, 3);
+  ExactMs t(0);
+  for (int i = 0; i < 12; ++i) t = *map.after(t, third, TimeUnit::Beats);
+  EXPECT_EQ(t, ExactMs(2000));
+  ExactMs u(0);
+  for (int i = 0; i < 6; ++i) u = *map.after(u, ExactMs::ratio(1, 6), TimeUnit::Bars);
+  EXPECT_EQ(u, ExactMs(2000));
+  // One sixth of a bar is 1000/3 ms, 333.33.. ms.
+  EXPECT_EQ(map.after(ExactMs(0), ExactMs::ratio(1, 6), TimeUnit::Bars), ExactMs::ratio(1000, 3));
+}
+
+TEST(TempoMapNotes, AWrittenFractionIsExact) {
+  TimeValue third;
+  third.amount = 1.0 / 3;
+  third.numerator = 1;
+  third.denominator = 3;
+  EXPECT_EQ(exact_amount(third), ExactMs::ratio(1, 3));
+  TimeValue decimal;
+  decimal.amount = 1.5;
+  EXPECT_EQ(exact_amount(decimal), ExactMs::ratio(3, 2));
+}
+
 }  // namespace
 }  // namespace seqc::compiler

@@ -19,6 +19,49 @@ TEST(ParseTime, UnitsAndFractions) {
   EXPECT_EQ(b->unit, TimeUnit::Beats);
 }
 
+TEST(ParseTime, FractionsAreExact) {
+  auto third = parse_time("1/3b");
+  ASSERT_TRUE(third);
+  EXPECT_EQ(third->unit, TimeUnit::Beats);
+  EXPECT_EQ(third->numerator, 1);
+  EXPECT_EQ(third->denominator, 3);
+  EXPECT_DOUBLE_EQ(third->amount, 1.0 / 3);
+  auto bar = parse_time("1/6bar");
+  ASSERT_TRUE(bar);
+  EXPECT_EQ(bar->unit, TimeUnit::Bars);
+  EXPECT_EQ(bar->denominator, 6);
+  auto five = parse_time("5/4b");
+  ASSERT_TRUE(five);
+  EXPECT_EQ(five->numerator, 5);
+  EXPECT_EQ(five->denominator, 4);
+  auto s = parse_time("1/3s");
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->unit, TimeUnit::Seconds);
+  EXPECT_EQ(parse_time("1000000/1000ms")->numerator, 1000000);
+  EXPECT_EQ(parse_time("1.5s")->denominator, 0);  // a decimal is what it says
+  EXPECT_NEAR(*parse_clock_ms("1/3s"), 1000.0 / 3, 1e-9);
+}
+
+TEST(ParseTime, FractionMistakes) {
+  EXPECT_EQ(parse_time("1/0b").error().message,
+            "'1/0b': the denominator of a fraction must be a whole number from 1 to 1,000, e.g. "
+            "'1/3b'");
+  EXPECT_EQ(parse_time("1000001/2b").error().message,
+            "'1000001/2b': the numerator of a fraction must be a whole number up to 1,000,000; "
+            "write longer times in a larger unit");
+  EXPECT_EQ(parse_time("2/3").error().message,
+            "time '2/3' has no unit; write '2/3b' (beats), '2/3bar', '2/3s' or '2/3ms'");
+  EXPECT_EQ(parse_time("(2/3)bar").error().message,
+            "'(2/3)bar' is not a time; a fraction is written whole over whole with the unit "
+            "after it, e.g. '2/3bar'");
+  EXPECT_EQ(parse_time("1s/3").error().message,
+            "'1s/3' is not a time; a fraction is written whole over whole with the unit after "
+            "it, e.g. '1/3s'");
+  for (const char* bad : {"/3b", "1/b", "1//3b", "-1/3b", "1/-3b", "1/3 b", "1/3/4b"}) {
+    EXPECT_FALSE(parse_time(bad)) << bad;
+  }
+}
+
 TEST(ParseTime, BareNumberSuggestsUnits) {
   auto t = parse_time("500");
   ASSERT_FALSE(t);
