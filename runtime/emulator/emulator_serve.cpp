@@ -50,13 +50,12 @@ ServeResult serve_xarm(const ServeOptions& options, io::Clock& clock, const std:
   result.device = "an xArm controller";
   XArmConfig config;
   config.baud = options.baud.value_or(kXArmBaud);
-  auto faults = parse_faults(options.faults);
-  if (!faults) {
+  // The fault items, and the flash's size (groups=N, flash=N), as `emu:xarm?...` takes them.
+  if (Status applied = apply_emulator_options(options.faults, config); !applied) {
     result.status = ServeStatus::BadFaults;
-    result.detail = faults.error().message;
+    result.detail = applied.error().message;
     return result;
   }
-  config.faults = *faults;
   if (options.seed) config.faults.seed = *options.seed;
   auto positions = parse_positions(options.positions);
   if (!positions) {

@@ -67,10 +67,13 @@ TEST(BoardsUploadRun, ResyncCutNamesItsLastGroup) {
   // From group 254 every piece after the first would need a group past 254.
   const ResyncCut late = cut_for_resync(*waltz.servo_program(), 4, 0, 254);
   EXPECT_EQ(late.fits(), late.pieces.size() == 1);
-  const ResyncCut none = cut_for_resync(*waltz.servo_program(), 0, 0, 0);
-  EXPECT_FALSE(none.error.empty());
-  EXPECT_TRUE(none.pieces.empty());
-  EXPECT_FALSE(none.fits());
+  // No bars: the chain, which a dance within one group's 1,020 actions leaves in one piece.
+  const ResyncCut whole = cut_for_resync(*waltz.servo_program(), 0, 0, 0);
+  ASSERT_TRUE(whole.fits()) << whole.error;
+  EXPECT_TRUE(whole.chained);
+  ASSERT_EQ(whole.pieces.size(), 1u);
+  EXPECT_EQ(whole.pieces[0].keyframes.size(), waltz.servo_program()->keyframes.size());
+  EXPECT_EQ(whole.last_group, 0u);
 }
 
 TEST(BoardsUploadRun, LatestStartIsTheLatestLateness) {

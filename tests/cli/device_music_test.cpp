@@ -260,5 +260,68 @@ TEST(DeviceMusic, ResyncStartsTheFirstPieceOnTheDownbeatAndTheRestOnItsClock) {
   EXPECT_TRUE(h.speakers.last()->stopped());
 }
 
+// A dance of 3,000 actions, more than one group holds (1,020): `upload --run --music` stores it
+// in groups 0, 1 and 2, each ending on the last bar line it can hold, and starts each on its bar
+// line on the song's clock. 3,000 one-beat moves at 120 bpm in 4/4 are 4 actions a bar: group 0
+// holds bars 1-255 (1,020 actions), group 1 bars 256-510 from 255 x 2 s = 510 s, group 2 the
+// 240 bars left (960 actions) from 1,020 s.
+TEST(DeviceMusic, AThreeThousandActionDanceIsChainedOnBarLinesWithTheSong) {
+  MusicHarness h;
+  h.files.add("long.yaml",
+              "robot: xarm\nmusic:\n  file: song.wav\n  downbeat: 0.750s\n  tempo: 120\n"
+              "  meter: 4/4\nsequence:\n  - repeat: 1500\n    do:\n"
+              "      - move: {base: 300}\n        time: 1b\n"
+              "      - move: {base: 700}\n        time: 1b\n");
+  const RunResult r = h.run({"upload", "long.yaml", "--port", "emu:xarm", "--run", "--music",
+                             "--force", "--audio-offset", "20"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::size_t sizes[3] = {1020, 1020, 960};
+  for (std::uint8_t g = 0; g < 3; ++g) {
+    SCOPED_TRACE(g);
+    const auto stored = h.emu.stored_group(g);
+    ASSERT_TRUE(stored.has_value());
+    ASSERT_EQ(stored->size(), sizes[g]);
+    // Every action one beat (500 ms), the first of each group base (id 6) to 300.
+    EXPECT_EQ(stored->front().time_ms, 500u);
+    ASSERT_EQ(stored->front().servos.size(), 1u);
+    EXPECT_EQ(stored->front().servos[0].id, 6u);
+    EXPECT_EQ(stored->front().servos[0].position, 300u);
+  }
+  EXPECT_FALSE(h.emu.stored_group(3).has_value());
+  // Starts (GroupStop and GroupRun in one write) finish arriving at 820 ms after the song's
+  // start (50 ms latency + 750 ms downbeat + 20 ms offset), then 510 s and 1,020 s later.
+  const auto first = h.arrival_ms("55 55 05 06 00 01 00");
+  const auto second = h.arrival_ms("55 55 05 06 01 01 00");
+  const auto third = h.arrival_ms("55 55 05 06 02 01 00");
+  ASSERT_TRUE(first && second && third) << r.err;
+  EXPECT_NEAR(*first, 820.0, 1e-5);
+  EXPECT_NEAR(*second, 510820.0, 1e-5);
+  EXPECT_NEAR(*third, 1020820.0, 1e-5);
+  EXPECT_NE(r.err.find("seqc: stored 3 chained groups starting on bars 1, 256 and 511 in groups "
+                       "0-2 and started each at its bar line"),
+            std::string::npos)
+      << r.err;
+}
+
+// A board whose flash holds two groups refuses the third: the dance stops there, said with the
+// group, and nothing is started.
+TEST(DeviceMusic, ABoardWithTooFewGroupsRefusesTheChainBeforeAnyStart) {
+  emu::XArmConfig config = at_9600();
+  config.store.groups = 2;
+  DeviceHarness h(config);
+  h.files.add("long.yaml",
+              "robot: xarm\ntempo: 120\nmeter: 4/4\nsequence:\n  - repeat: 1500\n    do:\n"
+              "      - move: {base: 300}\n        time: 1b\n"
+              "      - move: {base: 700}\n        time: 1b\n");
+  const RunResult r = h.run({"upload", "long.yaml", "--port", "emu:xarm", "--run", "--force"});
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.err.find("seqc: error: piece 3 (group 2): the controller refused step 1 (open "
+                       "group 2)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(h.received().find("5555050602"), std::string::npos);  // no GroupRun at all
+  EXPECT_EQ(h.received().find("5555050600"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace seqc::cli::test

@@ -16,12 +16,14 @@ namespace {
 
 using testing::MemoryFiles;
 
-CompileOutput compile_chained(const std::string& text, std::uint8_t first_group = 0) {
+CompileOutput compile_chained(const std::string& text, std::uint8_t first_group = 0,
+                              std::int32_t clock_ppm = 0) {
   MemoryFiles files;
   files.files["main.yaml"] = text;
   CompileOptions options;
   options.chain = true;
   options.first_group = first_group;
+  options.clock_ppm = clock_ppm;
   return compile_file("main.yaml", files, options);
 }
 
@@ -62,6 +64,20 @@ TEST(Chain, ThreeThousandOneBeatMovesTakeThreeGroupsCutOnBarLines) {
     ASSERT_EQ(piece.keyframes[0].targets.size(), 1u);
     EXPECT_EQ(piece.keyframes[0].targets[0].position, 300u);
   }
+}
+
+TEST(Chain, OnAFastBoardClockEachGroupStartsOnItsBarLineOfTheHost) {
+  // At +8,000 ppm the board's bar line 256 falls at 510,000 x 1.008 = 514,080 ms of its clock,
+  // bar 511 at 1,028,160 ms; the host starts them at 510 s and 1,020 s, the bar lines themselves.
+  const CompileOutput out = compile_chained(back_and_forth(1500, "1b"), 0, 8000);
+  const ServoProgram& p = testing::program_of(out);
+  auto cut = chain_groups(p, p.group_capacity, 8000);
+  ASSERT_TRUE(cut) << cut.error().message;
+  ASSERT_EQ(cut->pieces.size(), 3u);
+  EXPECT_EQ(cut->pieces[1].board_start_ms, 514080u);
+  EXPECT_EQ(cut->pieces[1].host_start, ExactMs(510000));
+  EXPECT_EQ(cut->pieces[2].board_start_ms, 1028160u);
+  EXPECT_EQ(cut->pieces[2].host_start, ExactMs(1020000));
 }
 
 TEST(Chain, AnActionAcrossTheBarLineIsCutInTwoThere) {

@@ -32,7 +32,9 @@ TEST(Validation, OneOverTheBudgetIsReportedWithTheCount) {
                                "7:9 error: the sequence needs at least 1021/1020 actions; a group "
                                "holds at most 1,020 (4 blocks of 255), and this step makes action "
                                "1,021 at 21.38 s",
-                               "5:5 note: in pass 1020 of 1020 of this repeat"}));
+                               "5:5 note: in pass 1020 of 1020 of this repeat",
+                               "3:3 note: `seqc upload --run` stores a longer dance as "
+                               "consecutive groups, each started on its bar line"}));
 }
 
 TEST(Validation, HugeNestedRepeatsAreCountedNotExpanded) {

@@ -77,6 +77,8 @@ TEST(WalkBudgets, ASectionFanOutStopsAtTheFirstActionOverTheGroup) {
                                "4:35 note: in section 's12', performed here",
                                "3:19 note: in section 's11', performed here",
                                "18:14 note: in section 's10', performed here",
+                               "16:3 note: `seqc upload --run` stores a longer dance as "
+                               "consecutive groups, each started on its bar line",
                            }))
       << diagnostics_of(out);
 }
@@ -87,7 +89,8 @@ TEST(WalkBudgets, AMillionPerformancesAreNotWalked) {
                           "sequence:\n  - move: {claw: 600}\n    time: 1s\n  - section: s10\n");
   ASSERT_EQ(out.diagnostics.error_count(), 1u) << diagnostics_of(out);
   EXPECT_EQ(messages(out)[0], "23:9 error: " + kTooMany);
-  EXPECT_EQ(out.diagnostics.all().size(), 22u);  // and a note for each of the 21 performances
+  // and a note for each of the 21 performances, and how a longer dance is stored
+  EXPECT_EQ(out.diagnostics.all().size(), 23u);
 }
 
 TEST(WalkBudgets, FortySectionsPerformingTheNextTwiceStopWithoutActionsToo) {

@@ -129,6 +129,14 @@ std::string budget_text(const Robot& robot, std::size_t capacity, std::size_t gr
          " each), and this step makes action " + n(total + 1);
 }
 
+// Where one group does not hold the dance: how a longer one is stored.
+std::optional<Reporter::Note> chain_hint(const ServoWalk& walk) {
+  if (walk.groups > 1 || !walk.sequence_at) return std::nullopt;
+  return Reporter::Note{*walk.sequence_at,
+                        "`seqc upload --run` stores a longer dance as consecutive groups, each "
+                        "started on its bar line"};
+}
+
 }  // namespace
 
 bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter) {
@@ -138,7 +146,9 @@ bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter)
     std::string message = budget_text(robot, walk.capacity, walk.groups, walk.min_actions, true);
     if (walk.over_budget_time)
       message += when_text(walk.timeline.tempo_map, *walk.over_budget_time);
-    reporter.error_with_notes(*walk.over_budget_at, message, walk.over_budget_notes);
+    std::vector<Reporter::Note> notes = walk.over_budget_notes;
+    if (const auto hint = chain_hint(walk)) notes.push_back(*hint);
+    reporter.error_with_notes(*walk.over_budget_at, message, notes);
     return false;
   }
   return reporter.errors_reported() == 0;
@@ -252,7 +262,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
                            ExactMs::ratio(1000000 + std::int64_t{clock_ppm}, 1000000);
       message += when_text(walk.timeline.tempo_map, host);
     }
-    reporter.error(first_out.source, message);
+    reporter.error(first_out.source, message, chain_hint(walk));
     actions.resize(std::min<std::size_t>(actions.size(), budget));
   } else if (actions.empty() && walk.sequence_at && reporter.errors_reported() == 0) {
     reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");
