@@ -388,13 +388,40 @@ void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
     if (!budget->before_pass(i) || halted()) break;
     const std::size_t errors_before = reporter_.errors_reported();
     reporter_.push_pass(step.location, i + 1, repeat->times);
+    open_span(step.location, "in pass " + std::to_string(i + 1) + " of " +
+                                 std::to_string(repeat->times) + " of this repeat");
     run_steps(*repeat->body, "'do'");
+    close_span();
     reporter_.pop_pass();
     // A pass with mistakes would only repeat them in the passes after it (and nested repeats
     // would never end).
     if (reporter_.errors_reported() > errors_before || !budget->after_pass(i)) break;
   }
   close_block();
+}
+
+void StepWalker::open_span(Location at, std::string message) {
+  spans_.push_back({now_, now_, open_spans_.size(), {at, std::move(message)}});
+  open_spans_.push_back(spans_.size() - 1);
+}
+
+void StepWalker::close_span() {
+  spans_[open_spans_.back()].end = now_;
+  open_spans_.pop_back();
+}
+
+std::vector<Reporter::Note> StepWalker::spans_at(const std::vector<PerformanceSpan>& spans,
+                                                 ExactMs t) {
+  std::vector<const PerformanceSpan*> in;
+  for (const PerformanceSpan& s : spans) {
+    if (s.start <= t && t < s.end) in.push_back(&s);
+  }
+  std::stable_sort(in.begin(), in.end(), [](const PerformanceSpan* a, const PerformanceSpan* b) {
+    return a->depth > b->depth;
+  });
+  std::vector<Reporter::Note> notes;
+  for (const PerformanceSpan* s : in) notes.push_back(s->note);
+  return notes;
 }
 
 void StepWalker::include_step(const YamlNode& value) {
@@ -409,7 +436,9 @@ void StepWalker::include_step(const YamlNode& value) {
                                                   table_.cannot_include, loader_, reporter_);
   if (loaded == nullptr) return;
   reporter_.push_include(value.location);
+  open_span(value.location, "included from here");
   run_file(*loaded, false);
+  close_span();
   reporter_.pop_include();
 }
 
@@ -427,7 +456,9 @@ void StepWalker::section_step(const YamlNode& step, const YamlNode& value) {
               [&](const YamlNode& steps, const std::string& what) {
                 timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
                 section_names_.push_back(value.scalar);
+                open_span(value.location, "in section '" + value.scalar + "', performed here");
                 run_steps(steps, what);
+                close_span();
                 section_names_.pop_back();
               });
 }

@@ -122,6 +122,17 @@ struct StepTable {
 class StepWalker {
  public:
   virtual ~StepWalker() = default;
+  // What was performing from `start` to `end`: a repeat's pass, a section's performance or an
+  // include, `depth` of them around it. An error about an instant found only after the walk
+  // (the fitted actions outgrowing the groups) names the ones that contain it, innermost first.
+  struct PerformanceSpan {
+    ExactMs start, end;
+    std::size_t depth = 0;
+    Reporter::Note note;
+  };
+  // The notes of the spans containing `t` (start <= t < end), innermost first.
+  static std::vector<Reporter::Note> spans_at(const std::vector<PerformanceSpan>& spans, ExactMs t);
+
   StepWalker(const StepWalker&) = delete;
   StepWalker& operator=(const StepWalker&) = delete;
 
@@ -192,6 +203,8 @@ class StepWalker {
   // that led here.
   void halt(Location at, std::string message);
 
+  std::vector<PerformanceSpan> spans_;
+
   struct ListFrame {
     ExactMs start;                    // for `at:`
     std::optional<double> tolerance;  // a `tolerance:` step in this list (servo controllers)
@@ -206,6 +219,10 @@ class StepWalker {
   TrackClaims claims_;  // the running `together` blocks
 
  private:
+  void open_span(Location at, std::string message);
+  void close_span();
+  std::vector<std::size_t> open_spans_;  // indices into spans_, outermost first
+
   void repeat_step(const YamlNode& step, const YamlNode& value);
   void include_step(const YamlNode& value);
   void section_step(const YamlNode& step, const YamlNode& value);

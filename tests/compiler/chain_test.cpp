@@ -214,5 +214,41 @@ TEST(Chain, TheFittedCountBeyondEveryGroupNamesTheBarAndTime) {
   EXPECT_NE(d.find(" (bar "), std::string::npos) << d;
 }
 
+TEST(Chain, AnActionFoundTooManyOnceFittedNamesItsPassAndPerformance) {
+  // Eased swings are fitted into several actions each, so the walk's lower bound (one a step)
+  // stays within the group and the fitted count passes it. However many actions a swing takes,
+  // the error's time T must be a swing's start: pass p of the repeat starts at 2 + (p - 1) s
+  // (after the 2 s `home`, each pass two beats of 0.5 s), its second move half a second later,
+  // and the bar is T / 2 s + 1. The notes name that pass and the section's performance.
+  const std::string text =
+      "robot: xarm\ntempo: 120\nmeter: 4/4\nsections:\n  swing:\n"
+      "    - move: {base: 300, shoulder: 400}\n      time: 1b\n      ease: sine-in-out\n"
+      "    - move: {base: 700, shoulder: 600}\n      time: 1b\n      ease: sine-in-out\n"
+      "sequence:\n  - move: home\n    time: 1bar\n  - repeat: 200\n    do:\n"
+      "      - section: swing\n";
+  const CompileOutput out = testing::compile_text(text);
+  const std::string d = testing::diagnostics_of(out);
+  const std::size_t at = d.find("and this step makes action 1,021 at ");
+  ASSERT_NE(at, std::string::npos) << d;
+  const double t = std::stod(d.substr(at + 36));
+  const double into_passes = t - 2.0;
+  ASSERT_GE(into_passes, 0.0) << d;
+  const int pass = static_cast<int>(into_passes) + 1;
+  const bool second = into_passes - (pass - 1) >= 0.5;
+  const int bar = static_cast<int>(t / 2.0) + 1;
+  EXPECT_NE(d.find("(bar " + std::to_string(bar) + " beat "), std::string::npos) << d;
+  EXPECT_NE(d.find(std::string("main.yaml:") + (second ? "9" : "6") + ":7: error"),
+            std::string::npos)
+      << d;
+  EXPECT_NE(d.find("main.yaml:17:18: note: in section 'swing', performed here"), std::string::npos)
+      << d;
+  EXPECT_NE(
+      d.find("main.yaml:15:5: note: in pass " + std::to_string(pass) + " of 200 of this repeat"),
+      std::string::npos)
+      << d;
+  // The section's note comes before the pass's: innermost first.
+  EXPECT_LT(d.find("in section 'swing'"), d.find("in pass "));
+}
+
 }  // namespace
 }  // namespace seqc::compiler

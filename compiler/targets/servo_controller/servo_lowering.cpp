@@ -72,6 +72,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   walk.capacity = capacity();
   walk.groups = groups_;
   walk.over_budget_time = over_budget_time_;
+  walk.spans = std::move(spans_);
   for (const LineRecord& line : lines_) {
     ServoTipLine l{line.request, {}, line.path_at};
     std::copy_n(line.servos.begin(), 4, l.joints.begin());
@@ -256,13 +257,16 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
     const bool past = actions.size() > budget;
     const FittedAction& first_out = past ? actions[budget] : actions.back();
     std::string message = budget_text(robot, walk.capacity, walk.groups, needed, walk.truncated);
+    std::vector<Reporter::Note> notes;
     if (past) {
       // The action's start on the board's clock, back on the music's.
       const ExactMs host = ExactMs(std::int64_t{first_out.start_ms}) /
                            ExactMs::ratio(1000000 + std::int64_t{clock_ppm}, 1000000);
       message += when_text(walk.timeline.tempo_map, host);
+      notes = StepWalker::spans_at(walk.spans, host);
     }
-    reporter.error(first_out.source, message, chain_hint(walk));
+    if (const auto hint = chain_hint(walk)) notes.push_back(*hint);
+    reporter.error_with_notes(first_out.source, message, notes);
     actions.resize(std::min<std::size_t>(actions.size(), budget));
   } else if (actions.empty() && walk.sequence_at && reporter.errors_reported() == 0) {
     reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");

@@ -19,6 +19,7 @@
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/robot_section.hpp"
+#include "compiler/frontend/step_walk.hpp"
 #include "compiler/program/program.hpp"
 #include "compiler/targets/servo_controller/tip_line.hpp"
 
@@ -49,6 +50,9 @@ struct ServoWalk {
   // the walk's budget is capacity x groups.
   std::size_t groups = 1;
   std::optional<ExactMs> over_budget_time;  // when the step at over_budget_at starts
+  // What performed when (repeat passes, section performances, includes), for an error about an
+  // action found only once fitted.
+  std::vector<StepWalker::PerformanceSpan> spans;
 };
 
 // The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
