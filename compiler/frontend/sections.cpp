@@ -1,5 +1,5 @@
 // Sections (sections.hpp): a file's `sections`, and each performance with its parameters' values
-// put in for every `$name` before its steps are walked.
+// put in for every `$name`, and its expressions worked out, before its steps are walked.
 #include "compiler/frontend/sections.hpp"
 
 #include <algorithm>
@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "compiler/frontend/param_expressions.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -31,37 +33,53 @@ bool mentions_parameter(const YamlNode& node) {
   return false;
 }
 
-// Every `$name` and `${name}` in `node`'s keys and values replaced by the parameter's text; the
-// names not in `values` go to `unknown` with where they are written.
-void put_in_parameters(YamlNode& node,
-                       const std::map<std::string, std::string, std::less<>>& values,
-                       std::vector<std::pair<Location, std::string>>& unknown) {
-  if (node.scalar.find('$') != std::string::npos) {
-    std::string out;
-    const std::string& in = node.scalar;
-    for (std::size_t i = 0; i < in.size();) {
-      const bool braced = in[i] == '$' && i + 1 < in.size() && in[i + 1] == '{';
-      std::size_t from = i + (braced ? 2 : 1), to = from;
-      while (in[i] == '$' && to < in.size() && parameter_char(in[to])) ++to;
-      if (in[i] != '$' || to == from || (braced && (to >= in.size() || in[to] != '}'))) {
-        out += in[i++];
-        continue;
-      }
-      const std::string name = in.substr(from, to - from);
-      auto it = values.find(name);
-      if (it == values.end()) {
-        unknown.emplace_back(node.location, name);
-      } else {
-        out += it->second;
-      }
-      i = to + (braced ? 1 : 0);
+// `in` with every `$name` and `${name}` replaced by the parameter's text; the names not in
+// `values` go to `unknown`, located at `at`.
+std::string splice_parameters(const std::string& in, Location at, const ParameterValues& values,
+                              std::vector<std::pair<Location, std::string>>& unknown) {
+  std::string out;
+  for (std::size_t i = 0; i < in.size();) {
+    const bool braced = in[i] == '$' && i + 1 < in.size() && in[i + 1] == '{';
+    std::size_t from = i + (braced ? 2 : 1), to = from;
+    while (in[i] == '$' && to < in.size() && parameter_char(in[to])) ++to;
+    if (in[i] != '$' || to == from || (braced && (to >= in.size() || in[to] != '}'))) {
+      out += in[i++];
+      continue;
     }
-    node.scalar = std::move(out);
+    const std::string name = in.substr(from, to - from);
+    auto it = values.find(name);
+    if (it == values.end()) {
+      unknown.emplace_back(at, name);
+    } else {
+      out += it->second;
+    }
+    i = to + (braced ? 1 : 0);
   }
-  for (YamlNode& item : node.items) put_in_parameters(item, values, unknown);
+  return out;
+}
+
+// Every `$name` and `${name}` in `node`'s keys and values replaced by the parameter's text, and
+// every value that is an expression of parameters by what it comes to; the names not in
+// `values` go to `unknown`, and what is wrong with an expression to `wrong`, with where they are
+// written. A key is a name (`$joint`), never worked out.
+void put_in_parameters(YamlNode& node, const ParameterValues& values, bool is_key,
+                       std::vector<std::pair<Location, std::string>>& unknown,
+                       std::vector<std::pair<Location, std::string>>& wrong) {
+  if (node.scalar.find('$') != std::string::npos) {
+    EvaluatedExpression e;
+    if (!is_key) e = evaluate_parameter_expression(node.scalar, values);
+    if (e.is_expression) {
+      for (std::string& name : e.unknown) unknown.emplace_back(node.location, std::move(name));
+      if (!e.error.empty()) wrong.emplace_back(node.location, std::move(e.error));
+      node.scalar = std::move(e.value);
+    } else {
+      node.scalar = splice_parameters(node.scalar, node.location, values, unknown);
+    }
+  }
+  for (YamlNode& item : node.items) put_in_parameters(item, values, false, unknown, wrong);
   for (YamlEntry& e : node.entries) {
-    put_in_parameters(e.first, values, unknown);
-    put_in_parameters(e.second, values, unknown);
+    put_in_parameters(e.first, values, true, unknown, wrong);
+    put_in_parameters(e.second, values, false, unknown, wrong);
   }
 }
 
@@ -91,7 +109,7 @@ const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, cons
       return nullptr;
     }
   }
-  std::map<std::string, std::string, std::less<>> values;
+  ParameterValues values;
   std::vector<std::string> names;  // in the order declared
   bool ok = true;
   if (params != nullptr && params->kind != YamlNode::Kind::Null) {
@@ -158,8 +176,8 @@ const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, cons
   }
   if (!mentions_parameter(*steps)) return steps;
   copy = *steps;
-  std::vector<std::pair<Location, std::string>> unknown;
-  put_in_parameters(copy, values, unknown);
+  std::vector<std::pair<Location, std::string>> unknown, wrong;
+  put_in_parameters(copy, values, false, unknown, wrong);
   for (const auto& [at, word] : unknown) {
     std::string message = "unknown parameter '$" + word + "' in " + quoted;
     const std::string suggestion = did_you_mean(word, names);
@@ -170,7 +188,8 @@ const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, cons
     }
     reporter.error(at, message, performance.value_or(here));
   }
-  return unknown.empty() ? &copy : nullptr;
+  for (const auto& [at, message] : wrong) reporter.error(at, message, performance.value_or(here));
+  return unknown.empty() && wrong.empty() ? &copy : nullptr;
 }
 
 void run_section(const YamlNode& step, const YamlNode& value, const ScopeChain& scopes,

@@ -1,6 +1,7 @@
 // Sections: named step lists a file keeps under `sections`, performed by a `section` step,
 // optionally with `params` (names and default values) given values by `with` and put in for
-// every `$name` / `${name}` in the section's steps. The step walk (step_walk.hpp) calls these;
+// every `$name` / `${name}` in the section's steps, or worked out where a value is an expression
+// of them (param_expressions.hpp). The step walk (step_walk.hpp) calls these;
 // each reports what is wrong with what it reads and returns nullptr or nothing.
 #pragma once
 
@@ -19,7 +20,8 @@ namespace seqc::compiler {
 void read_sections(const YamlNode& sections, FileScope& scope, Reporter& reporter);
 
 // The steps of a performance of `section` (called `name`, performed by `step`) with its
-// parameters' values put in for every `$name`; nullptr after reporting. `copy` holds them when
+// parameters' values put in for every `$name` and every expression of them worked out; nullptr
+// after reporting (an unknown name, a mistake in an expression). `copy` holds them when
 // anything was put in; `performance` gets the note naming the values, when there are any.
 const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, const YamlNode& section,
                                 YamlNode& copy, std::optional<Reporter::Note>& performance,

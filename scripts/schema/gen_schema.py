@@ -365,7 +365,8 @@ section_with_params = doc(
                                                "the performance gives one.",
                                                type=["string", "number"])),
         "steps": doc("Steps", "The section's steps; `$name` (or `${name}`) stands for a "
-                     "parameter's value.", type=["array", "null"],
+                     "parameter's value, and an expression of parameters (`-$x`, `$x * 2`, "
+                     "`$beat / 3`) for what it comes to.", type=["array", "null"],
                      items=doc("Step", "A step, checked by seqc where the section is performed.",
                                type="object")),
     })

@@ -94,6 +94,39 @@ TEST(Examples, ListingsAndHexMatchGoldens) {
   }
 }
 
+// examples/sway.yaml performs one section three times with expressions of its parameters; the
+// targets and times below are worked out by hand from the file (tempo 120: a beat is 500 ms).
+TEST(Examples, SwayWorksOutItsExpressions) {
+  SeqcRun r = seqc(kSource, "compile --emit listing examples/sway.yaml");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> actions;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    const auto from = line.find(" from examples/sway.yaml:");
+    if (line.rfind("  action ", 0) != 0 || from == std::string::npos) continue;
+    const auto colon = line.find(": ", from);
+    actions.push_back(line.substr(2, from - 2) + line.substr(colon));
+  }
+  const std::vector<std::string> expected{
+      "action 1 at 0 ms: claw(1)=500 wrist_roll(2)=500 wrist_pitch(3)=500 elbow(4)=500 "
+      "shoulder(5)=500 base(6)=500",
+      // swing 100, lift 60: out by +100 / +60, across by -200 / -120, back by +100 to 500 + 30
+      "action 2 at 2000 ms: wrist_pitch(3)=560 base(6)=600",
+      "action 3 at 2500 ms: wrist_pitch(3)=440 base(6)=400",
+      "action 4 at 3500 ms: wrist_pitch(3)=530 base(6)=500",
+      // swing -150, lift 40: out by -150 / +40, across by +300 / -80, back by -150 to 500 + 20
+      "action 5 at 4000 ms: wrist_pitch(3)=570 base(6)=350",
+      "action 6 at 4500 ms: wrist_pitch(3)=490 base(6)=650",
+      "action 7 at 5500 ms: wrist_pitch(3)=520 base(6)=500",
+      // swing 60 on half beats: 250 ms, 500 ms, 250 ms
+      "action 8 at 6000 ms: wrist_pitch(3)=580 base(6)=560",
+      "action 9 at 6250 ms: wrist_pitch(3)=460 base(6)=440",
+      "action 10 at 6750 ms: wrist_pitch(3)=530 base(6)=500",
+      "action 11 at 7000 ms: claw(1)=500 wrist_roll(2)=500 wrist_pitch(3)=500 elbow(4)=500 "
+      "shoulder(5)=500 base(6)=500"};
+  EXPECT_EQ(actions, expected) << r.out;
+}
+
 TEST(Help, GoldenForSeqcAndItsSubcommands) {
   SeqcRun top = seqc(kSource, "--help");
   EXPECT_EQ(top.status, 0);

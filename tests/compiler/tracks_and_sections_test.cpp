@@ -1,9 +1,10 @@
 // `together` blocks inside tracks, waits at the start of a track, and sections with parameters
-// (`params`, `with`, `$name`). Expected actions and messages are worked out by hand from
-// docs/language.md.
+// (`params`, `with`, `$name`, expressions of parameters). Expected actions and messages are
+// worked out by hand from docs/language.md.
 #include <gtest/gtest.h>
 
 #include "base/diagnostic_rules.hpp"
+#include "base/units.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
 namespace seqc::compiler {
@@ -301,6 +302,150 @@ sequence:
             (std::vector<std::string>{
                 "6:29 error: 'wrist_pitch' would move to 1100 (500 +600), above its max 1000",
                 "11:14 note: section 'nod' is performed here with amount: 600"}));
+}
+
+// ---- expressions of parameters -----------------------------------------------------------------
+
+TEST(SectionExpressions, OneParameterSwingsThereAndBack) {
+  auto out = compile_text(R"(robot: xarm
+sections:
+  swing:
+    params: {swing: 100}
+    steps:
+      - move: {base: +$swing}
+        time: 1s
+      - move: {base: -$swing}
+        time: 1s
+sequence:
+  - move: home
+    time: 1s
+  - section: swing
+    with: {swing: -120}
+  - section: swing
+)");
+  const ServoProgram& p = program_of(out);
+  // base (id 6) from 500: +(-120) = 380, back by -(-120) to 500; then +100 = 600 and back.
+  ASSERT_EQ(p.keyframes.size(), 5u) << diagnostics_of(out);
+  EXPECT_EQ(p.keyframes[1].targets, T({{6, 380}}));
+  EXPECT_EQ(p.keyframes[2].targets, T({{6, 500}}));
+  EXPECT_EQ(p.keyframes[3].targets, T({{6, 600}}));
+  EXPECT_EQ(p.keyframes[4].targets, T({{6, 500}}));
+}
+
+TEST(SectionExpressions, ScaledAndAddedValuesLandWhereTheyAreWritten) {
+  auto out = compile_text(R"(robot: xarm
+tempo: 120
+sections:
+  reach:
+    params: {x: 100, beat: 1b}
+    steps:
+      - move: {base: $x * 2 + 300, elbow: -$x / 2}
+        time: $beat / 2
+      - move: {base: ($x + 50) * 4}
+        time: 2 * $beat
+sequence:
+  - move: home
+    time: 1s
+  - section: reach
+    with: {x: 40}
+)");
+  const ServoProgram& p = program_of(out);
+  // base to 40 * 2 + 300 = 380 and elbow 500 - 20 = 480 over half a beat (250 ms), then base to
+  // (40 + 50) * 4 = 360 over two beats (1000 ms).
+  ASSERT_EQ(p.keyframes.size(), 3u) << diagnostics_of(out);
+  EXPECT_EQ(p.keyframes[1].targets, T({{4, 480}, {6, 380}}));
+  EXPECT_EQ(p.keyframes[1].time_ms, 250);
+  EXPECT_EQ(p.keyframes[2].targets, T({{6, 360}}));
+  EXPECT_EQ(p.keyframes[2].start_ms, 1250u);
+  EXPECT_EQ(p.keyframes[2].time_ms, 1000);
+}
+
+TEST(SectionExpressions, ThirdsOfABeatAddUpToTheBeat) {
+  if (!parse_time("1/3b")) GTEST_SKIP() << "the time parser does not read N/Db fractions yet";
+  auto out = compile_text(R"(robot: xarm
+tempo: 120
+sections:
+  triplet:
+    params: {beat: 1b}
+    steps:
+      - move: {base: +10}
+        time: $beat / 3
+      - move: {base: +10}
+        time: $beat / 3
+      - move: {base: +10}
+        time: $beat / 3
+sequence:
+  - move: home
+    time: 1s
+  - section: triplet
+  - move: {base: 500}
+    time: 500ms
+)");
+  const ServoProgram& p = program_of(out);
+  EXPECT_EQ(p.timeline.end, ExactMs(2000)) << diagnostics_of(out);  // not 1999.9995
+  ASSERT_EQ(p.keyframes.size(), 5u) << diagnostics_of(out);
+  EXPECT_EQ(p.keyframes[4].start_ms, 1500u);
+}
+
+TEST(SectionExpressions, MistakesSayWhereWithTheValues) {
+  auto out = compile_text(R"(robot: xarm
+tempo: 120
+sections:
+  nod:
+    params: {amount: 40, beat: 1b}
+    steps:
+      - move: {wrist_pitch: +$amount * 2}
+        time: $beat
+      - move: {wrist_pitch: $amount + 10deg}
+        time: $beat + 100ms
+sequence:
+  - move: home
+    time: 1s
+  - section: nod
+    with: {amount: 300}
+)");
+  EXPECT_EQ(messages(out),
+            (std::vector<std::string>{
+                "9:29 error: '$amount + 10deg' cannot add 300 (device units) and 10deg: device "
+                "units and degrees do not mix; write both in one unit",
+                "14:14 note: section 'nod' is performed here with amount: 300, beat: 1b",
+                "10:15 error: '$beat + 100ms' cannot add 1b and 100ms: a beat's length in ms "
+                "depends on the tempo; write both in one unit",
+                "14:14 note: section 'nod' is performed here with amount: 300, beat: 1b"}));
+  auto too_far = compile_text(R"(robot: xarm
+sections:
+  nod:
+    params: {amount: 40}
+    steps:
+      - move: {wrist_pitch: +$amount * 2}
+        time: 1s
+sequence:
+  - move: home
+    time: 1s
+  - section: nod
+    with: {amount: 300}
+)");
+  EXPECT_EQ(messages(too_far),
+            (std::vector<std::string>{
+                "6:29 error: 'wrist_pitch' would move to 1100 (500 +600), above its max 1000",
+                "11:14 note: section 'nod' is performed here with amount: 300"}));
+  auto zero = compile_text(R"(robot: xarm
+sections:
+  nod:
+    params: {amount: 40, parts: 2}
+    steps:
+      - move: {wrist_pitch: +$amount / $parts}
+        time: 1s
+sequence:
+  - move: home
+    time: 1s
+  - section: nod
+    with: {parts: 0}
+)");
+  EXPECT_EQ(messages(zero),
+            (std::vector<std::string>{
+                "6:29 error: '+$amount / $parts' divides by zero",
+                "11:14 note: section 'nod' is performed here with amount: 40, parts: 0"}));
 }
 
 }  // namespace
