@@ -33,6 +33,12 @@ using fitting::StretchSource;
 
 // Instants at which an action of a long stretch is checked (fine stretches: every millisecond).
 constexpr std::int64_t kCoarseCheckPoints = 64;
+// A stretch whose actions may run across knots is searched beside the fit that keeps them, and
+// kept only where it saves actions, so its joint free search may spend more (kAcrossWork x its
+// cap) on a finer grid of boundaries (kAcrossGrid x finer): the coarse grid that keeps an
+// ordinary stretch's search cheap would give up most of what crossing the knots can save.
+constexpr std::size_t kAcrossWork = 3;
+constexpr std::size_t kAcrossGrid = 2;
 // After a shortfall in a long stretch, how far (in samples, at least four longest actions) the
 // next search looks before a cut: each search after a shortfall starts again from it, so
 // without a window the searches of a stretch that misses often would cost shortfalls x length.
@@ -54,37 +60,35 @@ class Fitter {
       }
     }
     pos_.resize(tracks_.size());
+    for (const TimelineMarker& m : tl_.markers) marks_.push_back(m.at.round());
+    std::sort(marks_.begin(), marks_.end());
   }
 
   FitResult run() {
-    const std::vector<std::int64_t> knots = collect_knots();
-    std::size_t j = 0;
-    while (j + 1 < knots.size()) {
-      const std::vector<std::size_t> curved = curved_in(knots[j], knots[j + 1]);
-      if (curved.empty()) {
-        fit_straight(knots[j], knots[j + 1]);
+    knots_ = collect_knots();
+    std::vector<char> exact(knots_.size(), 1);
+    for (std::size_t i = 1; i + 1 < knots_.size(); ++i) exact[i] = exact_knot(knots_[i]) ? 1 : 0;
+    std::size_t j = 0, plain = 0;  // [plain, j): intervals no action may run across
+    while (j + 1 < knots_.size()) {
+      // Actions may run across a knot inside a move: a point of the curve like any other, the
+      // servos whose knot it is being curved servos of the stretch.
+      std::vector<std::size_t> curved = curved_in(knots_[j], knots_[j + 1]);
+      std::size_t end = j + 1;
+      while (end + 1 < knots_.size() && exact[end] == 0) {
+        auto joined = crossing(curved, knots_[j], knots_[end], knots_[end + 1]);
+        if (!joined) break;
+        curved = std::move(*joined);
+        ++end;
+      }
+      if (end == j + 1) {
         ++j;
         continue;
       }
-      // A stretch goes on over a knot while the same servos are curved on both sides and one
-      // of them is mid-curve there (its own segments go on): that one's target there is free.
-      std::size_t end = j + 1;
-      while (end + 1 < knots.size() && curved_in(knots[end], knots[end + 1]) == curved &&
-             !std::all_of(curved.begin(), curved.end(),
-                          [&](std::size_t s) { return has_knot(s, knots[end]); })) {
-        ++end;
-      }
-      if (knots[end] - knots[j] <= fitting::kFineMs) {
-        const std::vector<std::int64_t> inner(knots.begin() + static_cast<std::ptrdiff_t>(j) + 1,
-                                              knots.begin() + static_cast<std::ptrdiff_t>(end) + 1);
-        fit_sampled(curved, knots[j], inner);
-      } else {
-        // A long stretch is fitted knot by knot, each interval sampled on its own grid (a
-        // servo mid-curve there has its target pinned, as at a cut).
-        for (std::size_t q = j; q < end; ++q) fit_sampled(curved, knots[q], {knots[q + 1]});
-      }
-      j = end;
+      fit_knots_kept(plain, j);
+      fit_across(curved, j, end);
+      plain = j = end;
     }
+    fit_knots_kept(plain, knots_.size() - 1);
     return std::move(result_);
   }
 
@@ -222,6 +226,168 @@ class Fitter {
       if (!straight) curved.push_back(s);
     }
     return curved;
+  }
+
+  // Knots q..end with every knot an action boundary: a stretch goes on over a knot while the
+  // same servos are curved on both sides and one of them is mid-curve there (its own segments
+  // go on): that one's target there is free.
+  void fit_knots_kept(std::size_t q, std::size_t end) {
+    while (q < end) {
+      const std::vector<std::size_t> curved = curved_in(knots_[q], knots_[q + 1]);
+      if (curved.empty()) {
+        fit_straight(knots_[q], knots_[q + 1]);
+        ++q;
+        continue;
+      }
+      std::size_t e = q + 1;
+      while (e < end && curved_in(knots_[e], knots_[e + 1]) == curved &&
+             !std::all_of(curved.begin(), curved.end(),
+                          [&](std::size_t s) { return has_knot(s, knots_[e]); })) {
+        ++e;
+      }
+      if (knots_[e] - knots_[q] <= fitting::kFineMs) {
+        const std::vector<std::int64_t> inner(knots_.begin() + static_cast<std::ptrdiff_t>(q) + 1,
+                                              knots_.begin() + static_cast<std::ptrdiff_t>(e) + 1);
+        fit_sampled(curved, knots_[q], inner);
+      } else {
+        // A long stretch is fitted knot by knot, each interval sampled on its own grid (a
+        // servo mid-curve there has its target pinned, as at a cut).
+        for (std::size_t i = q; i < e; ++i) fit_sampled(curved, knots_[i], {knots_[i + 1]});
+      }
+      q = e;
+    }
+  }
+
+  // Knots q..end, the ones inside crossable: fitted with every knot a boundary and as one
+  // stretch whose actions may run across them, the latter kept only where it saves actions
+  // without a shortfall the former avoids (so a fit never costs an action, and knots stay
+  // boundaries where crossing them gains nothing).
+  void fit_across(const std::vector<std::size_t>& curved, std::size_t q, std::size_t end) {
+    const std::size_t actions = result_.actions.size(), shortfalls = result_.shortfalls.size();
+    const auto error =
+        std::make_tuple(result_.max_error, result_.max_error_at_ms, result_.max_error_servo);
+    const std::vector<std::optional<int>> pos = pos_;
+    fit_knots_kept(q, end);
+    std::vector<FittedAction> kept(
+        std::make_move_iterator(result_.actions.begin() + static_cast<std::ptrdiff_t>(actions)),
+        std::make_move_iterator(result_.actions.end()));
+    std::vector<FitShortfall> kept_short(
+        result_.shortfalls.begin() + static_cast<std::ptrdiff_t>(shortfalls),
+        result_.shortfalls.end());
+    const auto kept_error =
+        std::make_tuple(result_.max_error, result_.max_error_at_ms, result_.max_error_servo);
+    std::vector<std::optional<int>> kept_pos = std::move(pos_);
+    result_.actions.resize(actions);
+    result_.shortfalls.resize(shortfalls);
+    std::tie(result_.max_error, result_.max_error_at_ms, result_.max_error_servo) = error;
+    pos_ = pos;
+    across_ = true;
+    fit_sampled(curved, knots_[q], {knots_[end]});
+    across_ = false;
+    if (result_.actions.size() - actions < kept.size() &&
+        result_.shortfalls.size() - shortfalls <= kept_short.size()) {
+      return;
+    }
+    result_.actions.resize(actions);
+    result_.actions.insert(result_.actions.end(), std::make_move_iterator(kept.begin()),
+                           std::make_move_iterator(kept.end()));
+    result_.shortfalls.resize(shortfalls);
+    result_.shortfalls.insert(result_.shortfalls.end(), kept_short.begin(), kept_short.end());
+    std::tie(result_.max_error, result_.max_error_at_ms, result_.max_error_servo) = kept_error;
+    pos_ = std::move(kept_pos);
+  }
+
+  // Whether knot k (with the boundaries merged into it) stays an exact action boundary: a
+  // marked moment (an `at:` cue, a section, a tempo or meter change), or where some servo starts
+  // or stops moving, holds, begins its first move, or has `steps:` or `path: line` pieces (whose
+  // boundaries are the actions). Elsewhere every servo whose knot it is goes on moving through
+  // it, and the knot is a point of the curve like any other.
+  bool exact_knot(std::int64_t k) const {
+    const std::int64_t min = opt_.min_action_ms;
+    const auto near = std::lower_bound(marks_.begin(), marks_.end(), k - min + 1);
+    if (near != marks_.end() && *near < k + min) return true;
+    for (std::size_t s = 0; s < tracks_.size(); ++s) {
+      const RoundedTrack& t = tracks_[s];
+      // Segment i's start is the join (i - 1, i); segment i's end is the join (i, i + 1).
+      for (std::size_t side = 0; side < 2; ++side) {
+        const std::vector<std::int64_t>& v = side == 0 ? t.start : t.end;
+        for (auto it = std::lower_bound(v.begin(), v.end(), k - min + 1);
+             it != v.end() && *it < k + min; ++it) {
+          const auto i = static_cast<std::size_t>(it - v.begin()) + side;
+          if (!smooth_join(s, i)) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // Whether servo s's segment i begins where segment i - 1 ends, both moving, neither a first
+  // move from an unknown position nor a piece whose boundaries are kept.
+  bool smooth_join(std::size_t s, std::size_t i) const {
+    if (i == 0 || i >= tl_.count(s) || tracks_[s].end[i - 1] != tracks_[s].start[i]) return false;
+    const Segment x = tl_.segment(s, i - 1), y = tl_.segment(s, i);
+    auto moving = [](const Segment& g) {
+      if (g.kind == CurveKind::Hold || g.keep_boundaries || g.from_unknown) return false;
+      return g.from != g.to ||
+             (g.kind == CurveKind::Hermite && (g.slope_from != 0 || g.slope_to != 0));
+    };
+    return moving(x) && moving(y);
+  }
+
+  // Whether an action worth having could run across knot k: one of twice the shortest length
+  // reaching at least half the shortest either side of k, as the servos in `servos` must all
+  // follow it. A line within tolerance over it differs from the chord between the curve's
+  // values at its ends by at most the tolerance, so the chord must stay within twice the
+  // tolerance of the curve. Where none does (a turn, a sharp bend), k stays a boundary: an
+  // action across it could only graze it, and searching for one would cost time, not actions.
+  bool may_cross(const std::vector<std::size_t>& servos, std::int64_t k) const {
+    const std::int64_t min = opt_.min_action_ms, len = 2 * min;
+    for (std::int64_t a = k - len + min / 2; a <= k - min / 2; ++a) {
+      const std::int64_t b = a + len;
+      bool fits = true;
+      for (std::size_t s : servos) {
+        const auto v0 = intended(s, static_cast<double>(a));
+        const auto v1 = intended(s, static_cast<double>(b));
+        if (!v0 || !v1) return false;
+        for (std::int64_t t = a + 1; t < b && fits; ++t) {
+          const std::optional<Segment> seg = segment_at(s, static_cast<double>(t));
+          const double chord =
+              *v0 + (*v1 - *v0) * static_cast<double>(t - a) / static_cast<double>(len);
+          const double want = intended(s, static_cast<double>(t)).value_or(chord);
+          fits = std::abs(chord - want) <= 2 * (seg ? seg->tolerance : 1.0) + 1e-9;
+        }
+        if (!fits) break;
+      }
+      if (fits) return true;
+    }
+    return false;
+  }
+
+  // The curved servos of a stretch from a that goes on over knot k (not exact) to b: those of
+  // [a, k], of [k, b] and those whose knot k is, provided each has one unbroken run of segments
+  // over all of [a, b] (nullopt otherwise, or past kFineMs: then k is a boundary).
+  std::optional<std::vector<std::size_t>> crossing(const std::vector<std::size_t>& curved,
+                                                   std::int64_t a, std::int64_t k,
+                                                   std::int64_t b) const {
+    if (b - a > fitting::kFineMs) return std::nullopt;
+    std::vector<std::size_t> joined = curved_in(k, b);
+    joined.insert(joined.end(), curved.begin(), curved.end());
+    for (std::size_t s = 0; s < tracks_.size(); ++s) {
+      if (has_knot(s, k)) joined.push_back(s);
+    }
+    std::sort(joined.begin(), joined.end());
+    joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
+    for (std::size_t s : joined) {
+      const auto [first, last] = overlapping(s, a, b);
+      const RoundedTrack& t = tracks_[s];
+      if (first == last || t.start[first] > a || t.end[last - 1] < b) return std::nullopt;
+      for (std::size_t i = first; i < last; ++i) {
+        if (tl_.segment(s, i).from_unknown) return std::nullopt;
+        if (i > first && t.start[i] != t.end[i - 1]) return std::nullopt;
+      }
+    }
+    if (!may_cross(joined, k)) return std::nullopt;
+    return joined;
   }
 
   // Whether servo s has a segment boundary at knot k (or one merged into it).
@@ -519,7 +685,7 @@ class Fitter {
         Path free = in.k == 1
                         ? search(SearchKind::FreeSingle, in, cur, last, bound, 0, 0, work_free)
                         : search(SearchKind::FreeJoint, in, cur, last, bound,
-                                 joint_grid(in, cur, last, work_on), joint_cap(work_on), work_free);
+                                 grid(in, cur, last, work_on), cap(work_on), work_free);
         if (free.gave_up || better(free, best)) best = std::move(free);
       }
       if (best.gave_up) {
@@ -580,6 +746,13 @@ class Fitter {
     const double actions = std::max(1, greedy / 2);
     return static_cast<double>(width) * len * len / actions <= fitting::kWorkBudget / 4.0;
   }
+
+  // The joint free search's grid and cap (free_search.hpp) after the on-curve search spent `on`.
+  std::size_t grid(const Stretch& in, std::size_t first, std::size_t last, std::size_t on) const {
+    const std::size_t g = joint_grid(in, first, last, on);
+    return across_ ? std::max<std::size_t>(1, g / kAcrossGrid) : g;
+  }
+  std::size_t cap(std::size_t on) const { return joint_cap(on) * (across_ ? kAcrossWork : 1); }
 
   SearchLimits search_limits() const { return {min_samples_, max_samples_, &inverse_}; }
 
@@ -757,6 +930,8 @@ class Fitter {
   const Timeline& tl_;
   FitOptions opt_;
   std::vector<RoundedTrack> tracks_;
+  std::vector<std::int64_t> knots_;      // collect_knots()
+  std::vector<std::int64_t> marks_;      // the markers' instants, rounded, ascending
   std::vector<std::optional<int>> pos_;  // each servo's last target
   std::vector<double> inverse_;          // SearchLimits::inverse
   std::size_t min_samples_ = 20;         // the current stretch's action lengths, in samples
@@ -766,6 +941,7 @@ class Fitter {
   fitting::SearchMemo memo_;  // the searches run so far, by stretch content
   bool free_ = true;          // whether fit_range() tries free end points
   bool restarted_ = false;    // whether a search stopped short or was cut
+  bool across_ = false;       // whether the current stretch runs across knots (fit_across())
   FitResult result_;
 };
 

@@ -7,26 +7,32 @@
 //
 // Boundaries are whole milliseconds on the absolute timeline, so rounding never accumulates:
 // every segment boundary of every servo becomes one (a knot), merged when two fall closer than
-// the shortest action. A knot is an action boundary for every servo; the servos whose own
-// segments meet there have their targets pinned to the intended position rounded to a whole
-// unit. Between knots where every moving servo follows a straight line, one action (or equal
-// parts of at most max_action_ms) is exact. Where curves run, a stretch (over the knots where
-// the same servos stay curved and one of them is mid-curve) is fitted with all its curved
-// servos sharing the actions' boundaries, and the fewest actions are searched for twice: once
-// with every target on the rounded curve (the on-curve fit), once with each target not pinned
-// free to be any whole unit within the tolerance of the curve there and within the servo's
-// limits (the free fit: a dynamic program over boundaries that carries, per boundary, the set
-// of end values each servo can reach; exact for one servo, a small beam of labels for several,
-// on a coarser grid of boundaries where the search would cost more than about the on-curve
-// fit's time). The one with fewer actions is kept, the on-curve one on a tie; where a search
-// stops at a shortfall, the whole stretch is fitted on the curve too and the better kept: one
-// no worse in both actions and worst miss, else (one saves actions, the other misses by less)
-// the one with fewer shortfalls, then fewer actions. The free fit never costs an action except
-// to miss by less where even the shortest actions miss (more misses of no larger size are not
-// worth one), and never misses where the on-curve fit does not. No stretch begins with an action
-// that moves no servo unless every fit with the fewest actions needs one. A stretch too long to
-// search in one piece is cut where its servos move least (or at a knot), the cut pinned like a
-// knot, and each part searched alone.
+// the shortest action. A knot inside a move (every servo whose knot it is moves on both sides,
+// from one segment straight into the next, none of them a first move from an unknown position
+// nor a `steps:`/`path: line` piece, and no marker within the shortest action of it) is a point
+// of the curve like any other: a run of such knots, within kFineMs and crossable by some action
+// of twice the shortest length within tolerance, is fitted as one stretch whose actions may run
+// across them, and that fit is kept only where it has fewer actions and no more shortfalls than
+// the fit below, which ends actions at every knot. There a knot is an action boundary for every
+// servo; the servos whose own segments meet there have their targets pinned to the intended
+// position rounded to a whole unit. Between knots where every moving servo follows a straight line,
+// one action (or equal parts of at most max_action_ms) is exact. Where curves run, a stretch (over
+// the knots where the same servos stay curved and one of them is mid-curve) is fitted with all its
+// curved servos sharing the actions' boundaries, and the fewest actions are searched for twice:
+// once with every target on the rounded curve (the on-curve fit), once with each target not pinned
+// free to be any whole unit within the tolerance of the curve there and within the servo's limits
+// (the free fit: a dynamic program over boundaries that carries, per boundary, the set of end
+// values each servo can reach; exact for one servo, a small beam of labels for several, on a
+// coarser grid of boundaries where the search would cost more than about the on-curve fit's time).
+// The one with fewer actions is kept, the on-curve one on a tie; where a search stops at a
+// shortfall, the whole stretch is fitted on the curve too and the better kept: one no worse in both
+// actions and worst miss, else (one saves actions, the other misses by less) the one with fewer
+// shortfalls, then fewer actions. The free fit never costs an action except to miss by less where
+// even the shortest actions miss (more misses of no larger size are not worth one), and never
+// misses where the on-curve fit does not. No stretch begins with an action that moves no servo
+// unless every fit with the fewest actions needs one. A stretch too long to search in one piece is
+// cut where its servos move least (or at a knot), the cut pinned like a knot, and each part
+// searched alone.
 //
 // A stretch longer than 10 s (fitting/stretch.hpp, kFineMs) is fitted knot interval by knot
 // interval, each searched on a bounded number of evenly spaced instants with its tolerance

@@ -26,10 +26,12 @@
 //   time      fit_timeline()'s wall time, fitted and on-curve.
 //   knot floor (sets of servos) a lower bound on any fit that keeps every knot as an action
 //             boundary with each servo's own knots pinned to its rounded curve (the language's
-//             rule): per interval between knots, the most actions any one servo needs there on
-//             its own, by the exact single-servo program above (knot_floor()). No fit can go
-//             below it, so where floor / on-curve is above a target, that target is out of
-//             reach for every fit that keeps the knots.
+//             rule until actions could run across knots): per interval between knots, the most
+//             actions any one servo needs there on its own, by the exact single-servo program
+//             above (knot_floor()). It bounds that rule only: the fitter now runs actions across
+//             knots inside moves (a keyframe is a point of the curve like any other) and may go
+//             below it, as it does on the oscillations, and the on-curve fit does the same, so
+//             floor / on-curve is no longer a limit on the ratios.
 // Examples: every servo-controller file in examples/, compiled whole (compile_file, read from
 // disk, the song not decoded) with free end points and without (CompileOptions::
 // free_end_points): the actions of each and the median compile time of --runs runs each.
@@ -172,13 +174,16 @@ struct Totals {
         above_tolerance, shortfall_cases, fitted_ms, on_curve_ms,
         fitted_ms / std::max(1e-9, on_curve_ms));
     if (floor > 0) {
-      std::printf("%-30s        knot floor %6ld  floor / on-curve %.3f\n", "", floor,
-                  static_cast<double>(floor) / static_cast<double>(on_curve));
+      std::printf("%-30s        knot floor %6ld  floor / on-curve %.3f (every knot a boundary)\n",
+                  "", floor, static_cast<double>(floor) / static_cast<double>(on_curve));
     }
     if (exact > 0 && !exact_unknown) {
-      std::printf("%-30s        exact minimum %6ld  exact / on-curve %.3f  fitted / exact %.3f\n",
-                  "", exact, static_cast<double>(exact) / static_cast<double>(on_curve),
-                  static_cast<double>(fitted) / static_cast<double>(exact));
+      // Under the knot rule, every knot a boundary: a fit across knots may go below it.
+      std::printf(
+          "%-30s        exact minimum (every knot a boundary) %6ld  exact / on-curve "
+          "%.3f  fitted / exact %.3f\n",
+          "", exact, static_cast<double>(exact) / static_cast<double>(on_curve),
+          static_cast<double>(fitted) / static_cast<double>(exact));
     } else if (exact_unknown) {
       std::printf("%-30s        exact minimum: none (a case has a shortfall)\n", "");
     }
@@ -463,7 +468,8 @@ int main(int argc, char** argv) {
   std::printf(
       "summary: single curves fitted/on-curve %.3f (target <= 0.85: %s); multi-servo sets at "
       "tolerance 2 %.3f (target <= 0.80: %s); %d single curves above on-curve, %d above "
-      "tolerance (targets 0); knot floor at tolerance 2 %.3f of on-curve; examples' compile time "
+      "tolerance (targets 0); knot floor (every knot a boundary) at tolerance 2 %.3f of on-curve; "
+      "examples' compile time "
       "at most %.2f x on-curve "
       "(target <= 2: %s)\n",
       single_ratio, single_ratio <= 0.85 ? "met" : "MISSED", multi_ratio,

@@ -14,7 +14,9 @@ using testing::diagnostics_of;
 using testing::MemoryFiles;
 using testing::messages;
 
-// A bus robot moving servos s1..s<n> together, twice, the second step repeated three times.
+// A bus robot moving servos s1..s<n> together, twice, the second step repeated three times (each
+// pass cued `at: 0ms`, a marked instant, so that its three straight moves stay three actions
+// rather than one across the passes).
 std::string wide_dance(int servos) {
   auto step = [&](const std::string& value) {
     std::string m;
@@ -34,7 +36,8 @@ std::string wide_dance(int servos) {
          "      - move: {" +
          step("+10") +
          "}\n"
-         "        time: 500ms\n";
+         "        time: 500ms\n"
+         "        at: 0ms\n";
 }
 
 CompileOutput compile_for(const std::string& text, bool over_hid) {

@@ -166,9 +166,12 @@ sequence:
         time: 200ms
 )");
   const ServoProgram& p = program_of(out);
-  ASSERT_EQ(p.keyframes.size(), 4u);
-  EXPECT_EQ(p.keyframes[3].targets, targets({{6, 400}}));
-  EXPECT_EQ(p.keyframes[3].start_ms, 1400u);
+  // The three passes are one straight line, 100 at 1 s to 400 at 1.6 s (+100 every 200 ms), so
+  // one action runs across the passes' knots: the first move's, then that one.
+  ASSERT_EQ(p.keyframes.size(), 2u);
+  EXPECT_EQ(p.keyframes[1].targets, targets({{6, 400}}));
+  EXPECT_EQ(p.keyframes[1].start_ms, 1000u);
+  EXPECT_EQ(p.keyframes[1].time_ms, 600u);
 }
 
 TEST(Language, MirrorSwapsSidesAndReflectsAroundHome) {

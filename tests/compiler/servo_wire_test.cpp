@@ -314,13 +314,14 @@ TEST(Backend, TheProgramCarriesTheRobotsControllerModel) {
 
 // The group's capacity is checked on the fitted actions too: a walk whose lower bound fits can
 // still fit to more actions than a group holds (a curve needs more than its step's one). Three
-// straight moves fit to three actions; with a capacity of 3 the program keeps them all, with 2
-// it is an error naming 3/2 and keeps the first two.
+// straight moves, the last turning back (no action can run across the turn), fit to three
+// actions; with a capacity of 3 the program keeps them all, with 2 it is an error naming 3/2 and
+// keeps the first two.
 TEST(Backend, TheFittedActionsAreCheckedAgainstTheGroupsCapacity) {
   compiler::testing::MemoryFiles files;
   files.files["main.yaml"] =
       "robot: xarm\nsequence:\n  - move: {claw: 510}\n    time: 1s\n  - move: {claw: 520}\n"
-      "    time: 1s\n  - move: {claw: 530}\n    time: 1s\n";
+      "    time: 1s\n  - move: {claw: 510}\n    time: 1s\n";
   for (const std::size_t capacity : {std::size_t{3}, std::size_t{2}}) {
     SCOPED_TRACE(capacity);
     StagesInput in(files);

@@ -22,8 +22,9 @@ using namespace fitting_check;
 
 // A curve repeated with another tolerance is fitted for its own: the same sine-in-out, 400 to
 // 460 over 600 ms, at tolerance 1 and (after a straight return) at tolerance 2, in either
-// order. Each part needs the exact fewest actions of that curve at its own tolerance (the
-// benchmark's exhaustive reference), whatever the other part needed.
+// order, holds around the return so that each part's ends stay action boundaries. Each part
+// needs the exact fewest actions of that curve at its own tolerance (the benchmark's exhaustive
+// reference), whatever the other part needed.
 TEST(Fitting, ARepeatedCurveWithAnotherToleranceIsFittedForItsOwn) {
   const Easing easing = *parse_easing("sine-in-out").easing;
   fit_reference::Piece piece;
@@ -38,7 +39,9 @@ TEST(Fitting, ARepeatedCurveWithAnotherToleranceIsFittedForItsOwn) {
     Timeline tl;
     tl.resize(1);
     tl.add(0, segment(0, 600, 400, 460, CurveKind::Eased, easing, first));
-    tl.add(0, segment(600, 1000, 460, 400, CurveKind::Linear, easing, 1));
+    tl.add(0, segment(600, 700, 460, 460, CurveKind::Hold, easing, 1));
+    tl.add(0, segment(700, 900, 460, 400, CurveKind::Linear, easing, 1));
+    tl.add(0, segment(900, 1000, 400, 400, CurveKind::Hold, easing, 1));
     tl.add(0, segment(1000, 1600, 400, 460, CurveKind::Eased, easing, second));
     tl.end = ExactMs(1600);
     const FitResult fit = fit_timeline(tl);
