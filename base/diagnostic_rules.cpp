@@ -38,7 +38,7 @@ const std::vector<Row>& rows() {
       {{"speed-limit", "Speed or acceleration limit",
         "A move is faster, or accelerates harder, than the servo allows."},
        {"/s, above", "/s², above", "/s^2, above", "acceleration", "unbounded speed", "peaks at",
-        "peak at"}},
+        "peak at", "needs at least", "need at least"}},
       {{"fit-tolerance", "Fit tolerance",
         "The controller's actions cannot follow a curve within its tolerance."},
        {"cannot keep", "within"}},
@@ -56,6 +56,8 @@ const std::vector<Row>& rows() {
        {"missing '", "needs a", "needs one of", "must be a list", "must be a map",
         "takes a pose name", "does one thing", "not a list", "not a map", "a list of steps",
         "out of the 'together'"}},
+      {{"unused", "Unused definition", "A section of the main file that nothing performs."},
+       {"never performed"}},
       {{"invalid-value", "Invalid value", "A value outside what the language accepts."}, {}},
   };
   return table;

@@ -29,6 +29,26 @@ std::optional<PositionEntry> parse_position_entry(const YamlNode& key, const Yam
   return e;
 }
 
+std::optional<Reporter::Note> group_note(const PositionEntry& e, std::string_view name) {
+  if (e.group.empty()) return std::nullopt;
+  return Reporter::Note{
+      e.listed_at,
+      fmt::format("'{}' moves through group '{}', which lists it here", name, e.group)};
+}
+
+namespace {
+
+// The notes of a message about `e`: where it came through a group, then `note`.
+std::vector<Reporter::Note> entry_notes(const PositionEntry& e, std::string_view name,
+                                        std::optional<Reporter::Note> note) {
+  std::vector<Reporter::Note> notes;
+  if (auto g = group_note(e, name)) notes.push_back(std::move(*g));
+  if (note) notes.push_back(std::move(*note));
+  return notes;
+}
+
+}  // namespace
+
 bool check_position_limits(const PositionEntry& e, std::string_view name, long long min,
                            long long max, double units, std::string how,
                            std::optional<Reporter::Note> note, Reporter& reporter) {
@@ -44,7 +64,7 @@ bool check_position_limits(const PositionEntry& e, std::string_view name, long l
   if (!how.empty()) message += " (" + how + ")";
   message +=
       above ? ", above its max " + std::to_string(max) : ", below its min " + std::to_string(min);
-  reporter.error(e.at, std::move(message), std::move(note));
+  reporter.error(e.at, std::move(message), entry_notes(e, name, std::move(note)));
   return false;
 }
 
@@ -73,7 +93,7 @@ std::optional<double> relative_units(const PositionEntry& e, std::string_view na
     reporter.error(e.at,
                    "'" + std::string(name) + "' has no known position yet, so the relative move '" +
                        e.written + "' has nothing to add to; move it to an absolute position first",
-                   note);
+                   entry_notes(e, name, note));
     return std::nullopt;
   }
   if (!(std::fabs(delta) < 1e15)) {

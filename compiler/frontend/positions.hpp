@@ -21,7 +21,16 @@ struct PositionEntry {
   bool home = false;       // the keyword `home`
   PositionValue value;
   Location at;
+  // The group the entry names the output through (`left: +100` for each of left's servos), and
+  // where that group lists it; empty when the output is named itself. Messages about the entry
+  // name the output, with a note at `listed_at`.
+  std::string group;
+  Location listed_at;
 };
+
+// The note that says an entry came through a group (nullopt for an output named itself);
+// `name` is the output's name.
+std::optional<Reporter::Note> group_note(const PositionEntry& e, std::string_view name);
 
 // The entry `key: value` for the already identified `output`; nullopt after reporting.
 // `examples` lists sample values for the message, e.g. "500, 90deg, +50".

@@ -7,11 +7,11 @@
 namespace seqc::compiler {
 
 void Reporter::report(Severity severity, Location at, std::string message,
-                      std::optional<Note> note) {
+                      std::vector<Note> notes) {
   // Something with no place in any file (the built-in `home` pose) is wrong where it is used.
-  if (at.line == 0 && note && note->at.line > 0) {
-    at = note->at;
-    note.reset();
+  if (at.line == 0 && !notes.empty() && notes.front().at.line > 0) {
+    at = notes.front().at;
+    notes.erase(notes.begin());
   }
   auto key = std::make_tuple(static_cast<int>(severity), at.file, at.line, at.column, message);
   if (!seen_.insert(std::move(key)).second) return;
@@ -22,7 +22,7 @@ void Reporter::report(Severity severity, Location at, std::string message,
     diags_.warning(at, std::move(message));
   }
   note_alias_uses(at);
-  if (note) diags_.note(note->at, std::move(note->message));
+  for (Note& n : notes) diags_.note(n.at, std::move(n.message));
   for (auto it = performing_.rbegin(); it != performing_.rend(); ++it) {
     if (it->with_values) diags_.note(it->note.at, it->note.message);
   }

@@ -37,6 +37,11 @@ class Reporter {
   void warning(Location at, std::string message, std::optional<Note> note = {}) {
     report(Severity::Warning, at, std::move(message), std::move(note));
   }
+  // An error followed by each of `notes` (then the notes of the running performances and
+  // includes, as for any error).
+  void error(Location at, std::string message, std::vector<Note> notes) {
+    report(Severity::Error, at, std::move(message), std::move(notes));
+  }
 
   // While a section with parameters is performed: every diagnostic gets `note` (innermost
   // performance first).
@@ -96,7 +101,12 @@ class Reporter {
                std::string_view known = {});
 
  private:
-  void report(Severity severity, Location at, std::string message, std::optional<Note> note);
+  void report(Severity severity, Location at, std::string message, std::optional<Note> note) {
+    std::vector<Note> notes;
+    if (note) notes.push_back(std::move(*note));
+    report(severity, at, std::move(message), std::move(notes));
+  }
+  void report(Severity severity, Location at, std::string message, std::vector<Note> notes);
   void note_alias_uses(Location at);
 
   Diagnostics& diags_;

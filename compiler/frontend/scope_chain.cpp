@@ -192,6 +192,22 @@ std::optional<std::uint32_t> ScopeChain::time_ms(const YamlNode& node, std::stri
   return static_cast<std::uint32_t>(std::llround(ms));
 }
 
+const OutputGroup* ScopeChain::find_group(std::string_view name) const {
+  for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
+    auto g = (*it)->groups.find(name);
+    if (g != (*it)->groups.end()) return &g->second;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> ScopeChain::group_names() const {
+  std::vector<std::string> names;
+  for (const FileScope* s : chain_) {
+    for (const auto& [n, group] : s->groups) names.push_back(n);
+  }
+  return names;
+}
+
 const Pose* ScopeChain::find_pose(const YamlNode& name, Reporter& reporter) {
   for (auto it = chain_.rbegin(); it != chain_.rend(); ++it) {
     auto p = (*it)->poses.find(name.scalar);

@@ -30,10 +30,19 @@ struct Pose {
   Location at;
 };
 
+// Outputs a move names together by one name (`groups: {left: [lf_coxa, lm_coxa]}`): each member
+// gets the value written for the group, as if it were written out for each.
+struct OutputGroup {
+  std::vector<std::size_t> members;
+  std::vector<Location> member_at;  // where the group lists each member
+  Location at;                      // the group's name
+};
+
 // What a file contributes while its steps run.
 struct FileScope {
   const LoadedFile* file = nullptr;
   std::map<std::string, Pose, std::less<>> poses;
+  std::map<std::string, OutputGroup, std::less<>> groups;
   std::optional<Tempo> tempo;
   std::optional<TimeSignature> meter;
   std::optional<Song> song;           // `music:`: its tempo and meter at bar 1 are the above
@@ -41,6 +50,7 @@ struct FileScope {
   std::optional<std::uint32_t> resolution_ms;
   std::optional<double> tolerance;                               // device units
   std::map<std::string, const YamlNode*, std::less<>> sections;  // name -> its step list
+  std::map<std::string, Location, std::less<>> section_at;       // name -> where it is named
 };
 
 class ScopeChain {
@@ -81,6 +91,11 @@ class ScopeChain {
   // The pose `name` from the innermost file that defines it, else the built-in `home`; reports
   // an unknown name with "did you mean" and returns nullptr.
   const Pose* find_pose(const YamlNode& name, Reporter& reporter);
+
+  // The group `name` from the innermost running file that defines it; nullptr if none does.
+  const OutputGroup* find_group(std::string_view name) const;
+  // Every group name of the running files, for "did you mean".
+  std::vector<std::string> group_names() const;
 
   // Parses a map of `output: position` entries (`where` says where, for messages), reporting
   // what is wrong with them.

@@ -90,7 +90,10 @@ void read_sections(const YamlNode& sections, FileScope& scope, Reporter& reporte
     reporter.error(sections.location, "'sections' must be a map of section names to step lists");
     return;
   }
-  for (const auto& [name, list] : sections.entries) scope.sections[name.scalar] = &list;
+  for (const auto& [name, list] : sections.entries) {
+    scope.sections[name.scalar] = &list;
+    scope.section_at[name.scalar] = name.location;
+  }
 }
 
 const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, const YamlNode& section,

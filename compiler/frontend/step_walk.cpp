@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <iterator>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "base/diagnostics.hpp"
@@ -259,6 +260,7 @@ void StepWalker::run_sequence(const YamlNode& root, FileScope& scope, const Yaml
   scopes_.push(scope);
   run_steps(sequence, "'sequence'");
   scopes_.pop();
+  if (is_main) warn_unperformed_sections(scope);
   if (own_meter && !reporter_.include_sites().empty()) {
     change_meter(outer_meter, reporter_.include_sites().back(),
                  "the including file's meter, resuming after this include,");
@@ -455,12 +457,29 @@ void StepWalker::section_step(const YamlNode& step, const YamlNode& value) {
   run_section(step, value, scopes_, sections_running_, reporter_,
               [&](const YamlNode& steps, const std::string& what) {
                 timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
+                sections_performed_.insert(sections_running_.back());
                 section_names_.push_back(value.scalar);
                 open_span(value.location, "in section '" + value.scalar + "', performed here");
                 run_steps(steps, what);
                 close_span();
                 section_names_.pop_back();
               });
+}
+
+void StepWalker::warn_unperformed_sections(const FileScope& main) {
+  if (halted() || reporter_.errors_reported() > 0) return;
+  std::vector<std::pair<Location, std::string>> unperformed;
+  for (const auto& [name, steps] : main.sections) {
+    if (sections_performed_.count(steps) != 0) continue;
+    auto at = main.section_at.find(name);
+    if (at != main.section_at.end()) unperformed.emplace_back(at->second, name);
+  }
+  std::sort(unperformed.begin(), unperformed.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.first.line, a.first.column) < std::tie(b.first.line, b.first.column);
+  });
+  for (const auto& [at, name] : unperformed) {
+    reporter_.warning(at, "section '" + name + "' is defined but never performed");
+  }
 }
 
 void StepWalker::together_step(const YamlNode& step, const YamlNode& tracks) {

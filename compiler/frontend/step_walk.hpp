@@ -23,6 +23,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -226,6 +227,10 @@ class StepWalker {
   void repeat_step(const YamlNode& step, const YamlNode& value);
   void include_step(const YamlNode& value);
   void section_step(const YamlNode& step, const YamlNode& value);
+  // After a walk of the main file that reached its end without an error: a warning at each of
+  // its sections that no performance reached (an error can keep a performance from being
+  // walked, and a halted walk never read its end).
+  void warn_unperformed_sections(const FileScope& main);
   void together_step(const YamlNode& step, const YamlNode& tracks);
   void tempo_step(const YamlNode& value);
   // With a song (`music:`), a tempo or meter anywhere else is an error: true after reporting.
@@ -237,6 +242,7 @@ class StepWalker {
 
   const StepTable& table_;
   std::vector<const YamlNode*> sections_running_;  // for cycle detection
+  std::set<const YamlNode*> sections_performed_;   // every section a performance reached
   std::vector<std::string_view> section_names_;    // the running sections, outermost first
   std::size_t blocks_deep_ = 0;
   std::size_t steps_walked_ = 0;

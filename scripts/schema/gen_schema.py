@@ -487,6 +487,12 @@ TOP = {
                       "move without `steps` becomes `time / resolution` equal actions; at least "
                       "`20ms`). Raspblock: one streamed step every `resolution` (default `20ms`).",
                       type="string"),
+    "groups": doc("Groups", "Servo controllers: names for sets of servos, `name: [servo, ...]`; "
+                  "a move, pose or waypoint naming a group gives each of its servos the value.",
+                  type="object", propertyNames=ref("servoName"),
+                  additionalProperties=doc("Group", "The servos it moves, each once.", type="array",
+                                           minItems=1, uniqueItems=True,
+                                           items=ref("servoName"))),
     "poses": doc("Poses", "Named positions for some servos, `name: {servo: position, ...}`; "
                  "`home` is built in.", type=["object", "null"],
                  additionalProperties=doc("Pose", "`servo: position, ...`", type=["object", "null"],
@@ -513,6 +519,7 @@ servo_file = {
 car_file = {
     "properties": {
         "tolerance": False,
+        "groups": False,
         "sequence": ref("carSteps"),
         "sections": {"additionalProperties": ref("carSection")},
         "resolution": ref("carTime"),

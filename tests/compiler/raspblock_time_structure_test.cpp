@@ -220,18 +220,77 @@ TEST(RaspblockTime, AnOutputInTwoTracksAtAnyDepth) {
       "          time: 100ms\n"
       "        - drive: {y: 1}\n"
       "          time: 100ms\n");
+  EXPECT_EQ(messages(out),
+            (std::vector<std::string>{
+                "10:17 error: 'servo1' moves in two tracks, 'a' and 'b'; an output may move in one "
+                "track of a 'together' only",
+                "5:11 note: 'servo1' moves in track 'a' here",
+                "18:11 error: 'pan' moves in two tracks, 'b' and 'e'; an output may move in one "
+                "track of a 'together' only",
+                "15:17 note: 'pan' moves in track 'b' here",
+                "20:11 error: the car drives in two tracks, 'b' and 'e'; the drive belongs to one "
+                "track of a 'together' only",
+                "13:17 note: the car drives in track 'b' here"}));
+}
+
+// Pan in one track and tilt in another: one gimbal packet an instant carries both, each axis
+// at its value then. Gimbal packet: FF FE 02 04 PAN(2) TILT(2) CHK, CHK = 02 + 04 + the data.
+TEST(RaspblockTime, PanAndTiltInSeparateTracksShareEachPacket) {
+  // From 100 ms tilt goes 1500 -> 1000 in two steps (1250 at 100 ms, 1000 at 150 ms); from
+  // 150 ms pan goes 1500 -> 2000 in two (1750 at 150 ms, 2000 at 200 ms).
+  //   0 ms: 1500 1500 = 05 dc 05 dc: 6 + 05 + dc + 05 + dc = 0x1c8 -> c8
+  // 100 ms: 1500 1250 = 05 dc 04 e2: 6 + 05 + dc + 04 + e2 = 0x1cd -> cd
+  // 150 ms: 1750 1000 = 06 d6 03 e8: 6 + 06 + d6 + 03 + e8 = 0x1cd -> cd (one packet for both)
+  // 200 ms: 2000 1000 = 07 d0 03 e8: 6 + 07 + d0 + 03 + e8 = 0x1c8 -> c8
   EXPECT_EQ(
-      messages(out),
-      (std::vector<std::string>{
-          "10:17 error: 'servo1' moves in two tracks, 'a' and 'b'; an output may move in one "
-          "track of a 'together' only",
-          "5:11 note: 'servo1' moves in track 'a' here",
-          "18:11 error: the gimbal (pan and tilt) moves in two tracks, 'b' and 'e'; pan and tilt "
-          "share one command, so they move in one track of a 'together' only",
-          "15:17 note: the gimbal (pan and tilt) moves in track 'b' here",
-          "20:11 error: the car drives in two tracks, 'b' and 'e'; the drive belongs to one "
-          "track of a 'together' only",
-          "13:17 note: the car drives in track 'b' here"}));
+      frames_of("robot: raspblock\n"
+                "sequence:\n"
+                "  - move: home\n"
+                "    time: 100ms\n"
+                "  - together:\n"
+                "      p:\n"
+                "        - wait: 50ms\n"
+                "        - move: {pan: 2000}\n"
+                "          time: 100ms\n"
+                "          steps: 2\n"
+                "      t:\n"
+                "        - move: {tilt: 1000}\n"
+                "          time: 100ms\n"
+                "          steps: 2\n"),
+      (std::vector<std::string>{"0: ff fe 02 04 05 dc 05 dc c8", "100: ff fe 02 04 05 dc 04 e2 cd",
+                                "150: ff fe 02 04 06 d6 03 e8 cd",
+                                "200: ff fe 02 04 07 d0 03 e8 c8", "250: " + kStop}));
+}
+
+TEST(RaspblockTime, PanAndTiltFirstSetInSeparateTracksAtOneInstant) {
+  // Both unknown before: each goes straight to its target in the block's first packet.
+  // 2000 1000 = 07 d0 03 e8: 6 + 07 + d0 + 03 + e8 = 0x1c8 -> c8.
+  EXPECT_EQ(frames_of("robot: raspblock\n"
+                      "sequence:\n"
+                      "  - together:\n"
+                      "      p:\n"
+                      "        - move: {pan: 2000}\n"
+                      "          time: 100ms\n"
+                      "      t:\n"
+                      "        - move: {tilt: 1000}\n"
+                      "          time: 100ms\n"),
+            (std::vector<std::string>{"0: ff fe 02 04 07 d0 03 e8 c8", "100: " + kStop}));
+  // Tilt comes 50 ms later: the packet at 0 ms has no tilt to carry.
+  auto out = compile_text(
+      "robot: raspblock\n"
+      "sequence:\n"
+      "  - together:\n"
+      "      p:\n"
+      "        - move: {pan: 2000}\n"
+      "          time: 100ms\n"
+      "      t:\n"
+      "        - wait: 50ms\n"
+      "        - move: {tilt: 1000}\n"
+      "          time: 100ms\n");
+  EXPECT_EQ(messages(out), (std::vector<std::string>{
+                               "5:11 error: the gimbal command sets pan and tilt together and "
+                               "'tilt' has no position yet at 0 s; give it one before this, or "
+                               "move it at the same instant"}));
 }
 
 TEST(RaspblockTime, TempoAndMeterStayOutOfTracks) {

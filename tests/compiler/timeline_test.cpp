@@ -6,6 +6,7 @@
 
 #include "compiler/timeline/easing.hpp"
 #include "compiler/timeline/exact_time.hpp"
+#include "compiler/timeline/speed_within_tolerance.hpp"
 #include "compiler/timeline/timeline.hpp"
 
 namespace seqc::compiler {
@@ -93,6 +94,31 @@ TEST(Easing, BadNamesSayWhatIsWrong) {
             "cubic-bezier needs four numbers: cubic-bezier(x1, y1, x2, y2)");
   EXPECT_EQ(parse_easing("cubic-bezier 0.1").message,
             "write cubic-bezier as cubic-bezier(x1, y1, x2, y2)");
+}
+
+// The least peak speed within a tolerance, units per second, on numbers worked by hand.
+TEST(SpeedWithinTolerance, MatchesTheBandsTangentsWorkedByHand) {
+  auto segment = [](const char* ease, double ms, double tolerance) {
+    Segment s;
+    s.kind = CurveKind::Eased;
+    s.easing = *parse_easing(ease).easing;
+    s.start = ExactMs(1000);
+    s.end = ExactMs(1000) + ExactMs::from_double(ms);
+    s.from = 400;
+    s.to = 500;
+    s.tolerance = tolerance;
+    return s;
+  };
+  // circ-in, A = 100 units over T: the line from the end tangent to the band's lower edge,
+  // (A^2 - tol^2) / (2 tol T): (10000 - 1) / 2 = 4999.5/s over 1 s at tolerance 1, ...
+  EXPECT_NEAR(speed_within_tolerance(segment("circ-in", 1000, 1), 1), 4999.5, 1e-6);
+  // ... (10000 - 25) / 20 = 498.75/s over 2 s at tolerance 5, and circ-out mirrors circ-in.
+  EXPECT_NEAR(speed_within_tolerance(segment("circ-in", 2000, 5), 5), 498.75, 1e-6);
+  EXPECT_NEAR(speed_within_tolerance(segment("circ-out", 1000, 1), 1), 4999.5, 1e-6);
+  // Pinned at both ends, no motion is slower on average than 100 units in 1 s.
+  Segment line = segment("linear", 1000, 1);
+  line.kind = CurveKind::Linear;
+  EXPECT_NEAR(speed_within_tolerance(line, 1), 100, 1e-9);
 }
 
 TEST(Timeline, SegmentsAndHolds) {

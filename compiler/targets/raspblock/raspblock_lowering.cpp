@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "compiler/targets/raspblock/raspblock_lowering_state.hpp"
 
 namespace seqc::compiler {
@@ -25,6 +27,7 @@ RaspblockProgram RaspblockLowering::run(const LoadedFile& main) {
     // Safety: whatever the steps did, the stream ends with every speed at zero.
     emit(raspblock::Rocker{0, 0, 0}, end_at_);
   }
+  merge_gimbal_packets();
   // Tracks of a `together` each run from the block's start: the stream goes out in time order
   // (packets at one instant keep the order the steps wrote them in).
   std::stable_sort(packets_.begin(), packets_.end(),
@@ -189,6 +192,47 @@ void RaspblockLowering::emit_at(ExactMs at_time, raspblock::Packet packet, Locat
   const std::int64_t at_ms = std::clamp<std::int64_t>(
       at_time.round(), 0, static_cast<std::int64_t>(kRaspblockMaxStreamMs));
   packets_.push_back(TimedPacket{static_cast<std::uint32_t>(at_ms), std::move(packet), at});
+}
+
+void RaspblockLowering::merge_gimbal_packets() {
+  std::vector<std::size_t> order;
+  for (const auto& [index, set] : gimbal_sets_) order.push_back(index);
+  // The order of the stream's own sort: by time, then as written.
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return packets_[a].at_ms < packets_[b].at_ms;
+  });
+  std::optional<int> pan, tilt;
+  std::vector<bool> dropped(packets_.size(), false);
+  for (std::size_t first = 0; first < order.size();) {
+    // The gimbal packets of one millisecond: what each sets, then one packet at the first's place.
+    std::size_t end = first;
+    while (end < order.size() && packets_[order[end]].at_ms == packets_[order[first]].at_ms) {
+      const GimbalSet& set = gimbal_sets_[order[end]];
+      if (set.pan) pan = set.pan;
+      if (set.tilt) tilt = set.tilt;
+      if (end > first) dropped[order[end]] = true;
+      ++end;
+    }
+    TimedPacket& p = packets_[order[first]];
+    if (!pan || !tilt) {
+      reporter_.error(p.source,
+                      fmt::format("the gimbal command sets pan and tilt together and '{}' has no "
+                                  "position yet at {}; give it one before this, or move it at "
+                                  "the same instant",
+                                  pan ? "tilt" : "pan", format_seconds(p.at_ms)));
+    } else {
+      p.packet = raspblock::GimbalServos{static_cast<std::uint16_t>(*pan),
+                                         static_cast<std::uint16_t>(*tilt)};
+    }
+    first = end;
+  }
+  if (std::find(dropped.begin(), dropped.end(), true) == dropped.end()) return;
+  std::vector<TimedPacket> kept;
+  kept.reserve(packets_.size());
+  for (std::size_t i = 0; i < packets_.size(); ++i) {
+    if (!dropped[i]) kept.push_back(std::move(packets_[i]));
+  }
+  packets_ = std::move(kept);
 }
 
 // The car follows the last speeds it was sent: of several Rocker packets in one millisecond

@@ -4,9 +4,10 @@
 //
 // The walk (lists, repeat, include, sections, together, at, tempo, meter) is StepWalker's
 // (step_walk.hpp), as for the servo controllers: beats and bars go through the timeline's tempo
-// map, and a `together` block runs each track from the block's start. In a block the gimbal
-// (pan and tilt share one command), each of servo1-4 and the drive belong to one track each;
-// packets from the tracks are put in time order when the walk ends.
+// map, and a `together` block runs each track from the block's start. In a block pan, tilt,
+// each of servo1-4 and the drive belong to one track each; packets from the tracks are put in
+// time order when the walk ends, and the gimbal packets (one command carries pan and tilt)
+// merged by instant, so pan in one track and tilt in another share each packet.
 #pragma once
 
 #include <array>
@@ -126,6 +127,11 @@ class RaspblockLowering final : public StepWalker {
   // Sends at `at_time` rounded to the nearest millisecond of the stream's clock.
   void emit_at(ExactMs at_time, raspblock::Packet packet, Location at);
   void drop_superseded_speeds();
+  // Before the stream is put in time order: each gimbal packet gets, of the axis its step did
+  // not set, the value that axis has at its instant (tracks are walked one after another, not in
+  // time order); gimbal packets of one millisecond become one, at the first's place. Reports an
+  // axis that has no value yet where the other is sent.
+  void merge_gimbal_packets();
   void check_capacity();
   const Robot& robot_;
   std::array<std::optional<int>, kChannels.size()> pos_;
@@ -134,6 +140,11 @@ class RaspblockLowering final : public StepWalker {
   Location last_drive_at_;
   Location end_at_;
   std::vector<TimedPacket> packets_;
+  // Per gimbal packet (its index in packets_ before the time sort), the axes its step set.
+  struct GimbalSet {
+    std::optional<int> pan, tilt;
+  };
+  std::map<std::size_t, GimbalSet> gimbal_sets_;
   std::map<LocationKey, std::vector<Location>> include_sites_;
 };
 

@@ -129,22 +129,11 @@ bool RaspblockLowering::claim(const std::map<std::size_t, int>& targets, bool dr
       "an output may move in one track of a "
       "'together' only";
   bool ok = true;
-  bool gimbal = false;
+  // Pan and tilt are outputs of their own: the gimbal packets of two tracks are merged by
+  // instant once the walk ends (merge_gimbal_packets).
   for (const auto& [c, units] : targets) {
-    if (kChannels[c].gimbal) {
-      gimbal = true;
-      continue;
-    }
     ok = claims_.claim(c, "'" + std::string(kChannels[c].name) + "'", "moves", kOneTrack, at,
                        reporter_) &&
-         ok;
-  }
-  // One command sets both gimbal servos, so pan and tilt belong to the same track.
-  if (gimbal) {
-    ok = claims_.claim(kPan, "the gimbal (pan and tilt)", "moves",
-                       "pan and tilt share one command, so they move in one track of a "
-                       "'together' only",
-                       at, reporter_) &&
          ok;
   }
   if (drives) {
@@ -281,7 +270,9 @@ bool RaspblockLowering::resolve_move(const YamlNode& target, std::map<std::size_
   // One packet sets both gimbal servos, so the one not moving must have a known position.
   const bool pan = out.count(kPan) != 0;
   const bool tilt = out.count(kTilt) != 0;
-  if (ok && pan != tilt) {
+  // In a track, another track may set the other at the same instant: merge_gimbal_packets
+  // checks it in time order.
+  if (ok && pan != tilt && !claims_.in_block()) {
     const std::size_t other = pan ? kTilt : kPan;
     if (!pos_[other]) {
       reporter_.error(target.location,
@@ -333,17 +324,23 @@ void RaspblockLowering::interpolate(Location at, ExactMs start, ExactMs t, std::
     for (const auto& [c, seg] : curve) {
       next[c] = k < n ? static_cast<int>(std::llround(seg.value(when))) : targets.at(c);
     }
-    if (next[kPan] || next[kTilt]) {
+    // A gimbal packet when pan or tilt changes; the value of the one not set here is what it
+    // has when the walk ends (merge_gimbal_packets), which another track may set meanwhile.
+    const bool pan_changes = next[kPan] && pos_[kPan] != next[kPan];
+    const bool tilt_changes = next[kTilt] && pos_[kTilt] != next[kTilt];
+    if (pan_changes || tilt_changes) {
       const int h = next[kPan].value_or(pos_[kPan].value_or(kHome));
       const int v = next[kTilt].value_or(pos_[kTilt].value_or(kHome));
-      if (pos_[kPan] != h || pos_[kTilt] != v) {
-        emit_at(
-            send,
-            raspblock::GimbalServos{static_cast<std::uint16_t>(h), static_cast<std::uint16_t>(v)},
-            at);
-        pos_[kPan] = h;
-        pos_[kTilt] = v;
+      const std::size_t before = packets_.size();
+      emit_at(send,
+              raspblock::GimbalServos{static_cast<std::uint16_t>(h), static_cast<std::uint16_t>(v)},
+              at);
+      if (packets_.size() > before) {
+        gimbal_sets_[before] = {pan_changes ? next[kPan] : std::nullopt,
+                                tilt_changes ? next[kTilt] : std::nullopt};
       }
+      if (next[kPan]) pos_[kPan] = next[kPan];
+      if (next[kTilt]) pos_[kTilt] = next[kTilt];
     }
     for (std::size_t c = kTilt + 1; c < kChannels.size(); ++c) {
       if (!next[c] || pos_[c] == next[c]) continue;

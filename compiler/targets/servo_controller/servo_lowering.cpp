@@ -331,8 +331,8 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
     return;
   }
   reporter_.check_keys(root,
-                       {"robot", "music", "tempo", "meter", "resolution", "tolerance", "poses",
-                        "sections", "sequence", "name", "description"},
+                       {"robot", "music", "tempo", "meter", "resolution", "tolerance", "groups",
+                        "poses", "sections", "sequence", "name", "description"},
                        "at the top level");
   reporter_.check_free_text(root);
   if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {
@@ -349,7 +349,8 @@ FileScope& ServoLowering::scope_for(const LoadedFile& f) {
   auto [scope, fresh] = scopes_.open(f, reporter_);
   if (!fresh) return scope;
   const YamlNode& root = *f.root;
-  scopes_.push(scope);  // so this file's tempo, meter and poses apply while it is read
+  scopes_.push(scope);  // so this file's tempo, meter, groups and poses apply while it is read
+  if (const YamlNode* g = root.find("groups")) parse_groups(*g, scope);
   if (const YamlNode* p = root.find("poses")) {
     compiler::parse_poses(
         *p, scope, "'poses' must be a map of pose names to servo positions",

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "compiler/frontend/file_loader.hpp"
@@ -70,7 +71,10 @@ class ServoLowering final : public StepWalker {
   void tolerance_step(const YamlNode& value);
 
   // ---- values (servo_lowering.cpp) ----------------------------------------------------------
+  // A map of `servo: position` entries; a group's name gives each of its servos the value.
   std::vector<PositionEntry> parse_positions(const YamlNode& map, const std::string& where);
+  // A file's `groups` into `scope` (its poses may name them, so they are read first).
+  void parse_groups(const YamlNode& groups, FileScope& scope);
   ScopeChain::ParseEntries entries_parser();
   double absolute_units(const PositionEntry& e, std::size_t target, bool reflect) const;
   bool check_limits(const PositionEntry& e, std::size_t target, double units, std::string how,
@@ -117,6 +121,8 @@ class ServoLowering final : public StepWalker {
     double start_ms = 0;
     std::optional<Reporter::Note> note;
     std::string moved, value, shape, limit;  // "100 in 2000ms", "400/s", " on this ...", "300/s"
+    // A vertical curve's speed is its least within the tolerance: " within a tolerance of 1".
+    std::string within;
   };
   // Speed and acceleration along a segment, from its exact derivative; what breaks a limit goes
   // to `findings`. `degrees`: the distance as written in degrees (NaN: in device units).
@@ -194,6 +200,9 @@ class ServoLowering final : public StepWalker {
   std::optional<Location> sequence_at_;
   std::vector<LineRecord> lines_;   // every `path: line` move, in the order walked
   std::vector<ArmMove> arm_moves_;  // every step that moved an arm's joint, in the order walked
+  // speed_within_tolerance() over distance / time, by easing and tolerance / distance: a
+  // repeat's passes, a section's performances and moves of one shape ask again.
+  std::map<std::pair<std::string, double>, double> speeds_within_tolerance_;
 };
 
 }  // namespace seqc::compiler

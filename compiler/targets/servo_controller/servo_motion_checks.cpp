@@ -1,6 +1,7 @@
 // The checks of a motion step's segments: a curve overshooting the servo's limits, speed and
 // acceleration against max_speed and max_accel from the curve's exact derivative (servos that
-// break a limit alike get one warning), and a first move that may start anywhere.
+// break a limit alike get one warning), and a first move that may start anywhere. A curve
+// vertical somewhere is judged by the least speed that keeps within its tolerance.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "compiler/timeline/easing.hpp"
+#include "compiler/timeline/speed_within_tolerance.hpp"
 #include "protocol/lsc/group_download.hpp"
 
 namespace seqc::compiler {
@@ -102,7 +104,23 @@ void ServoLowering::check_kinematics(std::size_t servo, const Segment& segment, 
     }
     speed = std::isinf(peak) ? peak : refine_peak(velocity, t0, t1, kCurveSamples, best, peak);
   }
-  const bool too_fast = info.max_speed && speed > *info.max_speed + 1e-9;
+  // A vertical curve has no finite peak: the controller keeps within the tolerance of it, so
+  // what it must reach is the gentlest motion within the tolerance (speed_within_tolerance.hpp).
+  std::optional<double> within;
+  if (std::isinf(speed) && info.max_speed) {
+    // The bound is (distance / time) x a factor of the easing and tolerance / distance alone,
+    // so moves of one shape share it whatever their time.
+    const double distance = std::abs(segment.to - segment.from);
+    const auto key = std::make_pair(segment.easing.name(), segment.tolerance / distance);
+    auto known = speeds_within_tolerance_.find(key);
+    if (known == speeds_within_tolerance_.end()) {
+      const double factor =
+          speed_within_tolerance(segment, segment.tolerance) * ms / 1000.0 / distance;
+      known = speeds_within_tolerance_.emplace(key, factor).first;
+    }
+    within = known->second * distance * 1000.0 / ms;
+  }
+  const bool too_fast = info.max_speed && (within ? *within : speed) > *info.max_speed + 1e-9;
   const bool too_sudden = info.max_accel && accel > *info.max_accel + 1e-9;
   if (!too_fast && !too_sudden) return;
   // In the author's units: degrees as written, else device units.
@@ -122,13 +140,17 @@ void ServoLowering::check_kinematics(std::size_t servo, const Segment& segment, 
   f.curved = segment.kind != CurveKind::Linear;
   if (too_fast) {
     f.speed = true;
-    // A vertical tangent (circ, some cubic-beziers) has no finite peak to print.
-    f.value = std::isinf(speed) ? "unbounded speed" : number(speed * per_unit, 0) + u + "/s";
+    // A vertical tangent (circ, some cubic-beziers) has no finite peak to print: its bound
+    // within the tolerance, to the hundredth (4999.5/s, 498.75/s).
+    f.value =
+        within ? number(*within * per_unit, 2) + u + "/s" : number(speed * per_unit, 0) + u + "/s";
+    if (within) f.within = " within a tolerance of " + number(segment.tolerance, 3);
     f.limit = number(*info.max_speed * per_unit, 0) + u + "/s";
     findings.push_back(f);
   }
   if (too_sudden) {
     f.speed = false;
+    f.within.clear();
     f.value =
         std::isinf(accel) ? "unbounded acceleration" : number(accel * per_unit, 0) + u + "/s^2";
     f.limit = number(*info.max_accel * per_unit, 0) + u + "/s^2";
@@ -148,7 +170,7 @@ void ServoLowering::report_kinematics(const std::vector<KinematicFinding>& findi
     for (std::size_t j = i; j < findings.size(); ++j) {
       const KinematicFinding& g = findings[j];
       if (done[j] || g.speed != f.speed || g.at != f.at || g.moved != f.moved ||
-          g.value != f.value || g.limit != f.limit || g.shape != f.shape ||
+          g.value != f.value || g.limit != f.limit || g.shape != f.shape || g.within != f.within ||
           g.note.has_value() != f.note.has_value() ||
           (g.note && (g.note->at != f.note->at || g.note->message != f.note->message))) {
         continue;
@@ -159,7 +181,13 @@ void ServoLowering::report_kinematics(const std::vector<KinematicFinding>& findi
     }
     const bool unbounded = f.value.rfind("unbounded", 0) == 0;
     std::string message;
-    if (names.size() == 1) {
+    if (!f.within.empty()) {
+      message = names.size() == 1
+                    ? f.moved + " needs at least " + f.value + f.shape + f.within + ", above " +
+                          names[0] + "'s " + f.limit
+                    : "servos " + servo_names(names) + " move " + f.moved + " and need at least " +
+                          f.value + f.shape + f.within + ", above their " + f.limit;
+    } else if (names.size() == 1) {
       message = f.speed ? f.moved +
                               (unbounded  ? " has "
                                : f.curved ? " peaks at "
