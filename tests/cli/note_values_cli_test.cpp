@@ -20,9 +20,9 @@ sequence:
     time: 1/3b
   - move: {base: 650}
     time: 1/3b
-  - move: {base: 700}
+  - move: {base: 600}
     time: 1/3b
-  - move: {base: 500}
+  - move: {base: 700}
     time: 2b
   - move: {base: 520}
     time: 1bar

@@ -43,7 +43,9 @@ TEST(NoteValues, TwelveThirdsOfABeatEndExactlyOnBeatFour) {
 TEST(NoteValues, SixthsOfABarAddUpToTheBar) {
   std::string text = "robot: xarm\ntempo: 120\nmeter: 4/4\nsequence:\n";
   for (int i = 0; i < 6; ++i)
-    text += "  - move: {base: 6" + std::to_string(i) + "0}\n    time: 1/6bar\n";
+    // Back and forth, so every step's end is a turn and stays an action boundary.
+    text += "  - move: {base: " + std::string(i % 2 == 0 ? "600" : "650") +
+            "}\n    time: 1/6bar\n";
   text += "  - move: {base: 500}\n    at: bar 2\n    time: 2/3b\n";
   auto out = compile_text(text);
   const ServoProgram& p = program_of(out);

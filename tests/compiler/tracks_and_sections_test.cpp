@@ -370,7 +370,7 @@ sections:
     steps:
       - move: {base: +10}
         time: $beat / 3
-      - move: {base: +10}
+      - move: {base: -10}
         time: $beat / 3
       - move: {base: +10}
         time: $beat / 3
