@@ -46,7 +46,7 @@ std::vector<std::string> CompileOutput::inputs() const {
 
 ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoader& loader,
                            Reporter& reporter, const CompileOptions& options) {
-  ServoWalk walk = walk_servo_file(robot, file, loader, reporter);
+  ServoWalk walk = walk_servo_file(robot, file, loader, reporter, options.start);
   if (!ready_to_fit(walk, robot, reporter)) {
     ServoProgram unfitted;
     unfitted.robot = robot.info;

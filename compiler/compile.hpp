@@ -39,6 +39,9 @@ struct CompileOptions {
   // GroupDownload frame must fit one 64-byte report, so an action naming more servos than one
   // frame holds there is an error at its step (compiler/targets/servo_controller/hid_actions.hpp).
   bool over_hid = false;
+  // Where the robot stands, for a first move relative to it: read just before the run, or
+  // assumed at home with a note (check), or neither (such a move is then an error).
+  RobotStart start{};
 };
 
 struct CompileOutput {

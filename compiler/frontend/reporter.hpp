@@ -37,6 +37,10 @@ class Reporter {
   void warning(Location at, std::string message, std::optional<Note> note = {}) {
     report(Severity::Warning, at, std::move(message), std::move(note));
   }
+  // A note on its own: what the check assumed where it could not know (printed once).
+  void note(Location at, std::string message) {
+    report(Severity::Note, at, std::move(message), std::nullopt);
+  }
 
   // While a section with parameters is performed: every diagnostic gets `note` (innermost
   // performance first).

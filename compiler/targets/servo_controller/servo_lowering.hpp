@@ -45,12 +45,15 @@ struct ServoWalk {
   std::optional<Location> sequence_at;  // the main file's `sequence:`
   std::vector<ServoTipLine> lines;      // every `path: line` move, in the order walked
   std::size_t capacity = 0;             // actions one group holds on the robot's controller
+  // The ids of the servos whose first move is relative to where the robot stands, in the order
+  // walked.
+  std::vector<std::uint8_t> start_reads;
 };
 
 // The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
 // whatever they are.
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter);
+                          Reporter& reporter, const RobotStart& start = {});
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more
