@@ -30,7 +30,7 @@ const std::vector<Row>& rows() {
        {"include", "included from here"}},
       {{"action-budget", "Action budget",
         "The sequence needs more actions than a group holds, or none."},
-       {"actions; a group holds", "makes no actions"}},
+       {"actions; a group holds", "makes no actions", "only rests"}},
       {{"first-move", "First move speed",
         "A servo's first move may start anywhere in its limits, and from the far end it would "
         "be faster than its max_speed."},
@@ -51,7 +51,7 @@ const std::vector<Row>& rows() {
         "write 'bar N'", "past its end"}},
       {{"position", "Position", "A position that is not a number, degree or relative move."},
        {"is not a position", "not a whole number of device units", "no known position",
-        "nothing to hold", "positive distance"}},
+        "nothing to hold", "positive distance", "from where the robot stands"}},
       {{"structure", "Structure", "A missing key, or a value of the wrong kind."},
        {"missing '", "needs a", "needs one of", "must be a list", "must be a map",
         "takes a pose name", "does one thing", "not a list", "not a map", "a list of steps",

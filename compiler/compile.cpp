@@ -74,7 +74,7 @@ ServoProgram compile_servo(const Robot& robot, const LoadedFile& file, FileLoade
   const std::size_t stored = stored_groups(robot.profile);
   const std::size_t groups =
       options.chain && options.first_group < stored ? stored - options.first_group : 1;
-  ServoWalk walk = walk_servo_file(robot, file, loader, reporter, groups);
+  ServoWalk walk = walk_servo_file(robot, file, loader, reporter, groups, options.start);
   if (!ready_to_fit(walk, robot, reporter)) {
     ServoProgram unfitted;
     unfitted.robot = robot.info;

@@ -44,6 +44,9 @@ struct CompileOptions {
   // or only looks (check, simulate, plot, preview); false: one group, as `compile` writes.
   bool chain = false;
   std::uint8_t first_group = 0;
+  // Where the robot stands, for a first move relative to it: read just before the run, or
+  // assumed at home with a note (check), or neither (such a move is then an error).
+  RobotStart start{};
 };
 
 struct CompileOutput {

@@ -45,6 +45,12 @@ std::string render_listing(const compiler::ServoProgram& program,
     const compiler::Keyframe& k = program.keyframes[*p.keyframe];
     // An action no step wrote (the hold before an `at:` cue) says so rather than "from :".
     const std::string from = seqc::terminal_safe(location_text(k.source, sources));
+    if (k.targets.empty()) {
+      // An action naming no servo is an opening rest: every servo stays where it stands.
+      out += fmt::format("  action {} at {} ms, a rest (no servo named)\n", *p.keyframe + 1,
+                         k.start_ms);
+      continue;
+    }
     out += from.empty()
                ? fmt::format("  action {} at {} ms, a hold:", *p.keyframe + 1, k.start_ms)
                : fmt::format("  action {} at {} ms from {}:", *p.keyframe + 1, k.start_ms, from);

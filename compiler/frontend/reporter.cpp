@@ -18,8 +18,10 @@ void Reporter::report(Severity severity, Location at, std::string message,
   if (severity == Severity::Error) {
     ++errors_;
     diags_.error(at, std::move(message));
-  } else {
+  } else if (severity == Severity::Warning) {
     diags_.warning(at, std::move(message));
+  } else {
+    diags_.note(at, std::move(message));
   }
   note_alias_uses(at);
   for (Note& n : notes) diags_.note(n.at, std::move(n.message));

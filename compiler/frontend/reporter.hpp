@@ -42,6 +42,10 @@ class Reporter {
   void error(Location at, std::string message, std::vector<Note> notes) {
     report(Severity::Error, at, std::move(message), std::move(notes));
   }
+  // A note on its own: what the check assumed where it could not know (printed once).
+  void note(Location at, std::string message) {
+    report(Severity::Note, at, std::move(message), std::nullopt);
+  }
 
   // While a section with parameters is performed: every diagnostic gets `note` (innermost
   // performance first).

@@ -3,6 +3,10 @@
 
 namespace seqc::compiler {
 
+bool servos_report_positions(const RobotInfo& robot) {
+  return !robot.servos.empty() && robot.servos.front().min == 0;
+}
+
 const ServoInfo* RobotInfo::find_id(std::uint8_t id) const {
   for (const ServoInfo& s : servos) {
     if (s.id == id) return &s;

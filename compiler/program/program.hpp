@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -54,6 +55,22 @@ struct RobotInfo {
   const ServoInfo* find_name(std::string_view name) const;
 };
 
+// Where the robot stands when it runs, for a servo whose first move is relative to it
+// (`move: {base: +100}` before any absolute move of 'base'). Only the xArm family's bus servos
+// can say where they stand (servos_report_positions), and only once the robot is there.
+struct RobotStart {
+  // Read from the servos just before the run (`upload --run`, `play`): id -> position. Such a
+  // move then starts from its servo's reading, as a move from a known position.
+  std::map<std::uint8_t, std::uint16_t> read{};
+  // Without a reading: true checks the move from the servo's home and says so in a note
+  // (`check`); false makes it an error naming what reads the servos (`compile`, `upload`).
+  bool assume_home = false;
+};
+
+// Whether `robot`'s servos report where they stand (ServoPositionRead): bus servos, whose range
+// starts at 0; a PWM servo's (500..2500 us) does not, and it has no position to report.
+bool servos_report_positions(const RobotInfo& robot);
+
 // One controller action: move the listed servos to their positions over time_ms. Servos not
 // listed keep their position. A wait is an action that re-sends the held positions.
 struct Keyframe {
@@ -75,6 +92,9 @@ struct ServoProgram {
   // A dance longer than one group (chain.hpp): the bar (from 1; 0 without bar lines) each of
   // its groups starts on, in order; empty when one group holds it.
   std::vector<std::int64_t> group_bars;
+  // The ids of the servos whose first move is relative to where the robot stands (RobotStart):
+  // a run reads them and compiles again from the readings.
+  std::vector<std::uint8_t> start_reads;
   // What the author meant, per servo (by index into robot.servos), before fitting.
   Timeline timeline;
   // The largest distance between the compiled motion and the intended curve, and where.

@@ -46,6 +46,18 @@ std::optional<FirstMoveTooFast> first_move_too_fast(const Board& board, const Li
   return std::nullopt;
 }
 
+std::optional<std::map<std::uint8_t, std::uint16_t>> read_start(
+    const Board& board, const Line& line, const std::vector<std::uint8_t>& ids) {
+  if (!board.queries || ids.empty()) return std::nullopt;
+  upload::ControllerLink link(line.transport, line.clock, line.interrupted);
+  XarmSession session(link, line.timeout);
+  const auto read = read_positions(session, ids);
+  if (!read || read->size() != ids.size()) return std::nullopt;
+  std::map<std::uint8_t, std::uint16_t> at;
+  for (const lsc::ServoTarget& t : *read) at[t.id] = t.position;
+  return at;
+}
+
 std::optional<FirstMoveTooFast> run_too_fast(const Board& board, const Line& line,
                                              const compiler::CompileOutput& output, bool force) {
   const compiler::ServoProgram* program = output.servo_program();

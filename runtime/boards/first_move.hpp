@@ -9,8 +9,10 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "compiler/compile.hpp"
 #include "runtime/boards/board.hpp"
@@ -31,6 +33,12 @@ struct FirstMoveTooFast {
 // move; nullopt when none is too fast or nothing could be read.
 std::optional<FirstMoveTooFast> first_move_too_fast(const Board& board, const Line& line,
                                                     const compiler::ServoProgram& program);
+
+// Where the servos `ids` stand, read over `line` (ServoPositionRead) before a run compiles a
+// first move relative to it (compiler::RobotStart): id -> position; nullopt when the board
+// cannot be read, the read is not answered, or a servo does not answer.
+std::optional<std::map<std::uint8_t, std::uint16_t>> read_start(
+    const Board& board, const Line& line, const std::vector<std::uint8_t>& ids);
 
 // As first_move_too_fast for the program `output` is, unless `force` (--force): nullopt then,
 // and for an output that is not a servo program.

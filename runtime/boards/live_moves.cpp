@@ -14,6 +14,9 @@ std::vector<LiveMove> changed_moves(const compiler::ServoProgram& program) {
       auto it = sent.find(t.id);
       if (it == sent.end() || it->second != t.position) m.targets.push_back(t);
     }
+    // An opening rest (no servo named yet) sends nothing: the servos stay where they stand
+    // until the first move, which keeps its own start.
+    if (k.targets.empty() && sent.empty()) continue;
     if (m.targets.empty()) {
       // Nothing changes: one servo where it already is keeps the move on the schedule.
       if (!k.targets.empty()) {

@@ -5,7 +5,8 @@
 // six-servo MultiServoMove is 25 bytes (26 ms), a one-servo one 10 bytes, so dropping what does
 // not change is what lets dense schedules leave on time. A keyframe in which nothing changes
 // still leaves, with one servo sent where it already is, so every move keeps its time and play
-// still ends when the last move does.
+// still ends when the last move does. The keyframes of an opening rest, before any servo is
+// named, send nothing: the servos stay where they stand and the first move leaves on its time.
 #pragma once
 
 #include <cstdint>

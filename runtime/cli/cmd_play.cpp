@@ -13,6 +13,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
 #include "runtime/cli/realtime_option.hpp"
+#include "runtime/cli/run_compile.hpp"
 #include "runtime/cli/servo_play.hpp"
 #include "runtime/cli/trace_option.hpp"
 
@@ -54,8 +55,7 @@ void add_play_command(CLI::App& app, Context& ctx, Outcome& result) {
       *cmd, opts->realtime,
       "Send with real-time (SCHED_FIFO) priority, so a busy machine cannot delay frames");
   cmd->callback([&ctx, &result, opts] {
-    Compiled c =
-        compile_and_report(ctx, opts->file, opts->strict, SongCheck::Skip, nullptr, false, true);
+    Compiled c = compile_for_run(ctx, opts->file, opts->strict, opts->port);
     result.code = c.code;
     if (!c.output.program) return;
     // The whole play: opening the port and the song are short beside it.

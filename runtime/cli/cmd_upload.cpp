@@ -30,6 +30,7 @@
 #include "runtime/cli/counted.hpp"
 #include "runtime/cli/music_play.hpp"
 #include "runtime/cli/realtime_option.hpp"
+#include "runtime/cli/run_compile.hpp"
 #include "runtime/cli/trace_option.hpp"
 #include "runtime/io/time_text.hpp"
 #include "runtime/upload/progress_text.hpp"
@@ -196,9 +197,11 @@ ExitCode run_upload(Context& ctx, const UploadArgs& a) {
   if (a.resync > 0 && (!a.run || a.dry_run)) {
     return usage_error(ctx, "--resync needs --run (the computer starts each piece), not --dry-run");
   }
-  // With --run a dance longer than one group is stored as several, started by the computer.
-  Compiled c = compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock, false,
-                                  a.run && !a.dry_run);
+  // With --run a dance longer than one group is stored as several, started by the computer
+  // (compile_for_run chains), and a first move may be relative to where the robot stands.
+  Compiled c = a.run && !a.dry_run
+                   ? compile_for_run(ctx, a.file, a.strict, a.port, &a.clock)
+                   : compile_and_report(ctx, a.file, a.strict, SongCheck::Skip, &a.clock);
   if (c.code != ExitCode::Ok) return c.code;
   if (explain_no_storage(c.output, a.file, ctx.err)) return ExitCode::InvalidInput;
   const boards::Board& board = boards::board_for(c.output);

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <ostream>
+#include <utility>
 
 #include "base/terminal_text.hpp"
 #include "protocol/lsc/group_download.hpp"
@@ -13,13 +14,23 @@
 namespace seqc::cli {
 namespace {
 
+// `start`: where the robot stands, for a first move relative to it (RobotStart).
 compiler::CompileOptions compile_options(Context& ctx, bool strict, SongCheck song,
-                                         std::int32_t clock_ppm, bool over_hid, bool chain) {
+                                         std::int32_t clock_ppm, bool over_hid, bool chain,
+                                         compiler::RobotStart start = {}) {
   return {.strict = strict,
           .songs = song == SongCheck::Decode ? ctx.songs : nullptr,
           .clock_ppm = clock_ppm,
           .over_hid = over_hid,
-          .chain = chain};
+          .chain = chain,
+          .start = std::move(start)};
+}
+
+// Where a checked file's robot is taken to stand: at home, said in a note where it matters.
+compiler::RobotStart home_start() {
+  compiler::RobotStart start;
+  start.assume_home = true;
+  return start;
 }
 
 ExitCode program_code(const compiler::CompileOutput& output) {
@@ -63,9 +74,10 @@ void add_link_port_option(CLI::App& cmd, std::string& port) {
 }
 
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
-                         std::int32_t clock_ppm, bool over_hid, bool chain) {
+                         std::int32_t clock_ppm, bool over_hid, bool chain,
+                         compiler::RobotStart start) {
   const compiler::CompileOptions options =
-      compile_options(ctx, strict, song, clock_ppm, over_hid, chain);
+      compile_options(ctx, strict, song, clock_ppm, over_hid, chain, std::move(start));
   Compiled c;
   if (path == "-") {
     auto text = io::read_input(path, ctx.files, ctx.in, kStdinName);
@@ -95,15 +107,23 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict, 
   return c;
 }
 
+void report_compile(Context& ctx, const Compiled& c, bool strict) {
+  report(ctx, c.output.read_error, c.output.diagnostics, c.output.sources, strict);
+}
+
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
                     std::int32_t clock_ppm, bool over_hid) {
   if (path == "-") {
-    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid, true);
+    Compiled c =
+        compile_quietly(ctx, path, strict, song, clock_ppm, over_hid, true, home_start());
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
+  // A choreography checked or shown here is checked from home where it moves relative to where
+  // the robot stands, and may take any number of groups; a show's performers are stored without
+  // reading, one group each, as `upload` stores them.
   compiler::Loaded file =
       compiler::load(path, ctx.files,
-                     {compile_options(ctx, strict, song, clock_ppm, over_hid, true),
+                     {compile_options(ctx, strict, song, clock_ppm, over_hid, true, home_start()),
                       compile_options(ctx, strict, song, 0, false, false)});
   const ExitCode code =
       file.is_show() ? show_code(file.show(), strict) : program_code(file.program());
@@ -153,7 +173,9 @@ ExitCode write_output(Context& ctx, const std::string& path, const std::string& 
 
 compiler::ShowOutput load_show_and_report(Context& ctx, const std::string& path, bool strict,
                                           ExitCode& code) {
-  compiler::Loaded show(compiler::load_show(path, ctx.files, {strict}));
+  compiler::CompileOptions options;
+  options.strict = strict;
+  compiler::Loaded show(compiler::load_show(path, ctx.files, options));
   report(ctx, show, strict);
   code = show_code(show.show(), strict);
   return std::move(show.show());

@@ -68,7 +68,8 @@ void add_link_port_option(CLI::App& cmd, std::string& port);
 // dance may take consecutive groups (CompileOptions::chain; loads and views always may).
 Compiled compile_quietly(Context& ctx, const std::string& path, bool strict,
                          SongCheck song = SongCheck::Skip, std::int32_t clock_ppm = 0,
-                         bool over_hid = false, bool chain = false);
+                         bool over_hid = false, bool chain = false,
+                         compiler::RobotStart start = {});
 // Compiles and prints the diagnostics (or the file error) on ctx.err. With `clock`, the ppm to
 // pre-scale for is resolved from --clock-ppm and --rig first (resolve_clock_ppm); when it cannot
 // be, nothing is compiled and code is its status. over_hid: the port is USB HID
@@ -77,6 +78,9 @@ Compiled compile_and_report(Context& ctx, const std::string& path, bool strict,
                             SongCheck song = SongCheck::Skip,
                             const ClockScaleOptions* clock = nullptr, bool over_hid = false,
                             bool chain = false);
+
+// Prints what compile_quietly found, as compile_and_report does.
+void report_compile(Context& ctx, const Compiled& c, bool strict);
 
 // A file given to a command that takes a choreography or a show (check, plot, simulate,
 // preview), read once (compiler/load.hpp). code: Ok, FileError (the file given cannot be read)

@@ -97,9 +97,10 @@ TEST(DiagnosticContracts, AbsurdPositionsAreSaidAsWrittenNotWrappedAround) {
                 "degrees (90deg) or a relative move (+50, -10deg)\n"
                 "    3 |   - move: {base: 9999999999999999999999, claw: 1e3deg}\n"
                 "      |                                                ^\n",
-                "main.yaml:5:18: error: 'base' has no known position yet, so the relative move "
-                "'-99999999999999999999999' has nothing to add to; move it to an absolute "
-                "position first\n"
+                "main.yaml:5:18: error: 'base' moves -99999999999999999999999 from where the "
+                "robot stands, which only a reading of its servos tells: 'seqc upload --run' and "
+                "'seqc play' read them first; or move 'base' to an absolute position before "
+                "this\n"
                 "    5 |   - move: {base: -99999999999999999999999, elbow: 1000.0}\n"
                 "      |                  ^\n"}))
       << testing::diagnostics_of(out);

@@ -167,7 +167,7 @@ sequence:
   EXPECT_EQ(p.keyframes[2].targets.size(), 6u);
 }
 
-TEST(TrackWaits, NothingToHoldAtTheVeryStart) {
+TEST(TrackWaits, ABlockWhoseTracksAllStartLaterOpensWithARest) {
   auto out = compile_text(R"(robot: xarm
 sequence:
   - together:
@@ -180,12 +180,18 @@ sequence:
           at: 500ms
           time: 1s
 )");
-  // Nothing has a position before the block, and neither track moves at its start (0.5 s).
-  EXPECT_EQ(messages(out),
-            std::vector<std::string>{
-                "3:5 error: nothing to hold from the start of this 'together' until 0.5 s: no "
-                "servo has a position yet and no track moves at the start; begin one track with "
-                "a move"});
+  // Nothing has a position before the block, and neither track moves at its start: the
+  // servos stand where they are until 0.5 s (an action naming none), then each first move is
+  // sent with the action that ends it (claw 300 at 1.5 s, base 600 at 2 s).
+  const ServoProgram& rest = program_of(out);
+  ASSERT_EQ(rest.keyframes.size(), 4u) << diagnostics_of(out);
+  EXPECT_EQ(rest.keyframes[0].start_ms, 0u);
+  EXPECT_EQ(rest.keyframes[0].time_ms, 500);
+  EXPECT_TRUE(rest.keyframes[0].targets.empty());
+  EXPECT_EQ(rest.keyframes[2].start_ms, 1000u);
+  EXPECT_EQ(rest.keyframes[2].targets, T({{1, 300}}));
+  EXPECT_EQ(rest.keyframes[3].start_ms, 1500u);
+  EXPECT_EQ(rest.keyframes[3].targets, T({{6, 600}}));
   auto fine = compile_text(R"(robot: xarm
 sequence:
   - together:

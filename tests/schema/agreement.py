@@ -35,7 +35,8 @@ ALLOWED = {
     "tests/golden/bad-position-above-max.yaml": "position limit (device units and degrees)",
     "tests/golden/bad-relative-out-of-limits.yaml": "relative move past a limit",
     "tests/golden/bad-mirrored-out-of-limits.yaml": "mirrored position past a limit",
-    "tests/golden/bad-relative-unknown-start.yaml": "relative move without a known start",
+    "tests/golden/bad-relative-unknown-start.yaml": "a relative first move of a PWM servo, "
+                                                    "which cannot say where it stands",
     # Where the arm's tip can go is geometry: reach, joint limits and the table.
     "tests/golden/bad-tip-moves.yaml": "a tip out of reach, past a joint's limit, below the table",
     # Names defined elsewhere in the file or by the profile.
@@ -59,9 +60,6 @@ ALLOWED = {
     "tests/golden/bad-at-in-the-past.yaml": "an 'at' earlier than the steps before it end",
     "tests/golden/bad-beats-without-tempo.yaml": "beats need a tempo set elsewhere",
     "tests/golden/bad-ease-steps-too-short.yaml": "time / steps below 20ms",
-    "tests/golden/bad-wait-first.yaml": "a wait before any servo has a position",
-    "tests/golden/bad-together-nothing-at-start.yaml": "tracks that all start later, nothing "
-                                                       "moved before",
     "tests/golden/bad-at-bar-in-the-past.yaml": "a bar position the steps before it passed",
     "tests/golden/bad-meter-off-bar-line.yaml": "a meter change off a bar line",
     "tests/golden/bad-too-many-actions.yaml": "the action budget (255 groups of 1,020)",

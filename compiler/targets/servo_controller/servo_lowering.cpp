@@ -44,10 +44,11 @@ const StepTable kServoSteps = {
 };
 
 ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter,
-                             std::size_t groups)
+                             std::size_t groups, const RobotStart& start)
     : StepWalker(loader, reporter, kServoSteps, robot.home_servos, robot.info.servos.size()),
       groups_(std::max<std::size_t>(1, groups)),
       robot_(robot),
+      start_(start),
       pos_(robot.info.servos.size()) {}
 
 ServoWalk ServoLowering::run(const LoadedFile& main) {
@@ -73,6 +74,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   walk.groups = groups_;
   walk.over_budget_time = over_budget_time_;
   walk.spans = std::move(spans_);
+  walk.start_reads = start_reads_;
   for (const LineRecord& line : lines_) {
     ServoTipLine l{line.request, {}, line.path_at};
     std::copy_n(line.servos.begin(), 4, l.joints.begin());
@@ -83,8 +85,8 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
 }
 
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter, std::size_t groups) {
-  return ServoLowering(robot, loader, reporter, groups).run(main);
+                          Reporter& reporter, std::size_t groups, const RobotStart& start) {
+  return ServoLowering(robot, loader, reporter, groups, start).run(main);
 }
 
 namespace {
@@ -250,6 +252,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
   program.robot = robot.info;
   program.group_capacity = walk.capacity;
   program.groups = walk.groups;
+  program.start_reads = walk.start_reads;
   std::vector<FittedAction> actions = fit_result.actions;
   const std::uint64_t needed = std::max<std::uint64_t>(actions.size(), walk.min_actions);
   const std::uint64_t budget = std::uint64_t{walk.capacity} * walk.groups;
@@ -270,6 +273,11 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
     actions.resize(std::min<std::size_t>(actions.size(), budget));
   } else if (actions.empty() && walk.sequence_at && reporter.errors_reported() == 0) {
     reporter.error(*walk.sequence_at, "the sequence makes no actions; a group needs at least one");
+  } else if (walk.sequence_at && reporter.errors_reported() == 0 &&
+             std::all_of(actions.begin(), actions.end(),
+                         [](const FittedAction& a) { return a.targets.empty(); })) {
+    // Rests alone: the robot would only stand where it stands.
+    reporter.error(*walk.sequence_at, "the sequence only rests: it moves no servo; add a move");
   }
   warn_shortfalls(robot.info, walk, fit_result, walk.timeline, reporter);
   warn_late_first_moves(robot.info, walk.timeline, actions, reporter);
@@ -414,13 +422,7 @@ void ServoLowering::own_step(const YamlNode& verb, const YamlNode& step) {
 }
 
 bool ServoLowering::hold_until(ExactMs target, const YamlNode& at) {
-  const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
-  // In a track another track may be moving meanwhile (block_run checks that one does).
-  if (!known && !claims_.in_block()) {
-    reporter_.error(at.location,
-                    "nothing to hold until 'at': no servo has a position yet; start with a move");
-    return false;
-  }
+  // Before the first move this is an opening rest: the servos stay where they stand.
   // The hold is at least one action per 30 s (a far position must not reach the fitter).
   const auto gap = static_cast<std::uint64_t>((target - now_).value());
   count_actions(std::max<std::uint64_t>(1, (gap + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs),
@@ -469,60 +471,26 @@ std::unique_ptr<StepWalker::RepeatBudget> ServoLowering::repeat_budget(const Yam
   return std::make_unique<ServoRepeatBudget>(min_actions_, truncated_, budget(), times);
 }
 
-// The block needs as many actions as its busiest track; and when nothing had a position
-// before it, one track must move at its start, or the controller has nothing to send.
+// The block needs as many actions as its busiest track. Tracks that start later (or a block
+// in which none moves at its start) rest meanwhile: their servos stay where they stand.
 class ServoBlockRun final : public StepWalker::BlockRun {
  public:
-  ServoBlockRun(ServoLowering& lowering, const YamlNode& step, std::uint64_t& min_actions,
-                bool known, bool outer, std::size_t errors_before)
-      : lowering_(lowering),
-        step_(step),
-        min_actions_(min_actions),
-        before_(min_actions),
-        known_(known),
-        outer_(outer),
-        errors_before_(errors_before) {}
+  explicit ServoBlockRun(std::uint64_t& min_actions)
+      : min_actions_(min_actions), before_(min_actions) {}
   void track_begins() override { min_actions_ = before_; }
   void track_ends() override { most_ = std::max(most_, min_actions_ - before_); }
-  void block_ends(ExactMs start, ExactMs longest) override {
+  void block_ends(ExactMs /*start*/, ExactMs /*longest*/) override {
     min_actions_ = before_ + most_;
-    lowering_.check_block_start(step_, start, longest, known_ || outer_, errors_before_);
   }
 
  private:
-  ServoLowering& lowering_;
-  const YamlNode& step_;
   std::uint64_t& min_actions_;
   std::uint64_t before_;
   std::uint64_t most_ = 0;
-  bool known_, outer_;
-  std::size_t errors_before_;
 };
 
-std::unique_ptr<StepWalker::BlockRun> ServoLowering::block_run(const YamlNode& step) {
-  const bool known = std::any_of(pos_.begin(), pos_.end(), [](auto& p) { return p.has_value(); });
-  return std::make_unique<ServoBlockRun>(*this, step, min_actions_, known, claims_.in_block(),
-                                         reporter_.errors_reported());
-}
-
-void ServoLowering::check_block_start(const YamlNode& step, ExactMs start, ExactMs longest,
-                                      bool held, std::size_t errors_before) {
-  // A track may wait (or start `at:` later) while another moves.
-  if (held || reporter_.errors_reported() > errors_before) return;
-  std::optional<double> first;
-  for (std::size_t s = 0; s < timeline_.servo_count(); ++s) {
-    if (timeline_.count(s) == 0) continue;
-    const double t = timeline_.start_of(s, 0).value();
-    first = first ? std::min(*first, t) : t;
-  }
-  const double until = first.value_or(longest.value());
-  if (until > start.value()) {
-    reporter_.error(step.location,
-                    "nothing to hold from the start of this 'together' until " +
-                        format_seconds(static_cast<std::uint64_t>(std::llround(until))) +
-                        ": no servo has a position yet and no track moves at the start; begin "
-                        "one track with a move");
-  }
+std::unique_ptr<StepWalker::BlockRun> ServoLowering::block_run(const YamlNode& /*step*/) {
+  return std::make_unique<ServoBlockRun>(min_actions_);
 }
 
 void ServoLowering::mirror_step(const YamlNode& step, const YamlNode& body) {

@@ -53,13 +53,17 @@ struct ServoWalk {
   // What performed when (repeat passes, section performances, includes), for an error about an
   // action found only once fitted.
   std::vector<StepWalker::PerformanceSpan> spans;
+  // The ids of the servos whose first move is relative to where the robot stands, in the order
+  // walked.
+  std::vector<std::uint8_t> start_reads;
 };
 
 // The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
 // whatever they are.
 // `groups`: how many consecutive groups the dance may take (1: the classic one group).
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter, std::size_t groups = 1);
+                          Reporter& reporter, std::size_t groups = 1,
+                          const RobotStart& start = {});
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more

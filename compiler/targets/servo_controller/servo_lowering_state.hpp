@@ -47,7 +47,8 @@ std::optional<FarEnd> far_end(const ServoInfo& info, int target);
 
 class ServoLowering final : public StepWalker {
  public:
-  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter, std::size_t groups = 1);
+  ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter, std::size_t groups,
+                const RobotStart& start);
   ServoWalk run(const LoadedFile& main);
 
  private:
@@ -62,11 +63,6 @@ class ServoLowering final : public StepWalker {
   bool stopped() const override { return over_budget_at_.has_value(); }
   std::unique_ptr<RepeatBudget> repeat_budget(const YamlNode& step, long long times) override;
   std::unique_ptr<BlockRun> block_run(const YamlNode& step) override;
-  // After a `together` block (from `start` to `longest`): unless some servo `held` a position
-  // before it, reports a block none of whose tracks moves at its start.
-  void check_block_start(const YamlNode& step, ExactMs start, ExactMs longest, bool held,
-                         std::size_t errors_before);
-  friend class ServoBlockRun;
   void mirror_step(const YamlNode& step, const YamlNode& body);
   void tolerance_step(const YamlNode& value);
 
@@ -110,6 +106,10 @@ class ServoLowering final : public StepWalker {
   bool resolve_targets(const std::vector<PositionEntry>& entries,
                        const std::optional<Reporter::Note>& note,
                        std::vector<std::optional<int>>& targets, std::vector<double>& degrees);
+  // Where `servo` stands before its first move, `e`, relative to it: its reading, or its home
+  // with a note under RobotStart::assume_home; nullopt after reporting that it is unknown here.
+  std::optional<int> standing(std::size_t servo, const PositionEntry& e,
+                              const std::optional<Reporter::Note>& note);
   void add_segment(std::size_t servo, Segment segment);
   // One servo breaking its max_speed or max_accel on one segment, kept until the step ends so
   // the servos that break it alike get one warning.
@@ -188,6 +188,8 @@ class ServoLowering final : public StepWalker {
   std::optional<ExactMs> over_budget_time_;
 
   const Robot& robot_;
+  const RobotStart& start_;
+  std::vector<std::uint8_t> start_reads_;  // ServoWalk::start_reads
   std::vector<std::optional<int>> pos_;
   bool mirrored_ = false;
   // A lower bound of the actions so far: once it passes the budget, repeats stop expanding.

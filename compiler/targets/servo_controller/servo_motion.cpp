@@ -33,8 +33,17 @@ bool ServoLowering::resolve_targets(const std::vector<PositionEntry>& entries,
       double delta =
           e.value.degrees ? robot_.degrees_to_units(e.value.amount, true) : e.value.amount;
       if (reflect) delta = -delta;
-      auto reached = relative_units(e, robot_.info.servos[servo].name, base[servo], delta, how,
-                                    note, reporter_);
+      std::optional<int> from = base[servo];
+      if (!from) {
+        from = standing(servo, e, note);
+        if (!from) {
+          ok = false;
+          continue;
+        }
+        pos_[servo] = *from;  // the move starts where the servo stands
+      }
+      auto reached =
+          relative_units(e, robot_.info.servos[servo].name, from, delta, how, note, reporter_);
       if (!reached) {
         ok = false;
         continue;
@@ -61,6 +70,34 @@ bool ServoLowering::resolve_targets(const std::vector<PositionEntry>& entries,
     }
   }
   return ok;
+}
+
+std::optional<int> ServoLowering::standing(std::size_t servo, const PositionEntry& e,
+                                           const std::optional<Reporter::Note>& note) {
+  const ServoInfo& info = robot_.info.servos[servo];
+  if (!servos_report_positions(robot_.info)) {
+    std::string how;
+    relative_units(e, info.name, std::nullopt, 0, how, note, reporter_);  // says it is unknown
+    return std::nullopt;
+  }
+  if (std::find(start_reads_.begin(), start_reads_.end(), info.id) == start_reads_.end()) {
+    start_reads_.push_back(info.id);
+  }
+  if (const auto read = start_.read.find(info.id); read != start_.read.end()) return read->second;
+  if (start_.assume_home) {
+    reporter_.note(e.at, "'" + info.name + "' moves " + e.written +
+                             " from where the robot stands; checked here from its home " +
+                             std::to_string(info.home) +
+                             " ('seqc upload --run' and 'seqc play' read where it stands)");
+    return info.home;
+  }
+  reporter_.error(e.at,
+                  "'" + info.name + "' moves " + e.written +
+                      " from where the robot stands, which only a reading of its servos "
+                      "tells: 'seqc upload --run' and 'seqc play' read them first; or move '" +
+                      info.name + "' to an absolute position before this",
+                  note);
+  return std::nullopt;
 }
 
 void ServoLowering::move_step(const YamlNode& step, const YamlNode& target, bool keys_ok) {
@@ -320,18 +357,12 @@ void ServoLowering::wait_step(const YamlNode& step, const YamlNode& value) {
       if (pos_[i]) held.push_back(i);
     }
   }
-  if (held.empty() && claims_.in_block()) {
-    // A track that has moved nothing yet waits: its servos simply do not move yet.
+  if (held.empty()) {
+    // An opening rest (or a track that has moved nothing yet): the servos stay where they
+    // stand, and the actions until the first move name none of them.
     count_actions((static_cast<std::uint64_t>(t) + lsc::kMaxActionMs - 1) / lsc::kMaxActionMs,
                   step.location);
     now_ += *total;
-    return;
-  }
-  if (held.empty()) {
-    reporter_.error(step.location,
-                    "nothing to hold: no servo has a position yet (a controller action carries "
-                    "positions); move first, then wait (to start some servos later than others, "
-                    "give their first step an 'at:' in a 'together' track)");
     return;
   }
   for (std::size_t servo : held) {
