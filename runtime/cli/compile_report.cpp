@@ -114,8 +114,7 @@ void report_compile(Context& ctx, const Compiled& c, bool strict) {
 Loaded load_quietly(Context& ctx, const std::string& path, bool strict, SongCheck song,
                     std::int32_t clock_ppm, bool over_hid) {
   if (path == "-") {
-    Compiled c =
-        compile_quietly(ctx, path, strict, song, clock_ppm, over_hid, true, home_start());
+    Compiled c = compile_quietly(ctx, path, strict, song, clock_ppm, over_hid, true, home_start());
     return {compiler::Loaded(std::move(c.output)), c.code};
   }
   // A choreography checked or shown here is checked from home where it moves relative to where

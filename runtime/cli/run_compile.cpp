@@ -53,8 +53,8 @@ Compiled compile_for_run(Context& ctx, const std::string& path, bool strict,
   }
   compiler::RobotStart start;
   start.read = std::move(*read);
-  Compiled c = compile_quietly(ctx, path, strict, SongCheck::Skip, ppm, false, true,
-                               std::move(start));
+  Compiled c =
+      compile_quietly(ctx, path, strict, SongCheck::Skip, ppm, false, true, std::move(start));
   c.clock_ppm = ppm;
   report_compile(ctx, c, strict);
   return c;

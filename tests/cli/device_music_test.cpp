@@ -323,5 +323,40 @@ TEST(DeviceMusic, ABoardWithTooFewGroupsRefusesTheChainBeforeAnyStart) {
   EXPECT_EQ(h.received().find("5555050600"), std::string::npos);
 }
 
+// Features meeting: a chained dance that opens with a rest and whose first move is relative to
+// where the robot stands. The base stands at 420: the rest is an action naming no servo (one
+// bar: 2 beats of wait), the first move takes it to 470, then 700 passes of two one-beat moves:
+// 1,402 actions. Group 0 holds bar 1 (2 actions) and bars 2-255 (254 x 4): 1,018 actions, so
+// group 1 starts on bar 256, 255 x 2 s = 510 s in, with the 384 left.
+TEST(DeviceMusic, AChainedDanceOpeningWithARestFromWhereTheRobotStands) {
+  emu::XArmConfig config = at_9600();
+  config.initial_positions = {{6, 420}};
+  DeviceHarness h(config);
+  h.files.add("rest.yaml",
+              "robot: xarm\ntempo: 120\nmeter: 4/4\nsequence:\n  - wait: 2b\n"
+              "  - move: {base: +50}\n    time: 2b\n  - repeat: 700\n    do:\n"
+              "      - move: {base: 300}\n        time: 1b\n"
+              "      - move: {base: 700}\n        time: 1b\n");
+  const RunResult r = h.run({"upload", "rest.yaml", "--port", "emu:xarm", "--run", "--force"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto g0 = h.emu.stored_group(0);
+  const auto g1 = h.emu.stored_group(1);
+  ASSERT_TRUE(g0 && g1) << r.err;
+  ASSERT_EQ(g0->size(), 1018u);
+  ASSERT_EQ(g1->size(), 384u);
+  EXPECT_EQ((*g0)[0].time_ms, 1000u);
+  EXPECT_TRUE((*g0)[0].servos.empty());  // the rest names no servo
+  ASSERT_EQ((*g0)[1].servos.size(), 1u);
+  EXPECT_EQ((*g0)[1].servos[0].position, 470u);  // 420 + 50
+  EXPECT_EQ((*g1)[0].servos[0].position, 300u);
+  std::vector<io::TimePoint> runs;
+  for (const emu::ReceivedFrame& f : h.emu.received()) {
+    const std::string x = to_hex(f.raw);
+    if (x == hex("55 55 05 06 00 01 00") || x == hex("55 55 05 06 01 01 00")) runs.push_back(f.at);
+  }
+  ASSERT_EQ(runs.size(), 2u) << r.err;
+  EXPECT_EQ(runs[1] - runs[0], std::chrono::duration_cast<io::Duration>(milliseconds(510000)));
+}
+
 }  // namespace
 }  // namespace seqc::cli::test

@@ -62,8 +62,7 @@ struct ServoWalk {
 // whatever they are.
 // `groups`: how many consecutive groups the dance may take (1: the classic one group).
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter, std::size_t groups = 1,
-                          const RobotStart& start = {});
+                          Reporter& reporter, std::size_t groups = 1, const RobotStart& start = {});
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more
