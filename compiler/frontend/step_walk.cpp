@@ -385,44 +385,60 @@ void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
   if (!repeat) return;
   if (!open_block(step.location, "repeat")) return;
   const std::unique_ptr<RepeatBudget> budget = repeat_budget(step, repeat->times);
+  performances_.open(now_, step.location, Performances::Kind::Repeat, nullptr, repeat->times);
   for (long long i = 0; i < repeat->times; ++i) {
     // The budget first: a walk stopped inside the last pass still has the passes left counted.
     if (!budget->before_pass(i) || halted()) break;
     const std::size_t errors_before = reporter_.errors_reported();
     reporter_.push_pass(step.location, i + 1, repeat->times);
-    open_span(step.location, "in pass " + std::to_string(i + 1) + " of " +
-                                 std::to_string(repeat->times) + " of this repeat");
+    performances_.pass(now_);
     run_steps(*repeat->body, "'do'");
-    close_span();
     reporter_.pop_pass();
     // A pass with mistakes would only repeat them in the passes after it (and nested repeats
     // would never end).
     if (reporter_.errors_reported() > errors_before || !budget->after_pass(i)) break;
   }
+  performances_.close(now_);
   close_block();
 }
 
-void StepWalker::open_span(Location at, std::string message) {
-  spans_.push_back({now_, now_, open_spans_.size(), {at, std::move(message)}});
-  open_spans_.push_back(spans_.size() - 1);
+void StepWalker::Performances::open(ExactMs now, Location at, Kind kind, const std::string* name,
+                                    long long times) {
+  spans_.push_back({now, now, at, static_cast<std::uint32_t>(open_.size()), kind, times, name,
+                    kind == Kind::Repeat ? std::make_shared<std::deque<ExactMs>>() : nullptr});
+  open_.push_back(spans_.size() - 1);
 }
 
-void StepWalker::close_span() {
-  spans_[open_spans_.back()].end = now_;
-  open_spans_.pop_back();
+void StepWalker::Performances::close(ExactMs now) {
+  spans_[open_.back()].end = now;
+  open_.pop_back();
 }
 
-std::vector<Reporter::Note> StepWalker::spans_at(const std::vector<PerformanceSpan>& spans,
-                                                 ExactMs t) {
-  std::vector<const PerformanceSpan*> in;
-  for (const PerformanceSpan& s : spans) {
+std::vector<Reporter::Note> StepWalker::Performances::at(ExactMs t) const {
+  std::vector<const Span*> in;
+  for (const Span& s : spans_) {
     if (s.start <= t && t < s.end) in.push_back(&s);
   }
-  std::stable_sort(in.begin(), in.end(), [](const PerformanceSpan* a, const PerformanceSpan* b) {
-    return a->depth > b->depth;
-  });
+  std::stable_sort(in.begin(), in.end(),
+                   [](const Span* a, const Span* b) { return a->depth > b->depth; });
   std::vector<Reporter::Note> notes;
-  for (const PerformanceSpan* s : in) notes.push_back(s->note);
+  for (const Span* s : in) {
+    switch (s->kind) {
+      case Kind::Repeat: {
+        const auto pass =
+            std::upper_bound(s->passes->begin(), s->passes->end(), t) - s->passes->begin();
+        notes.push_back({s->at, "in pass " + std::to_string(pass) + " of " +
+                                    std::to_string(s->times) + " of this repeat"});
+        break;
+      }
+      case Kind::Section:
+        notes.push_back({s->at, "in section '" + *s->name + "', performed here"});
+        break;
+      case Kind::Include:
+        notes.push_back({s->at, "included from here"});
+        break;
+    }
+  }
   return notes;
 }
 
@@ -438,9 +454,9 @@ void StepWalker::include_step(const YamlNode& value) {
                                                   table_.cannot_include, loader_, reporter_);
   if (loaded == nullptr) return;
   reporter_.push_include(value.location);
-  open_span(value.location, "included from here");
+  performances_.open(now_, value.location, Performances::Kind::Include);
   run_file(*loaded, false);
-  close_span();
+  performances_.close(now_);
   reporter_.pop_include();
 }
 
@@ -459,9 +475,10 @@ void StepWalker::section_step(const YamlNode& step, const YamlNode& value) {
                 timeline_.markers.push_back({now_, "section " + value.scalar, value.location});
                 sections_performed_.insert(sections_running_.back());
                 section_names_.push_back(value.scalar);
-                open_span(value.location, "in section '" + value.scalar + "', performed here");
+                performances_.open(now_, value.location, Performances::Kind::Section,
+                                   &value.scalar);
                 run_steps(steps, what);
-                close_span();
+                performances_.close(now_);
                 section_names_.pop_back();
               });
 }

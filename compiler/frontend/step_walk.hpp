@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -123,16 +124,36 @@ struct StepTable {
 class StepWalker {
  public:
   virtual ~StepWalker() = default;
-  // What was performing from `start` to `end`: a repeat's pass, a section's performance or an
-  // include, `depth` of them around it. An error about an instant found only after the walk
-  // (the fitted actions outgrowing the groups) names the ones that contain it, innermost first.
-  struct PerformanceSpan {
-    ExactMs start, end;
-    std::size_t depth = 0;
-    Reporter::Note note;
+  // What was performing when: every repeat (with when each of its passes began), section
+  // performance and include the walk entered, with its time span. An error about an instant found
+  // only after the walk (the fitted actions outgrowing the groups) names the ones around it,
+  // innermost first. Kept small (a repeat's pass is one instant), since a walk may run 200,000
+  // steps; the words are made only when asked.
+  class Performances {
+   public:
+    enum class Kind : std::uint8_t { Repeat, Section, Include };
+    // `name`: a section's (it outlives the walk's use of this); `times`: a repeat's passes.
+    void open(ExactMs now, Location at, Kind kind, const std::string* name = nullptr,
+              long long times = 0);
+    void pass(ExactMs now) { spans_[open_.back()].passes->push_back(now); }
+    void close(ExactMs now);
+    // The notes of what contains `t` (start <= t < end), innermost first.
+    std::vector<Reporter::Note> at(ExactMs t) const;
+
+   private:
+    struct Span {
+      ExactMs start, end;
+      Location at;
+      std::uint32_t depth = 0;
+      Kind kind = Kind::Repeat;
+      long long times = 0;
+      const std::string* name = nullptr;
+      // A repeat's: when each pass began (a deque: no doubling slack; none for the others).
+      std::shared_ptr<std::deque<ExactMs>> passes;  // shared: a copied walk reads the same
+    };
+    std::vector<Span> spans_;
+    std::vector<std::size_t> open_;  // indices into spans_, outermost first
   };
-  // The notes of the spans containing `t` (start <= t < end), innermost first.
-  static std::vector<Reporter::Note> spans_at(const std::vector<PerformanceSpan>& spans, ExactMs t);
 
   StepWalker(const StepWalker&) = delete;
   StepWalker& operator=(const StepWalker&) = delete;
@@ -204,7 +225,7 @@ class StepWalker {
   // that led here.
   void halt(Location at, std::string message);
 
-  std::vector<PerformanceSpan> spans_;
+  Performances performances_;
 
   struct ListFrame {
     ExactMs start;                    // for `at:`
@@ -220,10 +241,6 @@ class StepWalker {
   TrackClaims claims_;  // the running `together` blocks
 
  private:
-  void open_span(Location at, std::string message);
-  void close_span();
-  std::vector<std::size_t> open_spans_;  // indices into spans_, outermost first
-
   void repeat_step(const YamlNode& step, const YamlNode& value);
   void include_step(const YamlNode& value);
   void section_step(const YamlNode& step, const YamlNode& value);

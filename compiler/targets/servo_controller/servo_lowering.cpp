@@ -73,7 +73,7 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
   walk.capacity = capacity();
   walk.groups = groups_;
   walk.over_budget_time = over_budget_time_;
-  walk.spans = std::move(spans_);
+  walk.performances = std::move(performances_);
   walk.start_reads = start_reads_;
   for (const LineRecord& line : lines_) {
     ServoTipLine l{line.request, {}, line.path_at};
@@ -266,7 +266,7 @@ ServoProgram servo_program(const Robot& robot, ServoWalk walk, const FitResult& 
       const ExactMs host = ExactMs(std::int64_t{first_out.start_ms}) /
                            ExactMs::ratio(1000000 + std::int64_t{clock_ppm}, 1000000);
       message += when_text(walk.timeline.tempo_map, host);
-      notes = StepWalker::spans_at(walk.spans, host);
+      notes = walk.performances.at(host);
     }
     if (const auto hint = chain_hint(walk)) notes.push_back(*hint);
     reporter.error_with_notes(first_out.source, message, notes);

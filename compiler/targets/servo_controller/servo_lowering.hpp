@@ -52,7 +52,7 @@ struct ServoWalk {
   std::optional<ExactMs> over_budget_time;  // when the step at over_budget_at starts
   // What performed when (repeat passes, section performances, includes), for an error about an
   // action found only once fitted.
-  std::vector<StepWalker::PerformanceSpan> spans;
+  StepWalker::Performances performances;
   // The ids of the servos whose first move is relative to where the robot stands, in the order
   // walked.
   std::vector<std::uint8_t> start_reads;
