@@ -402,46 +402,6 @@ void StepWalker::repeat_step(const YamlNode& step, const YamlNode& value) {
   close_block();
 }
 
-void StepWalker::Performances::open(ExactMs now, Location at, Kind kind, const std::string* name,
-                                    long long times) {
-  spans_.push_back({now, now, at, static_cast<std::uint32_t>(open_.size()), kind, times, name,
-                    kind == Kind::Repeat ? std::make_shared<std::deque<ExactMs>>() : nullptr});
-  open_.push_back(spans_.size() - 1);
-}
-
-void StepWalker::Performances::close(ExactMs now) {
-  spans_[open_.back()].end = now;
-  open_.pop_back();
-}
-
-std::vector<Reporter::Note> StepWalker::Performances::at(ExactMs t) const {
-  std::vector<const Span*> in;
-  for (const Span& s : spans_) {
-    if (s.start <= t && t < s.end) in.push_back(&s);
-  }
-  std::stable_sort(in.begin(), in.end(),
-                   [](const Span* a, const Span* b) { return a->depth > b->depth; });
-  std::vector<Reporter::Note> notes;
-  for (const Span* s : in) {
-    switch (s->kind) {
-      case Kind::Repeat: {
-        const auto pass =
-            std::upper_bound(s->passes->begin(), s->passes->end(), t) - s->passes->begin();
-        notes.push_back({s->at, "in pass " + std::to_string(pass) + " of " +
-                                    std::to_string(s->times) + " of this repeat"});
-        break;
-      }
-      case Kind::Section:
-        notes.push_back({s->at, "in section '" + *s->name + "', performed here"});
-        break;
-      case Kind::Include:
-        notes.push_back({s->at, "included from here"});
-        break;
-    }
-  }
-  return notes;
-}
-
 void StepWalker::include_step(const YamlNode& value) {
   if (++includes_walked_ > kMaxIncludesWalked) {
     halt(value.location, "the sequence includes files more than " +

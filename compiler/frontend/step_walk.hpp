@@ -19,7 +19,6 @@
 #pragma once
 
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -34,6 +33,7 @@
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/scope_chain.hpp"
 #include "compiler/frontend/sections.hpp"
+#include "compiler/frontend/walk_performances.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
 #include "compiler/timeline/tempo_map.hpp"
@@ -124,36 +124,8 @@ struct StepTable {
 class StepWalker {
  public:
   virtual ~StepWalker() = default;
-  // What was performing when: every repeat (with when each of its passes began), section
-  // performance and include the walk entered, with its time span. An error about an instant found
-  // only after the walk (the fitted actions outgrowing the groups) names the ones around it,
-  // innermost first. Kept small (a repeat's pass is one instant), since a walk may run 200,000
-  // steps; the words are made only when asked.
-  class Performances {
-   public:
-    enum class Kind : std::uint8_t { Repeat, Section, Include };
-    // `name`: a section's (it outlives the walk's use of this); `times`: a repeat's passes.
-    void open(ExactMs now, Location at, Kind kind, const std::string* name = nullptr,
-              long long times = 0);
-    void pass(ExactMs now) { spans_[open_.back()].passes->push_back(now); }
-    void close(ExactMs now);
-    // The notes of what contains `t` (start <= t < end), innermost first.
-    std::vector<Reporter::Note> at(ExactMs t) const;
-
-   private:
-    struct Span {
-      ExactMs start, end;
-      Location at;
-      std::uint32_t depth = 0;
-      Kind kind = Kind::Repeat;
-      long long times = 0;
-      const std::string* name = nullptr;
-      // A repeat's: when each pass began (a deque: no doubling slack; none for the others).
-      std::shared_ptr<std::deque<ExactMs>> passes;  // shared: a copied walk reads the same
-    };
-    std::vector<Span> spans_;
-    std::vector<std::size_t> open_;  // indices into spans_, outermost first
-  };
+  // What was performing when (walk_performances.hpp).
+  using Performances = WalkPerformances;
 
   StepWalker(const StepWalker&) = delete;
   StepWalker& operator=(const StepWalker&) = delete;
