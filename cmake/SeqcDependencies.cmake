@@ -40,6 +40,16 @@ if(NOT PULSE_SIMPLE_FOUND)
     "  sudo apt-get install libpulse-dev")
 endif()
 
+# JSON for the language server's messages (MIT, header-only).
+seqc_find(nlohmann_json nlohmann-json3-dev)
+# The studio's local web server (MIT; Debian builds it as a shared library).
+pkg_check_modules(HTTPLIB QUIET IMPORTED_TARGET cpp-httplib)
+if(NOT HTTPLIB_FOUND)
+  message(FATAL_ERROR
+    "seqc needs cpp-httplib, which is missing. On Debian or Ubuntu install it with:\n"
+    "  sudo apt-get install libcpp-httplib-dev")
+endif()
+
 # GoogleTest only for the tests: `-DBUILD_TESTING=OFF` builds the tool without it.
 if(BUILD_TESTING)
   find_package(GTest QUIET)

@@ -41,8 +41,18 @@ ARROWS = {
     "runtime/emulator": {"base", "protocol", "runtime/io", "runtime/transport"},
     "runtime/boards": {"base", "protocol", "compiler", "runtime/audio", "runtime/emulator",
                        "runtime/io", "runtime/player", "runtime/transport", "runtime/upload"},
+    # The editor's language server: the compiler's answers about one file, over JSON-RPC.
+    "runtime/lsp": {"base", "protocol", "compiler", "runtime/io"},
+    # The live studio and following a show's clock drive a board, as the command line does.
+    "runtime/studio": {"base", "protocol", "compiler", "runtime/audio", "runtime/boards",
+                       "runtime/emulator", "runtime/io", "runtime/player", "runtime/transport",
+                       "runtime/upload"},
+    "runtime/follow": {"base", "protocol", "compiler", "runtime/audio", "runtime/boards",
+                       "runtime/emulator", "runtime/io", "runtime/player", "runtime/transport",
+                       "runtime/upload"},
     "runtime/cli": {"base", "protocol", "compiler", "runtime/audio", "runtime/boards",
-                    "runtime/emulator", "runtime/io", "runtime/transport", "runtime/upload"},
+                    "runtime/emulator", "runtime/follow", "runtime/io", "runtime/lsp",
+                    "runtime/studio", "runtime/transport", "runtime/upload"},
 }
 # The compiler's driver (compiler/*.cpp) runs every stage.
 ARROWS["compiler"] = {"base", "protocol"} | {f for f in ARROWS if f.startswith("compiler/")}
