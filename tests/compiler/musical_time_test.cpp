@@ -5,8 +5,8 @@
 
 #include <regex>
 
-#include "compiler/formats/plot_svg.hpp"
 #include "base/diagnostic_rules.hpp"
+#include "compiler/formats/plot_svg.hpp"
 #include "compiler/timeline/tempo_map.hpp"
 #include "tests/compiler/lang_test_util.hpp"
 
@@ -103,6 +103,46 @@ sequence:
   EXPECT_EQ(cues, (std::vector<std::pair<double, std::string>>{{2000.0, "at bar 2"},
                                                                {4000.0, "at bar 3"}}))
       << diagnostics_of(out);
+}
+
+// The rest before a cue is a hold: the servo stays exactly where the last move left it until the
+// cue, also when the curve after the cue starts vertically (circ-out, elastic-out, expo-out), where
+// an early, gentler start would fit the curve within tolerance. The elbow is servo 4 on the xArm;
+// 460 is where the first move leaves it, and nothing may reach the board before each cue below.
+TEST(MusicalTime, TheRestBeforeACueHoldsStillBeforeAVerticalStart) {
+  for (const char* ease : {"circ-out", "elastic-out", "expo-out", "circ-in-out"}) {
+    for (const char* cue : {"1333ms", "1100ms", "3s", "bar 2 beat 2"}) {
+      const std::string text = std::string(R"(robot: xarm
+tempo: 90
+meter: 4/4
+sequence:
+  - move: {elbow: 460, base: 500}
+    time: 1s
+  - move: {elbow: 700}
+    at: )") + cue + R"(
+    time: 1s
+    ease: )" + ease + "\n";
+      auto out = compile_text(text);
+      const ServoProgram& p = program_of(out);
+      // bar 2 beat 2 at 90 bpm in 4/4: 5 beats of 2/3 s = 3333 ms.
+      const std::uint32_t cue_ms = std::string(cue) == "1333ms"   ? 1333
+                                   : std::string(cue) == "1100ms" ? 1100
+                                   : std::string(cue) == "3s"     ? 3000
+                                                                  : 3333;
+      bool moved_at_cue = false;
+      for (const Keyframe& k : p.keyframes) {
+        for (const lsc::ServoTarget& t : k.targets) {
+          if (t.id != 4) continue;
+          if (k.start_ms + k.time_ms <= cue_ms) {
+            EXPECT_EQ(t.position, 460) << ease << " at " << cue << ": action at " << k.start_ms;
+          } else if (k.start_ms == cue_ms && t.position != 460) {
+            moved_at_cue = true;
+          }
+        }
+      }
+      EXPECT_TRUE(moved_at_cue) << ease << " at " << cue << ": the move starts on its cue";
+    }
+  }
 }
 
 TEST(MusicalTime, AFractionalBeatAndAPlainBar) {
