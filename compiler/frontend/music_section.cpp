@@ -5,6 +5,7 @@
 
 #include "base/units.hpp"
 #include "compiler/frontend/file_loader.hpp"
+#include "compiler/frontend/key_tables.hpp"
 #include "compiler/frontend/scope_chain.hpp"
 
 namespace seqc::compiler {
@@ -63,8 +64,7 @@ std::optional<Song> parse_music(const YamlNode& key, const YamlNode& music, cons
                    "'changes'");
     return std::nullopt;
   }
-  bool ok =
-      reporter.check_keys(music, {"file", "downbeat", "tempo", "meter", "changes"}, "in 'music'");
+  bool ok = reporter.check_keys(music, kMusicKeys, "in 'music'");
   Song song;
   song.at = key.location;
   const YamlNode* file = music.find("file");

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "base/units.hpp"
+#include "compiler/frontend/key_tables.hpp"
 
 namespace seqc::compiler {
 namespace {
@@ -50,8 +51,7 @@ void parse_servo(Robot& robot, const YamlNode& key, const YamlNode& value,
   if (value.is_scalar()) {
     id_node = &value;
   } else if (value.is_map()) {
-    reporter.check_keys(value, {"id", "min", "max", "home", "max_speed", "max_accel"},
-                        "in a servo definition");
+    reporter.check_keys(value, kServoDefinitionKeys, "in a servo definition");
     id_node = value.find("id");
   } else {
     reporter.error(value.location, "servo '" + name +
@@ -369,7 +369,7 @@ std::optional<Robot> parse_robot(const YamlNode& value, Reporter& reporter) {
   Robot robot;
   const YamlNode* profile_node = &value;
   if (value.is_map()) {
-    reporter.check_keys(value, {"profile", "servos", "mirror", "arm", "controller"}, "in 'robot'");
+    reporter.check_keys(value, kRobotKeys, "in 'robot'");
     profile_node = value.find("profile");
     if (profile_node == nullptr) {
       reporter.error(value.location, "'robot' needs a 'profile': one of " + profile_list());

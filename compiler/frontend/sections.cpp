@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "compiler/frontend/key_tables.hpp"
 #include "compiler/frontend/param_expressions.hpp"
 
 namespace seqc::compiler {
@@ -104,7 +105,7 @@ const YamlNode* perform_section(const YamlNode& step, const YamlNode& name, cons
   const YamlNode* steps = &section;
   const YamlNode* params = nullptr;
   if (section.is_map()) {
-    reporter.check_keys(section, {"params", "steps"}, "in a section");
+    reporter.check_keys(section, kSectionKeys, "in a section");
     params = section.find("params");
     steps = section.find("steps");
     if (steps == nullptr) {

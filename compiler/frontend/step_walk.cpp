@@ -14,6 +14,7 @@
 
 #include "base/diagnostics.hpp"
 #include "base/units.hpp"
+#include "compiler/frontend/key_tables.hpp"
 #include "compiler/frontend/music_section.hpp"
 #include "compiler/frontend/step_parts.hpp"
 
@@ -278,6 +279,17 @@ void StepWalker::run_steps(const YamlNode& list, std::string_view what) {
 }
 
 void StepWalker::run_step(const YamlNode& step) {
+  if (times_ == nullptr) {
+    walk_step(step);
+    return;
+  }
+  timed_steps_.push_back(times_->begin(step.location, now_));
+  walk_step(step);
+  times_->end(timed_steps_.back(), now_);
+  timed_steps_.pop_back();
+}
+
+void StepWalker::walk_step(const YamlNode& step) {
   if (++steps_walked_ > kMaxWalkedSteps) {
     halt(step.location, "the sequence walks more than " + with_commas(kMaxWalkedSteps) +
                             " steps, each counted again every time a section, include or repeat "
@@ -314,20 +326,19 @@ void StepWalker::run_step(const YamlNode& step) {
   const std::string& name = verb->scalar;
   const YamlNode& value = *step.find(name);
   if (name == "repeat") {
-    if (reporter_.check_keys(step, {"repeat", "do", "at"}, "in a repeat step") && apply_at(step)) {
+    if (reporter_.check_keys(step, kRepeatStepKeys, "in a repeat step") && apply_at(step)) {
       repeat_step(step, value);
     }
   } else if (name == "include") {
-    if (reporter_.check_keys(step, {"include", "at"}, "in an include step") && apply_at(step)) {
+    if (reporter_.check_keys(step, kIncludeStepKeys, "in an include step") && apply_at(step)) {
       include_step(value);
     }
   } else if (name == "section") {
-    if (reporter_.check_keys(step, {"section", "with", "at"}, "in a section step") &&
-        apply_at(step)) {
+    if (reporter_.check_keys(step, kSectionStepKeys, "in a section step") && apply_at(step)) {
       section_step(step, value);
     }
   } else if (name == "together") {
-    if (reporter_.check_keys(step, {"together", "at"}, "in a together step") && apply_at(step)) {
+    if (reporter_.check_keys(step, kTogetherStepKeys, "in a together step") && apply_at(step)) {
       together_step(step, value);
     }
   } else if (name == "tempo") {
@@ -346,6 +357,7 @@ bool StepWalker::apply_at(const YamlNode& step) {
       at_target(timeline_.tempo_map, *at, now_, lists_.back().start, reporter_);
   if (!target) return false;
   if (*target > now_ && !hold_until(*target, *at)) return false;
+  if (times_ != nullptr && !timed_steps_.empty()) times_->started(timed_steps_.back(), *target);
   // A cue is drawn wherever it falls, also where the steps before it already end there.
   timeline_.markers.push_back({*target, "at " + at->scalar, at->location});
   return true;

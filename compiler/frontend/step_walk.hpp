@@ -33,6 +33,7 @@
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/scope_chain.hpp"
 #include "compiler/frontend/sections.hpp"
+#include "compiler/frontend/step_times.hpp"
 #include "compiler/frontend/walk_performances.hpp"
 #include "compiler/frontend/yaml/yaml_tree.hpp"
 #include "compiler/timeline/exact_time.hpp"
@@ -130,6 +131,9 @@ class StepWalker {
   StepWalker(const StepWalker&) = delete;
   StepWalker& operator=(const StepWalker&) = delete;
 
+  // Records when each step runs into `times` (which outlives the walk); null: nothing.
+  void record_times(StepTimes* times) { times_ = times; }
+
   // A repeat's passes, within the front end's budget: before_pass(i) before each pass (false
   // stops the repeat; the budget has counted the passes left), after_pass(i) after each pass
   // without new errors (false stops it).
@@ -221,6 +225,7 @@ class StepWalker {
   // walked, and a halted walk never read its end).
   void warn_unperformed_sections(const FileScope& main);
   void together_step(const YamlNode& step, const YamlNode& tracks);
+  void walk_step(const YamlNode& step);
   void tempo_step(const YamlNode& value);
   // With a song (`music:`), a tempo or meter anywhere else is an error: true after reporting.
   bool song_owns(const YamlNode& value, std::string_view key);
@@ -237,6 +242,8 @@ class StepWalker {
   std::size_t steps_walked_ = 0;
   std::size_t includes_walked_ = 0;
   bool halted_ = false;
+  StepTimes* times_ = nullptr;
+  std::vector<std::uint64_t> timed_steps_;  // the steps being walked, innermost last
 };
 
 }  // namespace seqc::compiler

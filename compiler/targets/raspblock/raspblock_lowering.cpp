@@ -269,8 +269,10 @@ void RaspblockLowering::check_capacity() {
 }
 
 RaspblockProgram lower_raspblock_program(const Robot& robot, const LoadedFile& main,
-                                         FileLoader& loader, Reporter& reporter) {
-  return RaspblockLowering(robot, loader, reporter).run(main);
+                                         FileLoader& loader, Reporter& reporter, StepTimes* times) {
+  RaspblockLowering lowering(robot, loader, reporter);
+  lowering.record_times(times);
+  return lowering.run(main);
 }
 
 }  // namespace seqc::compiler

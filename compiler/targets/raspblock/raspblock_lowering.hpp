@@ -11,6 +11,7 @@
 #include "compiler/frontend/file_loader.hpp"
 #include "compiler/frontend/reporter.hpp"
 #include "compiler/frontend/robot_section.hpp"
+#include "compiler/frontend/step_times.hpp"
 #include "compiler/program/raspblock_program.hpp"
 
 namespace seqc::compiler {
@@ -22,8 +23,10 @@ inline constexpr std::uint32_t kRaspblockDefaultResolutionMs = 20;
 inline constexpr std::uint64_t kRaspblockMaxStreamMs = 24ull * 3600 * 1000;
 inline constexpr std::size_t kRaspblockMaxPackets = 1'000'000;
 
-// The program is returned even when errors were reported (the caller decides).
+// The program is returned even when errors were reported (the caller decides). `times`, when
+// given, gets when each step ran (compiler/frontend/step_times.hpp).
 RaspblockProgram lower_raspblock_program(const Robot& robot, const LoadedFile& main,
-                                         FileLoader& loader, Reporter& reporter);
+                                         FileLoader& loader, Reporter& reporter,
+                                         StepTimes* times = nullptr);
 
 }  // namespace seqc::compiler

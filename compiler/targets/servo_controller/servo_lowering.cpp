@@ -15,6 +15,7 @@
 
 #include "base/units.hpp"
 #include "compiler/fitting/fitter.hpp"
+#include "compiler/frontend/key_tables.hpp"
 #include "compiler/frontend/step_parts.hpp"
 #include "compiler/targets/servo_controller/group_budget.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
@@ -43,6 +44,8 @@ const StepTable kServoSteps = {
     "'together: {arm: [...], claw: [...]}'",
     [](const std::string&, const std::string& reason) { return "cannot include it: " + reason; },
 };
+
+const StepTable& servo_step_table() { return kServoSteps; }
 
 ServoLowering::ServoLowering(const Robot& robot, FileLoader& loader, Reporter& reporter,
                              std::size_t groups, const RobotStart& start)
@@ -86,8 +89,11 @@ ServoWalk ServoLowering::run(const LoadedFile& main) {
 }
 
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter, std::size_t groups, const RobotStart& start) {
-  return ServoLowering(robot, loader, reporter, groups, start).run(main);
+                          Reporter& reporter, std::size_t groups, const RobotStart& start,
+                          StepTimes* times) {
+  ServoLowering lowering(robot, loader, reporter, groups, start);
+  lowering.record_times(times);
+  return lowering.run(main);
 }
 
 bool ready_to_fit(const ServoWalk& walk, const Robot& robot, Reporter& reporter) {
@@ -286,10 +292,7 @@ void ServoLowering::run_file(const LoadedFile& f, bool is_main) {
     find_sequence(root, reporter_);
     return;
   }
-  reporter_.check_keys(root,
-                       {"robot", "music", "tempo", "meter", "resolution", "tolerance", "groups",
-                        "poses", "sections", "sequence", "name", "description"},
-                       "at the top level");
+  reporter_.check_keys(root, kServoFileKeys, "at the top level");
   reporter_.check_free_text(root);
   if (!is_main && !check_included_robot(root, robot_.info.profile, reporter_)) {
     return;  // its steps would only add errors about servos this robot lacks
@@ -350,18 +353,16 @@ void ServoLowering::own_step(const YamlNode& verb, const YamlNode& step) {
   const YamlNode& value = *step.find(name);
   if (name == "move") {
     // Every mistake of the step is reported, so unknown keys do not stop the checks.
-    const bool keys_ok = reporter_.check_keys(
-        step, {"move", "time", "ease", "steps", "tolerance", "elbow", "path", "at"},
-        "in a move step");
+    const bool keys_ok = reporter_.check_keys(step, kMoveStepKeys, "in a move step");
     if (apply_at(step)) move_step(step, value, keys_ok);
   } else if (name == "wait") {
-    reporter_.check_keys(step, {"wait", "at"}, "in a wait step");
+    reporter_.check_keys(step, kWaitStepKeys, "in a wait step");
     if (apply_at(step)) wait_step(step, value);
   } else if (name == "through") {
-    reporter_.check_keys(step, {"through", "tolerance", "at"}, "in a through step");
+    reporter_.check_keys(step, kThroughStepKeys, "in a through step");
     if (apply_at(step)) through_step(step, value);
   } else if (name == "mirror") {
-    if (reporter_.check_keys(step, {"mirror", "at"}, "in a mirror step") && apply_at(step)) {
+    if (reporter_.check_keys(step, kMirrorStepKeys, "in a mirror step") && apply_at(step)) {
       mirror_step(step, value);
     }
   } else {

@@ -61,8 +61,13 @@ struct ServoWalk {
 // The walk of `main` (and what it includes). Errors go to `reporter`; the walk is returned
 // whatever they are.
 // `groups`: how many consecutive groups the dance may take (1: the classic one group).
+// `times`, when given, gets when each step ran (step_times.hpp).
 ServoWalk walk_servo_file(const Robot& robot, const LoadedFile& main, FileLoader& loader,
-                          Reporter& reporter, std::size_t groups = 1, const RobotStart& start = {});
+                          Reporter& reporter, std::size_t groups = 1, const RobotStart& start = {},
+                          StepTimes* times = nullptr);
+
+// The servo controllers' steps: their verbs and every key a step may have.
+const StepTable& servo_step_table();
 
 // Whether the walk goes on to fitting: not after errors (fitting a file with mistakes would
 // only cost time: a long, slow curve took seconds), nor when the walk alone already needs more

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "compiler/frontend/key_tables.hpp"
 #include "compiler/targets/servo_controller/servo_lowering_state.hpp"
 #include "protocol/lsc/group_download.hpp"
 
@@ -34,7 +35,7 @@ void ServoLowering::through_step(const YamlNode& step, const YamlNode& waypoints
       ok = false;
       continue;
     }
-    reporter_.check_keys(wp, {"pose", "time"}, "in a waypoint");
+    reporter_.check_keys(wp, kWaypointKeys, "in a waypoint");
     const YamlNode* pose = wp.find("pose");
     const YamlNode* time = wp.find("time");
     std::vector<std::optional<int>> values = points.back();
