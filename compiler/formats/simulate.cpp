@@ -110,6 +110,18 @@ std::vector<Difference> compare_with_intent(const compiler::ServoProgram& progra
   return out;
 }
 
+std::vector<lsc::ServoTarget> pose_at(const compiler::ServoProgram& program, std::uint64_t t_ms) {
+  std::vector<lsc::ServoTarget> out;
+  Motion motion(program);
+  for (std::uint8_t id : used_servo_ids(program)) {
+    const std::size_t s = servo_index(program, id);
+    if (s >= program.robot.servos.size()) continue;  // a servo the robot does not name
+    const double p = motion.at(s, t_ms);
+    out.push_back({id, static_cast<std::uint16_t>(std::lround(p))});
+  }
+  return out;
+}
+
 Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms,
                     bool with_intended) {
   Simulation sim;

@@ -33,6 +33,11 @@ struct Simulation {
 Simulation simulate(const compiler::ServoProgram& program, std::uint32_t step_ms,
                     bool with_intended = false);
 
+// Where the controller has each servo the program moves at `t_ms` (past the end: where the
+// last move left it), as simulate()'s sample at that instant says: ascending id, whole units.
+// What a robot following a playhead is sent to when it jumps there.
+std::vector<lsc::ServoTarget> pose_at(const compiler::ServoProgram& program, std::uint64_t t_ms);
+
 // "time_ms,claw,elbow\n0,500,500\n..."; with the intended curve each servo's column is
 // followed by "<name>_intended" (two decimals, empty while unknown); an arm with geometry ends
 // each row with "tip_x,tip_y,tip_z" (mm, two decimals).
