@@ -66,6 +66,8 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
 // A song's tempo map (cmd_beats.cpp).
 void add_beats_command(CLI::App& app, Context& ctx, Outcome& result);
+// The language server for editors (cmd_lsp.cpp).
+void add_lsp_command(CLI::App& app, Context& ctx, Outcome& result);
 
 // For `seqc upload` (cmd_play.cpp): if `output` is for a board that stores nothing (the
 // Raspblock), explains on `err` that it has no storage and points to `seqc play`, and returns
