@@ -262,8 +262,10 @@ std::string preview_page(const std::string& title, const std::vector<std::string
   data += "}";
   std::string audio;
   if (plays) {
-    audio = "<audio id=\"song\" preload=\"auto\" src=\"data:" + song->mime + ";base64," +
-            base64(song->bytes) + "\"></audio>\n";
+    const std::string src = song->url.empty()
+                                ? "data:" + song->mime + ";base64," + base64(song->bytes)
+                                : svg::escape(song->url);
+    audio = "<audio id=\"song\" preload=\"auto\" src=\"" + src + "\"></audio>\n";
   } else if (song != nullptr) {
     audio = "<p class=\"song-missing\">" + svg::escape(song->missing) + "</p>\n";
   }

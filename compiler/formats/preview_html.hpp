@@ -59,6 +59,9 @@ struct PreviewSong {
   std::string mime;
   double downbeat_s = 0;
   std::string missing;
+  // Set when the page fetches the song from this address instead of holding its bytes (the
+  // studio's page, served with the song beside it by `seqc studio`); `bytes` is then unused.
+  std::string url;
 };
 
 // The type a browser needs for an audio file, by its extension (.wav audio/wav, .flac

@@ -131,7 +131,7 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
                          const std::string& show, seqc::SongReader* songs, seqc::FileReader* files,
-                         std::string* missing) {
+                         std::string* missing, const std::string& song_url) {
   double end = 0;
   for (const ShowPart& p : parts) end = std::max(end, static_cast<double>(length_ms(*p.program)));
   // The show's one song: played with the page, drawn under the first performer dancing to it.
@@ -140,7 +140,7 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
   std::optional<PreviewSong> song;
   if (with_song != nullptr && songs != nullptr) picture = plot_song(*with_song->program, *songs);
   if (with_song != nullptr && files != nullptr) {
-    song = preview_song(*with_song->program, *files, songs);
+    song = preview_song(*with_song->program, *files, songs, song_url);
     if (song && missing != nullptr) *missing = song->missing;
   }
   std::vector<std::string> names;
@@ -158,34 +158,36 @@ std::string preview_show(const std::vector<ShowPart>& parts, const std::string& 
 }
 
 std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files,
-                                        seqc::SongReader* songs) {
+                                        seqc::SongReader* songs, const std::string& song_url) {
   const compiler::Song* written = song_of(program);
   if (written == nullptr) return std::nullopt;
   const compiler::Song& song = *written;
   const std::string mime = audio_mime(song.file);
   if (mime.empty()) return std::nullopt;
   const double downbeat_s = song.downbeat.value() / 1000.0;
+  if (!song_url.empty()) return PreviewSong{"", mime, downbeat_s, "", song_url};
   Result<std::string> bytes = files.read(song.file);
-  if (bytes) return PreviewSong{std::move(*bytes), mime, downbeat_s, ""};
+  if (bytes) return PreviewSong{std::move(*bytes), mime, downbeat_s, "", ""};
   std::string why = bytes.error().message;
   if (songs != nullptr) {
     Result<std::string> small = songs->compressed(song.file);
-    if (small) return PreviewSong{std::move(*small), "audio/ogg", downbeat_s, ""};
+    if (small) return PreviewSong{std::move(*small), "audio/ogg", downbeat_s, "", ""};
     why += "; " + small.error().message;
   }
   return PreviewSong{"", "", downbeat_s,
                      "the song is not in this page (" + why +
                          "): convert it to a smaller file, e.g. `ffmpeg -i " + song.file +
-                         " -ac 1 -q:a 3 song.ogg`, and name that in `music: file:`"};
+                         " -ac 1 -q:a 3 song.ogg`, and name that in `music: file:`",
+                     ""};
 }
 
 std::string preview_program(const compiler::Program& program, const std::string& title,
-                            seqc::SongReader* songs, seqc::FileReader& files,
-                            std::string* missing) {
+                            seqc::SongReader* songs, seqc::FileReader& files, std::string* missing,
+                            const std::string& song_url) {
   const double end = static_cast<double>(length_ms(program));
   std::optional<PlotSong> picture;
   if (songs != nullptr) picture = plot_song(program, *songs);
-  const std::optional<PreviewSong> song = preview_song(program, files, songs);
+  const std::optional<PreviewSong> song = preview_song(program, files, songs, song_url);
   if (song && missing != nullptr) *missing = song->missing;
   auto part = preview_part(program, title, end, picture ? &*picture : nullptr);
   if (!part) return "";

@@ -74,24 +74,28 @@ std::optional<PreviewPart> preview_part(const compiler::Program& program, const 
 // The show's one song (show_song_part) is embedded to play through `files` and drawn under its
 // performer's lanes through `songs`, when given.
 // `missing`, when given, gets the song's PreviewSong::missing (for the command to warn).
+// `song_url`, when not empty, is where the page fetches the song instead (preview_song).
 std::string preview_show(const std::vector<ShowPart>& parts, const std::string& title,
                          const std::string& show, seqc::SongReader* songs = nullptr,
-                         seqc::FileReader* files = nullptr, std::string* missing = nullptr);
+                         seqc::FileReader* files = nullptr, std::string* missing = nullptr,
+                         const std::string& song_url = "");
 
 // The song the preview page embeds and plays: the `music:` file's bytes through `files`, in a
 // type a browser plays; when `files` refuses them (a song over its size limit, which it checks
 // before reading) the song re-encoded small through `songs` (SongReader::compressed); when that
 // fails too, a song whose `missing` says why and how to fix it. nullopt without a song, or for
-// a type a browser may not play.
+// a type a browser may not play. With `song_url` the page fetches the song from there (the
+// studio's server): nothing is read, and the song has that url and no bytes.
 std::optional<PreviewSong> preview_song(const compiler::Program& program, seqc::FileReader& files,
-                                        seqc::SongReader* songs = nullptr);
+                                        seqc::SongReader* songs = nullptr,
+                                        const std::string& song_url = "");
 
 // A single file's page (preview_page): its one part on its own time axis, titled `title`, with
 // its song drawn under the lanes (plot_song through `songs`, when given) and embedded to play
 // (preview_song through `files`); "" for a kind it cannot show.
 std::string preview_program(const compiler::Program& program, const std::string& title,
                             seqc::SongReader* songs, seqc::FileReader& files,
-                            std::string* missing = nullptr);
+                            std::string* missing = nullptr, const std::string& song_url = "");
 
 struct Simulated {
   bool ok = false;  // false: a kind of program that cannot be simulated

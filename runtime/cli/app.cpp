@@ -78,6 +78,7 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_simulate_command(app, ctx, outcome);
   add_plot_command(app, ctx, outcome);
   add_preview_command(app, ctx, outcome);
+  add_studio_command(app, ctx, outcome);
   add_emulate_command(app, ctx, outcome);
   add_ports_command(app, ctx, outcome);
   add_play_command(app, ctx, outcome);

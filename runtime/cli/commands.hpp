@@ -63,6 +63,8 @@ void add_teach_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_plot_command(CLI::App& app, Context& ctx, Outcome& result);
 // An animated HTML page of a choreography or show (cmd_preview.cpp).
 void add_preview_command(CLI::App& app, Context& ctx, Outcome& result);
+// That page, live, served on the loopback address (cmd_studio.cpp).
+void add_studio_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
 // A song's tempo map (cmd_beats.cpp).
 void add_beats_command(CLI::App& app, Context& ctx, Outcome& result);

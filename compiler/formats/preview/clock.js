@@ -1,6 +1,6 @@
 "use strict";
 const page = JSON.parse(document.getElementById("seqc-data").textContent);
-const endMs = Math.max(page.end, 1);
+let endMs = Math.max(page.end, 1);
 const $ = (id) => document.getElementById(id);
 
 // The one time source. Everything drawn follows clock() (seconds). With a song the <audio>
@@ -10,7 +10,7 @@ const $ = (id) => document.getElementById(id);
 const timeSource = { playing: false, at: 0, origin: 0, rate: 1 };
 const wall = () => performance.now() / 1000;
 const audio = $("song");
-const lead = page.song ? page.song.downbeat : 0;
+let lead = page.song ? page.song.downbeat : 0;
 const audioRuns = () => audio && !audio.paused && !audio.ended && audio.readyState >= 2;
 function audioTo(seconds) {
   if (!audio) return;
@@ -73,3 +73,12 @@ if (audio) {
 
 const round2 = (v) => Math.round(v * 100) / 100 + 0;
 const fmt = (v) => String(round2(v));
+
+// The studio (live.js) swaps in the data of the file as it was saved: the same object, so every
+// function reading `page` sees the new dance; the clock itself (playing, its time, its rate) stays.
+function replaceData(data) {
+  for (const key of Object.keys(page)) delete page[key];
+  Object.assign(page, data);
+  endMs = Math.max(page.end, 1);
+  lead = page.song ? page.song.downbeat : 0;
+}

@@ -1,13 +1,14 @@
 # Writes OUT, the C++ source behind compiler/formats/preview_page_text.hpp, from the page's files
 # in DIR: preview.html, preview.css and the script files SCRIPTS (a comma-separated list, in the
-# order the page runs them), joined with one blank line between each. Run at build time by
-# compiler/CMakeLists.txt:
-#   cmake -DDIR=<this folder> -DSCRIPTS=clock.js,motion.js,... -DOUT=<file.cpp> -P embed.cmake
+# order the page runs them), joined with one blank line between each, and LIVE, the studio's
+# script. Run at build time by compiler/CMakeLists.txt:
+#   cmake -DDIR=<this folder> -DSCRIPTS=clock.js,motion.js,... -DLIVE=live.js -DOUT=<file.cpp>
+#         -P embed.cmake
 #
 # Each text becomes a char array of its bytes, not a string literal: the bytes go into the page
 # exactly as they are on disk (no escaping, no delimiter to collide with), and no compiler's limit
 # on a string literal's length applies.
-foreach(var DIR SCRIPTS OUT)
+foreach(var DIR SCRIPTS LIVE OUT)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "embed.cmake: -D${var}=... is missing")
   endif()
@@ -39,21 +40,26 @@ foreach(name IN LISTS SCRIPTS)
   string(APPEND script "${text}")
 endforeach()
 
-# The page inlines both: neither may end its own element early.
+file(READ ${DIR}/${LIVE} live_hex HEX)
+file(READ ${DIR}/${LIVE} live)
+
+# The page inlines them all: none may end its own element early.
 string(TOLOWER "${style}" style)
 string(TOLOWER "${script}" script)
 if(style MATCHES "</style")
   message(FATAL_ERROR "embed.cmake: preview.css holds </style, which would end the page's <style>")
 endif()
-if(script MATCHES "</script")
+string(TOLOWER "${live}" live)
+if(script MATCHES "</script" OR live MATCHES "</script")
   message(FATAL_ERROR "embed.cmake: a script file holds </script, which would end the page's <script>")
 endif()
 
 char_array(skeleton_array "${skeleton_hex}")
 char_array(style_array "${style_hex}")
 char_array(script_array "${script_hex}")
+char_array(live_array "${live_hex}")
 file(WRITE ${OUT} "// Generated at build time by compiler/formats/preview/embed.cmake from the files beside it
-// (preview.html, preview.css and ${script_names}). Edit those, not this.
+// (preview.html, preview.css, ${script_names} and ${LIVE}). Edit those, not this.
 #include \"compiler/formats/preview_page_text.hpp\"
 
 namespace seqc::compiler {
@@ -62,12 +68,14 @@ namespace {
 constexpr char kSkeleton[] = ${skeleton_array};
 constexpr char kStyle[] = ${style_array};
 constexpr char kScript[] = ${script_array};
+constexpr char kLive[] = ${live_array};
 
 }  // namespace
 
 std::string_view preview_skeleton() { return {kSkeleton, sizeof kSkeleton - 1}; }
 std::string_view preview_style() { return {kStyle, sizeof kStyle - 1}; }
 std::string_view preview_script() { return {kScript, sizeof kScript - 1}; }
+std::string_view preview_live_script() { return {kLive, sizeof kLive - 1}; }
 
 }  // namespace seqc::compiler
 ")

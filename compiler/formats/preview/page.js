@@ -194,10 +194,14 @@ function drawPart(p, index, t) {
 
 // ---- the page: bars, loop, controls, the frame loop.
 // Loops count bars; a tempo without a meter counts beats; no tempo, seconds.
-const barsPart = page.parts.find((p) => p.bars.length > 0) ||
-  page.parts.find((p) => p.beats.length > 0);
-const bars = !barsPart ? [] : barsPart.bars.length > 0 ? barsPart.bars : barsPart.beats;
-$("loop-unit").textContent = !barsPart ? "seconds from" : barsPart.bars.length > 0 ? "bars" : "beats";
+let barsPart = null, bars = [];
+function findBars() {
+  barsPart = page.parts.find((p) => p.bars.length > 0) ||
+    page.parts.find((p) => p.beats.length > 0);
+  bars = !barsPart ? [] : barsPart.bars.length > 0 ? barsPart.bars : barsPart.beats;
+  $("loop-unit").textContent = !barsPart ? "seconds from" : barsPart.bars.length > 0 ? "bars" : "beats";
+}
+findBars();
 $("loop-to").value = bars.length > 0 ? Math.min(bars.length, 4) : Math.ceil(endMs / 1000);
 $("loop-from").value = bars.length > 0 ? 1 : 0;
 
@@ -225,6 +229,15 @@ function barText(t) {
 }
 
 page.parts.forEach(buildPart);
+
+// The studio (live.js) calls this once it has replaced the data and the lanes: the robots are
+// built afresh and the new lanes scrub; the clock, the loop's inputs and the speed are kept.
+function rebuild() {
+  findBars();
+  $("stage").textContent = "";
+  page.parts.forEach(buildPart);
+  document.querySelectorAll(".lanes svg").forEach(scrubbable);
+}
 
 function draw(seconds) {
   const t = seconds * 1000;
@@ -282,7 +295,7 @@ document.addEventListener("keydown", (e) => {
 $("speed").addEventListener("change", () => setRate(+$("speed").value));
 $("scrub").addEventListener("input", () => { seek(+$("scrub").value / 1000); draw(clock()); });
 // Scrubbing on the lanes and their ruler: x maps to time as the plot's axis does.
-document.querySelectorAll(".lanes svg").forEach((svg) => {
+function scrubbable(svg) {
   const to = (e) => {
     const box = svg.getBoundingClientRect();
     const x = (e.clientX - box.left) * 1100 / box.width;
@@ -294,7 +307,8 @@ document.querySelectorAll(".lanes svg").forEach((svg) => {
     to(e);
   });
   svg.addEventListener("pointermove", (e) => { if (e.buttons & 1) to(e); });
-});
+}
+document.querySelectorAll(".lanes svg").forEach(scrubbable);
 
 // #t=SECONDS shows that instant, paused.
 function fromHash() {
