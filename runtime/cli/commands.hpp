@@ -64,6 +64,8 @@ void add_plot_command(CLI::App& app, Context& ctx, Outcome& result);
 // An animated HTML page of a choreography or show (cmd_preview.cpp).
 void add_preview_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
+// `seqc follow`: a show's master clock drives the robot (cmd_follow.cpp).
+void add_follow_command(CLI::App& app, Context& ctx, Outcome& result);
 // A song's tempo map (cmd_beats.cpp).
 void add_beats_command(CLI::App& app, Context& ctx, Outcome& result);
 
