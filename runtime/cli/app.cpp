@@ -93,6 +93,7 @@ void build_app(CLI::App& app, Context& ctx, Outcome& outcome) {
   add_export_command(app, ctx, outcome);
   add_teach_command(app, ctx, outcome);
   add_show_command(app, ctx, outcome);
+  add_follow_command(app, ctx, outcome);
   add_beats_command(app, ctx, outcome);
   add_lsp_command(app, ctx, outcome);
   add_help_command(app, ctx, outcome);

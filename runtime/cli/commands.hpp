@@ -66,6 +66,8 @@ void add_preview_command(CLI::App& app, Context& ctx, Outcome& result);
 // That page, live, served on the loopback address (cmd_studio.cpp).
 void add_studio_command(CLI::App& app, Context& ctx, Outcome& result);
 void add_show_command(CLI::App& app, Context& ctx, Outcome& result);
+// `seqc follow`: a show's master clock drives the robot (cmd_follow.cpp).
+void add_follow_command(CLI::App& app, Context& ctx, Outcome& result);
 // A song's tempo map (cmd_beats.cpp).
 void add_beats_command(CLI::App& app, Context& ctx, Outcome& result);
 // The language server for editors (cmd_lsp.cpp).
