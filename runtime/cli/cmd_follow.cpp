@@ -1,11 +1,13 @@
 // seqc follow FILE_OR_SHOW --fpp NAME [--port P] [--listen ADDR[:PORT]] [--offset MS] [--resync
-// BARS]
-//             [--restart-after MS] [--clock-ppm N] [--rig FILE] [--realtime] [--strict]
-// Joins a Falcon Player show as a MultiSync remote (runtime/follow/multisync_clock.hpp) and
+// BARS] [--restart-after MS] [--clock-ppm N] [--rig FILE] [--realtime] [--strict]
+// seqc follow FILE_OR_SHOW --ltc SOURCE --start HH:MM:SS:FF [the same options but --listen]
+// Joins a Falcon Player show as a MultiSync remote (runtime/follow/multisync_clock.hpp), or
+// chases SMPTE timecode on an audio input (runtime/follow/ltc_clock.hpp, follow_ltc.hpp), and
 // drives the robot on the master's clock (runtime/follow/follower.hpp): the group is stored, or
-// the car's stream planned, when the master opens NAME, started when it starts, kept on its
-// clock by its syncs and stopped when it stops. A show file's performers all follow, each on
-// the port the show gives it. Every signal that ends seqc stops the robot.
+// the car's stream planned, when the master opens NAME (the timecode first locks), started when
+// it starts (reaches --start), kept on its clock by its syncs (frames) and stopped when it stops.
+// A show file's performers all follow, each on the port the show gives it. Every signal that
+// ends seqc stops the robot.
 #include <unistd.h>
 
 #include <array>
@@ -31,6 +33,7 @@
 #include "runtime/cli/clock_option.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/follow_ltc.hpp"
 #include "runtime/cli/realtime_option.hpp"
 #include "runtime/cli/run_compile.hpp"
 #include "runtime/cli/trace_option.hpp"
@@ -46,7 +49,9 @@ constexpr std::uint64_t kLargestShowFile = 1 << 20;
 
 struct FollowArgs {
   std::string file;
-  std::string fpp;  // the master's sequence or media file to follow
+  std::string fpp;    // the master's sequence or media file to follow
+  std::string ltc;    // or the audio input that carries timecode
+  std::string start;  // the timecode of the dance's time 0
   std::string port;
   std::string listen = "0.0.0.0";
   double offset_ms = 0;
@@ -98,22 +103,52 @@ struct Robot {
   std::uint8_t group = 0;
 };
 
-// Listens, follows with every robot, and words the end.
-ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& listen,
-                       std::vector<Robot>& robots, std::int32_t clock_ppm) {
+// What the robots follow: FPP's MultiSync on a UDP socket, or timecode on an audio input.
+struct Source {
+  std::unique_ptr<io::DatagramSocket> socket;
+  std::unique_ptr<follow::MultisyncClock> multisync;
+  std::unique_ptr<follow::ShowClock> timecode;
+  std::string text;  // "NAME from FPP on udp 0.0.0.0:32320", "timecode on SOURCE from START"
+
+  follow::ShowClock& clock() {
+    return multisync ? static_cast<follow::ShowClock&>(*multisync) : *timecode;
+  }
+};
+
+// Opens what --fpp or --ltc names; on failure, the exit code it was worded with.
+ExitCode open_source(Context& ctx, const FollowArgs& a, Source& source) {
+  if (!a.ltc.empty()) {
+    const Result<ltc::Timecode> start = parse_ltc_start(a.start);
+    if (!start) return usage_error(ctx, start.error().message);
+    Result<std::unique_ptr<follow::ShowClock>> clock = open_ltc_clock(a.ltc, *start, ctx);
+    if (!clock) return fail(ctx, ExitCode::FileError, clock.error().message);
+    source.timecode = std::move(*clock);
+    source.text = "timecode on " + terminal_safe(a.ltc) + " from " + a.start;
+    return ExitCode::Ok;
+  }
+  const Result<io::UdpAddress> listen = io::parse_udp_address(a.listen, fpp::kControlPort);
+  if (!listen) return usage_error(ctx, "--listen " + listen.error().message);
   // Multicast only where the socket hears every interface; a --listen on one address is unicast
   // (and broadcast) to it.
-  const bool any = listen.ip == std::array<std::uint8_t, 4>{0, 0, 0, 0};
+  const bool any = listen->ip == std::array<std::uint8_t, 4>{0, 0, 0, 0};
   auto socket = io::open_udp_socket(
-      listen, any ? std::optional(fpp::kMulticastGroup) : std::nullopt, ctx.clock);
+      *listen, any ? std::optional(fpp::kMulticastGroup) : std::nullopt, ctx.clock);
   if (!socket) return fail(ctx, ExitCode::PortUnavailable, socket.error().message);
-
+  source.socket = std::move(*socket);
   follow::MultisyncOptions ms;
   ms.name = a.fpp;
   ms.hostname = host_name();
   ms.version = std::string("seqc ") + kVersion;
   std::tie(ms.major, ms.minor) = version_numbers(kVersion);
-  follow::MultisyncClock source(**socket, ctx.clock, ms);
+  source.multisync = std::make_unique<follow::MultisyncClock>(*source.socket, ctx.clock, ms);
+  source.text = terminal_safe(a.fpp) + " from FPP on " + source.socket->describe();
+  return ExitCode::Ok;
+}
+
+// Follows with every robot, and words the end.
+ExitCode follow_robots(Context& ctx, const FollowArgs& a, Source& from, std::vector<Robot>& robots,
+                       std::int32_t clock_ppm) {
+  follow::ShowClock& source = from.clock();
 
   std::vector<std::unique_ptr<follow::Follower>> followers;
   std::vector<follow::Follower*> all;
@@ -122,7 +157,9 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
     options.group = robot.group;
     options.resync_bars = a.resync;
     options.clock_ppm = clock_ppm;
-    options.offset = io::Duration{static_cast<std::int64_t>(a.offset_ms * 1e6)};
+    // As FPP's own Remote Offset: a positive offset runs the robot ahead of the master (the
+    // follower's offset is how much later it runs).
+    options.offset = io::Duration{static_cast<std::int64_t>(-a.offset_ms * 1e6)};
     options.restart_after = io::Duration{static_cast<std::int64_t>(a.restart_after_ms * 1e6)};
     options.interrupted = ctx.interrupted;
     options.once = a.once;
@@ -139,7 +176,7 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
     all.push_back(followers.back().get());
   }
   if (ctx.verbosity >= 0) {
-    ctx.err << "seqc: following " << a.fpp << " from FPP on " << (*socket)->describe() << " for ";
+    ctx.err << "seqc: following " << from.text << " for ";
     for (std::size_t i = 0; i < robots.size(); ++i) {
       ctx.err << (i == 0 ? "" : ", ")
               << (robots[i].name.empty() ? "" : terminal_safe(robots[i].name) + " on ")
@@ -153,7 +190,6 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
   const follow::FollowAll end = follow::follow_all(all, source, ctx.clock, ctx.interrupted,
                                                    std::chrono::milliseconds(20), a.once);
 
-  const follow::MultisyncCounts& n = source.counts();
   for (std::size_t i = 0; i < robots.size() && ctx.verbosity >= 0; ++i) {
     const follow::FollowReport& r = followers[i]->report();
     const std::string who = robots[i].name.empty() ? "" : terminal_safe(robots[i].name) + ": ";
@@ -173,11 +209,13 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
       ctx.err << "seqc: " << who << "could not send the stop: " << r.stop_error << "\n";
     }
   }
-  if (ctx.verbosity >= 0) {
+  if (ctx.verbosity >= 0 && from.multisync) {
+    const follow::MultisyncCounts& n = from.multisync->counts();
     ctx.err << fmt::format(
         "seqc: heard {} packet(s) about {}, {} about other files, {} ping(s) ({} answered), {} "
         "malformed, {} of other types\n",
-        n.followed, a.fpp, n.other_names, n.pings, n.answered, n.malformed, n.other_types);
+        n.followed, terminal_safe(a.fpp), n.other_names, n.pings, n.answered, n.malformed,
+        n.other_types);
   }
   const auto whose = [&](std::size_t i) {
     return robots[i].name.empty() ? std::string() : terminal_safe(robots[i].name) + ": ";
@@ -188,7 +226,9 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
     case follow::FollowEnd::Interrupted:
       return ExitCode::Interrupted;
     case follow::FollowEnd::SourceEnded:
-      return fail(ctx, ExitCode::PortUnavailable, "the UDP socket failed: " + n.last_error);
+      if (!from.multisync) return ExitCode::Ok;  // the timecode's input ended (a WAV file)
+      return fail(ctx, ExitCode::PortUnavailable,
+                  "the UDP socket failed: " + from.multisync->counts().last_error);
     case follow::FollowEnd::PrepareFailed:
       return fail(ctx, ExitCode::DeviceFailure,
                   whose(*end.failed) + followers[*end.failed]->report().error);
@@ -202,7 +242,7 @@ ExitCode follow_robots(Context& ctx, const FollowArgs& a, const io::UdpAddress& 
 }
 
 // A show file: every performer follows, each on its own port.
-ExitCode follow_show(Context& ctx, const FollowArgs& a, const io::UdpAddress& listen) {
+ExitCode follow_show(Context& ctx, const FollowArgs& a, Source& source) {
   if (!a.port.empty()) {
     return usage_error(ctx, "--port: a show's performers bring their own ports (" + a.file + ")");
   }
@@ -229,19 +269,29 @@ ExitCode follow_show(Context& ctx, const FollowArgs& a, const io::UdpAddress& li
     robots.push_back(
         {p.name, stages[i].board, &p.output, &lines.back(), static_cast<std::uint8_t>(p.group)});
   }
-  return follow_robots(ctx, a, listen, robots, 0);
+  return follow_robots(ctx, a, source, robots, 0);
 }
 
 ExitCode run_follow(Context& ctx, const FollowArgs& a) {
-  const Result<io::UdpAddress> listen = io::parse_udp_address(a.listen, fpp::kControlPort);
-  if (!listen) return usage_error(ctx, "--listen " + listen.error().message);
-  if (a.fpp.empty()) return usage_error(ctx, "--fpp: the name of the master's file is empty");
+  if (a.fpp.empty() == a.ltc.empty()) {
+    return usage_error(ctx,
+                       "follow needs exactly one of --fpp NAME (a Falcon Player show) and "
+                       "--ltc SOURCE (SMPTE timecode)");
+  }
+  if (!a.ltc.empty() && a.start.empty()) {
+    return usage_error(ctx, "--ltc needs --start HH:MM:SS:FF, the timecode of the dance's start");
+  }
+  if (a.ltc.empty() && !a.start.empty()) {
+    return usage_error(ctx, "--start is the timecode of --ltc; FPP's master says when to start");
+  }
+  Source source;
+  if (const ExitCode e = open_source(ctx, a, source); e != ExitCode::Ok) return e;
   // A show file is small: a larger file is a choreography, whose loader sees to its size.
   const std::optional<std::uint64_t> size = ctx.files.size(a.file);
   if (size && *size <= kLargestShowFile) {
     if (const Result<std::string> text = ctx.files.read(a.file);
         text && compiler::is_show_text(*text)) {
-      return follow_show(ctx, a, *listen);
+      return follow_show(ctx, a, source);
     }
   }
   Compiled c = compile_for_run(ctx, a.file, a.strict, a.port, &a.clock);
@@ -257,7 +307,7 @@ ExitCode run_follow(Context& ctx, const FollowArgs& a) {
   if (!link.port) return say_port_failure(ctx, link, a.file);
   std::vector<Robot> robots = {
       {"", &board, &c.output, &*link.line, static_cast<std::uint8_t>(a.group)}};
-  return follow_robots(ctx, a, *listen, robots, c.clock_ppm);
+  return follow_robots(ctx, a, source, robots, c.clock_ppm);
 }
 
 }  // namespace
@@ -267,14 +317,20 @@ void add_follow_command(CLI::App& app, Context& ctx, Outcome& result) {
   CLI::App* cmd = app.add_subcommand(
       "follow",
       "Follow a show's master clock: the robot is prepared, started, kept in time and stopped\n"
-      "as a Falcon Player (FPP) master plays a file (--fpp NAME); Ctrl-C stops the robot");
+      "as a Falcon Player (FPP) master plays a file (--fpp NAME), or as SMPTE timecode runs\n"
+      "(--ltc SOURCE --start HH:MM:SS:FF); Ctrl-C stops the robot");
   cmd->add_option("FILE", a->file,
                   "Choreography file (.yaml), or a show file whose performers all follow")
       ->required();
   cmd->add_option("--fpp", a->fpp,
                   "Join the FPP show as a MultiSync remote and follow the master's sequence or "
-                  "media file NAME (without an extension: either)")
-      ->required();
+                  "media file NAME (without an extension: either)");
+  cmd->add_option("--ltc", a->ltc,
+                  "Chase SMPTE linear timecode on SOURCE: a PulseAudio source (`default`, "
+                  "NAME.monitor) or a WAV file");
+  cmd->add_option("--start", a->start,
+                  "With --ltc: the timecode at which the dance starts, HH:MM:SS:FF (HH:MM:SS;FF "
+                  "for drop-frame)");
   cmd->add_option("--port", a->port,
                   "As for `seqc play`: the servo controller (default: the one connected; "
                   "emu:xarm) or the Raspblock's serial port (emu:raspblock)");
@@ -282,7 +338,8 @@ void add_follow_command(CLI::App& app, Context& ctx, Outcome& result) {
                   "Where to hear the master: ADDR[:PORT] (default 0.0.0.0:32320, which also "
                   "joins FPP's multicast group 239.70.80.80)");
   cmd->add_option("--offset", a->offset_ms,
-                  "Milliseconds to run the robot behind the master (negative: ahead)");
+                  "Milliseconds to run the robot ahead of the master, as FPP's Remote Offset "
+                  "(negative: behind)");
   cmd->add_option("--restart-after", a->restart_after_ms,
                   "Servo controller: restart at the next piece a group this many ms off "
                   "(default 100)")

@@ -17,10 +17,13 @@
 #include "compiler/formats/preview_html.hpp"
 #include "compiler/formats/program_views.hpp"
 #include "compiler/show.hpp"
+#include "runtime/boards/board_link.hpp"
 #include "runtime/cli/board_text.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/compile_report.hpp"
+#include "runtime/cli/trace_option.hpp"
 #include "runtime/io/disk.hpp"
+#include "runtime/studio/robot_follower.hpp"
 #include "runtime/studio/server.hpp"
 
 namespace seqc::cli {
@@ -117,9 +120,44 @@ void add_studio_command(CLI::App& app, Context& ctx, Outcome& result) {
       result.code = usage_error(ctx, "studio needs a file to watch, not standard input");
       return;
     }
+    // With --port, the robot follows the page: the board is the one the file is for, so the
+    // file must compile once before the port is opened; later saves may break it (the robot then
+    // keeps the last good dance, as the page does).
+    std::optional<Loaded> first;
+    const boards::Board* board = nullptr;
     if (!o->port.empty()) {
-      result.code = usage_error(ctx, "--port needs the robot follower");
-      return;
+      first.emplace(load_quietly(ctx, o->file, false));
+      if (first->code != ExitCode::Ok || first->file.is_show()) {
+        result.code = first->code != ExitCode::Ok
+                          ? fail(ctx, first->code,
+                                 o->file + " must compile before the robot can follow it:\n" +
+                                     diagnostics_text(first->file))
+                          : usage_error(ctx,
+                                        "--port follows one robot: a show's performers "
+                                        "bring their own ports; use `seqc show` to run it");
+        return;
+      }
+      board = &boards::board_for(first->file.program());
+    }
+    boards::TraceFile trace;
+    std::optional<boards::BoardLink> link;
+    std::unique_ptr<studio::PlayheadSink> follower;
+    if (board != nullptr) {
+      link.emplace(
+          boards::open_link({o->port, board}, trace, ctx.clock, ctx.hooks, ctx.interrupted));
+      if (!link->port) {
+        result.code = say_port_failure(ctx, *link, o->file);
+        return;
+      }
+      if (link->port->own_clock()) {
+        result.code =
+            usage_error(ctx, o->port +
+                                 " runs in emulated time, which a page playing on the wall clock "
+                                 "cannot follow; use `seqc emulate " +
+                                 std::string(board->key) + "` and its terminal as --port");
+        return;
+      }
+      follower = studio::make_robot_follower(*board, *link->transport, *link->port->clock);
     }
     io::DiskFileReader song_files(kMaxSongBytes);
     studio::DiskStamps stamps;
@@ -127,6 +165,7 @@ void add_studio_command(CLI::App& app, Context& ctx, Outcome& result) {
     std::optional<std::string> read_error;
     studio::ServerOptions options;
     options.http_port = o->http_port;
+    options.sink = follower.get();
     if (ctx.verbosity > 0) {
       options.log = [&ctx](const std::string& line) {
         ctx.err << "seqc: studio: " << line << "\n";

@@ -292,13 +292,22 @@ RobotFollower::Servo* RobotFollower::find_servo(std::uint8_t id) {
   return nullptr;
 }
 
+// How much later than the line's arithmetic a move may take effect, for the slew's length.
+constexpr io::Duration kArrivalSlack = std::chrono::milliseconds(10);
+
 double RobotFollower::slew_ms(const std::vector<lsc::ServoTarget>& targets,
                               io::TimePoint now) const {
   double longest = 0;
   for (const lsc::ServoTarget& t : targets) {
     for (const Servo& s : servos_) {
       if (s.id != t.id || s.max_speed <= 0) continue;
-      longest = std::max(longest, std::abs(t.position - s.at(now)) / s.max_speed * 1000);
+      // Where the servo is when the move takes effect, or up to kArrivalSlack later (a line's
+      // and a scheduler's jitter): a servo still moving away from the target is farther then,
+      // and the move must not be faster than max_speed from there either. Within one move a
+      // servo's path is a line, so the farthest point of the stretch is one of its ends.
+      const double far = std::max(std::abs(t.position - s.at(now)),
+                                  std::abs(t.position - s.at(now + kArrivalSlack)));
+      longest = std::max(longest, far / s.max_speed * 1000);
     }
   }
   return longest;
@@ -326,12 +335,27 @@ std::optional<double> RobotFollower::send_move(std::vector<lsc::ServoTarget> tar
     return s == nullptr || (s->known && std::lround(s->to) == t.position);
   });
   if (targets.empty()) return std::nullopt;
+  auto frames_for = [&](std::uint16_t time) {
+    std::get<compiler::ServoProgram>(*frame_output_.program).keyframes = {
+        compiler::Keyframe{0, time, targets, {}}};
+    return board_.live_frames(frame_output_);
+  };
+  auto frames = frames_for(lsc::kMinActionMs);
+  if (!frames || frames->empty()) {
+    note("internal: no move could be made for the board: " +
+         (frames ? std::string("none") : frames.error().message));
+    return std::nullopt;
+  }
+  // The move takes effect as its last byte arrives (after the frame before it has left, and its
+  // own wire time), so its length is measured from where the servos will be then: measured from
+  // now, a servo still moving away from the new target would be given too little time.
+  const double wire_ms =
+      transport_.seconds_per_byte() * static_cast<double>(frames->front().bytes.size()) * 1000;
+  const io::TimePoint arrives = std::max(now, line_free_at_) + ms_duration(wire_ms);
   const double needed =
-      std::ceil(std::max({time_ms, slew_ms(targets, now), double(lsc::kMinActionMs)}));
+      std::ceil(std::max({time_ms, slew_ms(targets, arrives), double(lsc::kMinActionMs)}));
   const auto time = static_cast<std::uint16_t>(std::min(needed, double(lsc::kMaxActionMs)));
-  std::get<compiler::ServoProgram>(*frame_output_.program).keyframes = {
-      compiler::Keyframe{0, time, targets, {}}};
-  auto frames = board_.live_frames(frame_output_);
+  frames = frames_for(time);
   if (!frames || frames->empty()) {
     note("internal: no move could be made for the board: " +
          (frames ? std::string("none") : frames.error().message));
@@ -339,7 +363,7 @@ std::optional<double> RobotFollower::send_move(std::vector<lsc::ServoTarget> tar
   }
   const std::vector<double> where = [&] {
     std::vector<double> w;
-    for (const lsc::ServoTarget& t : targets) w.push_back(find_servo(t.id)->at(now));
+    for (const lsc::ServoTarget& t : targets) w.push_back(find_servo(t.id)->at(arrives));
     return w;
   }();
   if (!write(std::move(frames->front().bytes), now)) return std::nullopt;

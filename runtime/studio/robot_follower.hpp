@@ -110,11 +110,13 @@ class RobotFollower final : public PlayheadSink {
   std::optional<io::TimePoint> service_servos(io::TimePoint now);
   void slew_servos(io::TimePoint now);
   // The move to `targets` (those that change) taking `time_ms`, at least as long as every
-  // servo's max_speed needs.
-  // The move's time, nullopt when nothing was sent.
+  // servo's max_speed needs from where it is when the move arrives; the move's time, nullopt
+  // when nothing was sent.
   std::optional<double> send_move(std::vector<lsc::ServoTarget> targets, double time_ms,
                                   io::TimePoint now);
-  double slew_ms(const std::vector<lsc::ServoTarget>& targets, io::TimePoint now) const;
+  // The longest any servo of `targets` needs at its max_speed from where it is at `at` (or a
+  // little later, when it is farther then).
+  double slew_ms(const std::vector<lsc::ServoTarget>& targets, io::TimePoint at) const;
   Servo* find_servo(std::uint8_t id);
   std::size_t first_keyframe_after(double ms) const;
   io::TimePoint keyframe_due(std::size_t k) const;

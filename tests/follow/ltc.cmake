@@ -39,3 +39,11 @@ target_include_directories(seqc_ltc_cli_tests PRIVATE ${PROJECT_SOURCE_DIR})
 target_compile_definitions(seqc_ltc_cli_tests PRIVATE SEQC_LTC_DIR="${SEQC_LTC_DIR}")
 gtest_discover_tests(seqc_ltc_cli_tests DISCOVERY_MODE PRE_TEST
                      PROPERTIES FIXTURES_REQUIRED ltc_signals)
+
+# `seqc follow --ltc` end to end: the arm (in-process emu:xarm) and the car (emu:raspblock)
+# follow libltc's show signal read at its real pace from a WAV file.
+add_test(NAME follow_ltc_wav
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/ltc_follow_test.py
+                 $<TARGET_FILE:seqc> ${PROJECT_SOURCE_DIR} ${SEQC_LTC_DIR})
+set_tests_properties(follow_ltc_wav PROPERTIES FIXTURES_REQUIRED ltc_signals SKIP_RETURN_CODE 77
+                                               RUN_SERIAL TRUE TIMEOUT 120)

@@ -29,6 +29,16 @@ local ok, err = pcall(function()
   say('cleared ' .. tostring(vim.wait(10000, function()
     return #vim.diagnostic.get(buf) == 0
   end, 20)))
+  -- Musical time where the text is written: the inlay hints of the first three steps.
+  local answers = vim.lsp.buf_request_sync(buf, 'textDocument/inlayHint', {
+    textDocument = { uri = vim.uri_from_bufnr(buf) },
+    range = { start = { line = 0, character = 0 }, ['end'] = { line = 13, character = 0 } },
+  }, 10000)
+  for _, answer in pairs(answers or {}) do
+    for _, hint in ipairs(answer.result or {}) do
+      say(string.format('hint %d %s', hint.position.line, hint.label))
+    end
+  end
   local client = vim.lsp.get_client_by_id(client_id)
   client.stop()
   say('stopped ' .. tostring(vim.wait(5000, function() return client.is_stopped() end, 20)))

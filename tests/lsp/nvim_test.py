@@ -1,5 +1,6 @@
 """Neovim's built-in LSP client (0.7, headless) against `seqc lsp`: a copy of an example with
-`tme:` for `time:` gets the diagnostic at the right place, and fixing it in the buffer clears it.
+`tme:` for `time:` gets the diagnostic at the right place, fixing it in the buffer clears it, and
+the inlay hints say when each step starts and how long it lasts.
 
 Usage: nvim_test.py SEQC EXAMPLE.yaml   (skipped, status 77, when nvim is not installed)
 """
@@ -17,6 +18,11 @@ EXPECTED = [
     "diagnostic 9:4-9:7 severity=1 code=unknown-key source=seqc "
     "unknown key 'tme' in a move step; did you mean 'time'?",
     "cleared true",
+    # walk.yaml's first steps (0-based lines 8, 10, 12) last 1 s, 800 ms and 600 ms; it names no
+    # tempo, so the hints give seconds alone.
+    "hint 8 0.000 s \u00b7 1.000 s",
+    "hint 10 1.000 s \u00b7 800 ms",
+    "hint 12 1.800 s \u00b7 600 ms",
     "stopped true",
 ]
 
@@ -41,7 +47,7 @@ def main():
         subprocess.run([nvim, "--headless", "-u", "NONE", "-i", "NONE", "-c",
                         "luafile " + os.path.join(HERE, "nvim_client.lua")],
                        env=env, stdin=subprocess.DEVNULL, timeout=60, check=False)
-        got = open(out).read().splitlines() if os.path.exists(out) else ["no results written"]
+        got = open(out, encoding="utf-8").read().splitlines() if os.path.exists(out) else ["no results written"]
     finally:
         shutil.rmtree(tmp)
     if got != EXPECTED:

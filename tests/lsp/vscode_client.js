@@ -78,6 +78,46 @@ async function main() {
   });
   assert.deepStrictEqual(await nextDiagnostics(), []);
 
+  // Musical time where the text is written: a dance at 120 bpm in 4/4 (a beat 500 ms, a bar
+  // 2 s). Its steps start at 0, 2 s (bar 2), 3 s (bar 2 beat 3) and 3.5 s (bar 2 beat 4).
+  const beatFile = path.join(dir, 'beat.yaml');
+  const beatUri = 'file://' + beatFile;
+  const beatText = [
+    'robot: xarm', 'tempo: 120', 'meter: 4/4', 'poses:', '  up: {base: 700}', 'sequence:',
+    '  - move: home', '    time: 2s', '  - move: up', '    time: 1s',
+    '  - move: {base: 300}', '    time: 500ms', '  - move: up', '    time: 250ms', '',
+  ].join('\n');
+  fs.writeFileSync(beatFile, beatText);
+  await connection.sendNotification(lsp.DidOpenTextDocumentNotification.method, {
+    textDocument: { uri: beatUri, languageId: 'yaml', version: 1, text: beatText },
+  });
+  const hints = await connection.sendRequest(lsp.InlayHintRequest.method, {
+    textDocument: { uri: beatUri },
+    range: { start: { line: 0, character: 0 }, end: { line: 14, character: 0 } },
+  });
+  const labels = {};
+  for (const h of hints) labels[h.position.line] = h.label;
+  assert.deepStrictEqual(labels, {
+    6: '0.000 s \u00B7 1:1 \u00B7 2.000 s',
+    8: '2.000 s \u00B7 2:1 \u00B7 1.000 s',
+    10: '3.000 s \u00B7 2:3 \u00B7 500 ms',
+    12: '3.500 s \u00B7 2:4 \u00B7 250 ms',
+  });
+  // `up` on line 12 is defined on line 4, at its name.
+  const definition = await connection.sendRequest(lsp.DefinitionRequest.method, {
+    textDocument: { uri: beatUri }, position: { line: 12, character: 11 },
+  });
+  const target = Array.isArray(definition) ? definition[0] : definition;
+  assert.strictEqual(target.uri, beatUri);
+  assert.strictEqual(target.range.start.line, 4);
+  assert.strictEqual(target.range.start.character, 2);
+  // Hovering the pose's use shows its value.
+  const hover = await connection.sendRequest(lsp.HoverRequest.method, {
+    textDocument: { uri: beatUri }, position: { line: 12, character: 11 },
+  });
+  const hoverText = JSON.stringify(hover.contents);
+  assert.ok(hoverText.includes('base') && hoverText.includes('700'), hoverText);
+
   await connection.sendRequest(lsp.ShutdownRequest.method);
   await connection.sendNotification(lsp.ExitNotification.method);
   assert.strictEqual(await exited, 0);
