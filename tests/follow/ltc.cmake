@@ -46,4 +46,4 @@ add_test(NAME follow_ltc_wav
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/ltc_follow_test.py
                  $<TARGET_FILE:seqc> ${PROJECT_SOURCE_DIR} ${SEQC_LTC_DIR})
 set_tests_properties(follow_ltc_wav PROPERTIES FIXTURES_REQUIRED ltc_signals SKIP_RETURN_CODE 77
-                                               RUN_SERIAL TRUE TIMEOUT 120)
+                                               RUN_SERIAL TRUE TIMEOUT 120 LABELS "timed")
