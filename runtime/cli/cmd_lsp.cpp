@@ -22,7 +22,9 @@ void add_lsp_command(CLI::App& app, Context& ctx, Outcome& result) {
       "lsp", "Run the language server for editors (LSP over standard input and output)");
   // Clients pass --stdio to every server that talks over standard input and output.
   cmd->add_flag("--stdio", *stdio, "Talk over standard input and output (the only way; accepted)");
-  cmd->callback([&ctx, &result] {
+  // The callback holds the flag's storage, so it lives as long as the command line that writes it.
+  cmd->callback([&ctx, &result, stdio] {
+    (void)stdio;
     lsp::ServerOptions options;
     compiler::RobotStart home;
     home.assume_home = true;
