@@ -292,8 +292,9 @@ RobotFollower::Servo* RobotFollower::find_servo(std::uint8_t id) {
   return nullptr;
 }
 
-// How much later than the line's arithmetic a move may take effect, for the slew's length.
-constexpr io::Duration kArrivalSlack = std::chrono::milliseconds(10);
+// How far from the line's arithmetic a move may take effect (the line's, the kernel's and the
+// scheduler's jitter), for the slew's length.
+constexpr io::Duration kArrivalSlack = std::chrono::milliseconds(15);
 
 double RobotFollower::slew_ms(const std::vector<lsc::ServoTarget>& targets,
                               io::TimePoint now) const {
@@ -301,13 +302,14 @@ double RobotFollower::slew_ms(const std::vector<lsc::ServoTarget>& targets,
   for (const lsc::ServoTarget& t : targets) {
     for (const Servo& s : servos_) {
       if (s.id != t.id || s.max_speed <= 0) continue;
-      // Where the servo is when the move takes effect, or up to kArrivalSlack later (a line's
-      // and a scheduler's jitter): a servo still moving away from the target is farther then,
-      // and the move must not be faster than max_speed from there either. Within one move a
-      // servo's path is a line, so the farthest point of the stretch is one of its ends.
-      const double far = std::max(std::abs(t.position - s.at(now)),
-                                  std::abs(t.position - s.at(now + kArrivalSlack)));
-      longest = std::max(longest, far / s.max_speed * 1000);
+      // Where the servo is when the move takes effect, kArrivalSlack either side: a servo still
+      // moving away from the target is farther if the move arrives late, one coming towards it
+      // if the move before arrived late (so the servo is behind where the arithmetic puts it),
+      // and the move must not be faster than max_speed from there either. A servo's path is a
+      // line and then a stop, so the farthest point of the stretch is one of its ends.
+      const double early = std::abs(t.position - s.at(now - kArrivalSlack));
+      const double late = std::abs(t.position - s.at(now + kArrivalSlack));
+      longest = std::max(longest, std::max(early, late) / s.max_speed * 1000);
     }
   }
   return longest;

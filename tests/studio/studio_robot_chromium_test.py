@@ -18,7 +18,11 @@ between 2 s and 4 s the line puts the base at 500 + 0.2 x (ms - 2000), between 4
 - The lag from each click to the controller receiving its move (the emulator's record, on the
   same monotonic clock from the instant its terminal appeared) is printed, median and p99.
 - Playing from near 5 s: the moves that follow carry the rest of the dance (base 100); paused,
-  nothing more arrives after the move under way; SIGINT ends the studio with 130.
+  nothing more arrives after the move under way.
+- Saving the file while paused (the last move to 200 instead of 100): the page shows the new
+  line's base, 900 - 0.35 x (ms - 4000), at the same instant, and the robot, which finished the
+  move under way (to 100), gets one move there, no faster than max_speed.
+- SIGINT ends the studio with 130.
 Usage: studio_robot_chromium_test.py SEQC"""
 import csv
 import json
@@ -152,9 +156,28 @@ with tempfile.TemporaryDirectory() as tmp:
                     "text": " " if kind == "keyDown" else "", "windowsVirtualKeyCode": 32})
 
         space()
-        time.sleep(1.2)
+        time.sleep(0.6)
         space()
         paused_at = time.monotonic()
+        paused_ms = round(state()["t"] * 1000)
+        time.sleep(1.0)
+
+        # A save while paused: the last move now goes to 200, so at the paused instant the line
+        # puts the base at 900 - 0.35 x (ms - 4000). The page shows it at the same instant, and
+        # the robot, which finished the move under way (to 100), slews there.
+        saved_at = time.monotonic()
+        with open(dance, "w") as f:
+            f.write(DANCE.replace("{base: 100}", "{base: 200}"))
+        resaved_base = 900 - 0.35 * (paused_ms - 4000)
+        shown = None
+        end = time.monotonic() + 5
+        while time.monotonic() < end and shown is None:
+            now_state = state()
+            if abs(now_state["servos"]["base"] - resaved_base) <= 1:
+                shown = now_state
+            time.sleep(0.005)
+        check(shown is not None and round(shown["t"] * 1000) == paused_ms,
+              f"the page never showed base {resaved_base:.1f} at {paused_ms} ms: {state()}")
         time.sleep(1.0)
     finally:
         browser.close()
@@ -202,7 +225,10 @@ with tempfile.TemporaryDirectory() as tmp:
             last = (arrived, where, base, time_ms)
         lags.append((arrived - pressed) * 1000)
     # `seqc simulate` agrees with the arithmetic at those instants.
-    sim = subprocess.run([seqc, "simulate", dance, "--step", "1"], capture_output=True,
+    original = os.path.join(tmp, "original.yaml")
+    with open(original, "w") as f:
+        f.write(DANCE)
+    sim = subprocess.run([seqc, "simulate", original, "--step", "1"], capture_output=True,
                          text=True, check=True).stdout.splitlines()
     header = sim[0].split(",")
     column = header.index("base")
@@ -223,8 +249,16 @@ with tempfile.TemporaryDirectory() as tmp:
     played = [m for m in got if clicks and m[0] > clicks[-1][0] + 0.5 and m[0] < paused_at]
     check(any(m[2].get(6) == 100 for m in played),
           f"playing from {clicks[-1][1] if clicks else '?'} ms sent no move to 100: {played}")
-    late = [m for m in got if m[0] > paused_at + 0.15]
+    late = [m for m in got if paused_at + 0.15 < m[0] < saved_at]
     check(not late, f"moves arrived after the pause: {late}")
+    resaved = [m for m in got if m[0] > saved_at]
+    check(len(resaved) == 1 and abs(resaved[0][2].get(6, -99) - resaved_base) <= 1,
+          f"after the save the robot got {resaved}, not one move to {resaved_base:.1f}")
+    if resaved:
+        least = abs(resaved[0][2].get(6, 100) - 100) / UNITS_PER_S * 1000
+        check(resaved[0][1] + 3 >= least,
+              f"100 -> {resaved[0][2]} in {resaved[0][1]} ms, faster than max_speed "
+              f"(at least {least:.0f} ms)")
 
 if problems:
     print(f"0 passed, {len(problems)} failed")
