@@ -7,7 +7,11 @@
 namespace seqc::compiler {
 namespace {
 
-void apply(CarState& s, const raspblock::Packet& packet) {
+std::string cell(const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); }
+
+}  // namespace
+
+void apply_packet(CarState& s, const raspblock::Packet& packet) {
   std::visit(
       [&s](const auto& p) {
         using T = std::decay_t<decltype(p)>;
@@ -26,10 +30,6 @@ void apply(CarState& s, const raspblock::Packet& packet) {
       packet);
 }
 
-std::string cell(const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); }
-
-}  // namespace
-
 CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint32_t step_ms) {
   CarSimulation sim;
   sim.duration_ms = program.duration_ms;
@@ -38,7 +38,7 @@ CarSimulation simulate_car(const compiler::RaspblockProgram& program, std::uint3
   std::uint32_t t = 0;
   for (;;) {
     while (next < program.packets.size() && program.packets[next].at_ms <= t) {
-      apply(state, program.packets[next].packet);
+      apply_packet(state, program.packets[next].packet);
       ++next;
     }
     sim.samples.push_back({t, state});
@@ -56,7 +56,7 @@ CarSimulation car_changes(const compiler::RaspblockProgram& program) {
   std::uint32_t t = 0;
   for (;;) {
     while (next < program.packets.size() && program.packets[next].at_ms <= t) {
-      apply(state, program.packets[next].packet);
+      apply_packet(state, program.packets[next].packet);
       ++next;
     }
     sim.samples.push_back({t, state});

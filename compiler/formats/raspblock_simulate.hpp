@@ -22,6 +22,10 @@ struct CarState {
   friend bool operator==(const CarState&, const CarState&) = default;
 };
 
+// The car's state after the board takes `packet` (a PID setting changes how it drives, not
+// where it is). Shared by the simulation and by whatever follows a car's program live.
+void apply_packet(CarState& s, const raspblock::Packet& packet);
+
 struct CarSimulation {
   struct Sample {
     std::uint32_t time_ms = 0;

@@ -27,24 +27,6 @@ double to_ms(io::Duration d) { return std::chrono::duration<double, std::milli>(
 
 std::uint64_t whole_ms(double ms) { return ms <= 0 ? 0 : static_cast<std::uint64_t>(ms); }
 
-void apply_packet(compiler::CarState& s, const raspblock::Packet& packet) {
-  std::visit(
-      [&s](const auto& p) {
-        using T = std::decay_t<decltype(p)>;
-        if constexpr (std::is_same_v<T, raspblock::Rocker>) {
-          s.x = p.x;
-          s.y = p.y;
-          s.z = p.z;
-        } else if constexpr (std::is_same_v<T, raspblock::GimbalServos>) {
-          s.pan = p.horizontal;
-          s.tilt = p.vertical;
-        } else if constexpr (std::is_same_v<T, raspblock::SingleServo>) {
-          if (p.index >= 1 && p.index <= s.servos.size()) s.servos[p.index - 1] = p.position;
-        }
-      },
-      packet);
-}
-
 bool driving(const compiler::CarState& s) { return s.x != 0 || s.y != 0 || s.z != 0; }
 
 // The packets that take the car from `from` to `to` (its drive too when `drive`).
@@ -472,7 +454,7 @@ void RobotFollower::send_car(const std::vector<raspblock::Packet>& packets, io::
   for (const player::ScheduledFrame& f : *frames)
     bytes.insert(bytes.end(), f.bytes.begin(), f.bytes.end());
   if (!write(std::move(bytes), now)) return;
-  for (const raspblock::Packet& p : packets) apply_packet(car_, p);
+  for (const raspblock::Packet& p : packets) compiler::apply_packet(car_, p);
 }
 
 void RobotFollower::stop_drive(io::TimePoint now) {
@@ -546,7 +528,7 @@ std::optional<io::TimePoint> RobotFollower::service_car(io::TimePoint now) {
   if (!ramp_.empty() && ramp_.front().at <= now) {
     compiler::CarState wanted = car_;
     while (!ramp_.empty() && ramp_.front().at <= now) {
-      apply_packet(wanted, ramp_.front().packet);
+      compiler::apply_packet(wanted, ramp_.front().packet);
       ramp_.erase(ramp_.begin());
     }
     send_car(car_changes_to(wanted, false), now);
@@ -579,7 +561,7 @@ std::optional<io::TimePoint> RobotFollower::service_car(io::TimePoint now) {
       if (std::holds_alternative<raspblock::PidAdjust>(packets[next_].packet)) {
         pid = {packets[next_].packet};
       }
-      apply_packet(wanted, packets[next_].packet);
+      compiler::apply_packet(wanted, packets[next_].packet);
       ++next_;
     }
     std::vector<raspblock::Packet> out = pid;
